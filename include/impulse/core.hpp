@@ -1,0 +1,10 @@
+// impulse/core.hpp — the core module: version, assertions, error reporting,
+// the SIMD batch type and the policy concepts. Depends on the standard library only.
+#pragma once
+
+#include "core/assert.hpp"
+#include "core/batch.hpp"
+#include "core/error.hpp"
+#include "core/fwd.hpp"
+#include "core/policy.hpp"
+#include "core/version.hpp"

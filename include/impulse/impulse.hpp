@@ -1,0 +1,8 @@
+// impulse/impulse.hpp — everything in impulse. Each module also has its own
+// umbrella header (impulse/math.hpp, ...) for users who need less.
+#pragma once
+
+#include "config.hpp"
+#include "core.hpp"
+#include "integrators.hpp"
+#include "math.hpp"

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The README's quick start on a fresh Debian 12 machine:
+#   tools/quickstart.sh demo   builds and runs the demo
+#   tools/quickstart.sh test   builds and runs the test suite (CMake release preset)
+# Installs the Debian packages it needs first if any is missing (apt-get, via
+# sudo when not root), and says which.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+needed=(g++ cmake ninja-build doctest-dev)
+missing=()
+for package in "${needed[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \
+    || missing+=("$package")
+done
+if ((${#missing[@]})); then
+  echo "quickstart: installing ${missing[*]} with apt-get"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+case "${1:-}" in
+  demo)
+    cmake --preset release >/dev/null
+    cmake --build --preset release --target spin
+    exec build/release/examples/spin
+    ;;
+  test)
+    exec cmake --workflow --preset release
+    ;;
+  *)
+    echo "usage: tools/quickstart.sh demo|test" >&2
+    exit 2
+    ;;
+esac
