@@ -2,9 +2,11 @@
 // the SIMD batch type and the policy concepts. Depends on the standard library only.
 #pragma once
 
+#include "core/aligned_array.hpp"
 #include "core/assert.hpp"
 #include "core/batch.hpp"
 #include "core/error.hpp"
 #include "core/fwd.hpp"
 #include "core/policy.hpp"
+#include "core/random.hpp"
 #include "core/version.hpp"

@@ -6,3 +6,4 @@
 #include "core.hpp"
 #include "integrators.hpp"
 #include "math.hpp"
+#include "particles.hpp"

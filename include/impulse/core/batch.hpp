@@ -122,17 +122,47 @@ struct batch_mask {
   }
 };
 
+namespace detail {
+
+/// Whether any lane of an all-ones/all-zeros integer vector is set: halves
+/// OR-ed together down to 16 bytes, then one byte-mask move (pmovmskb), in
+/// place of W lane extractions and branches.
+template <class I, int W>
+bool any_lane_set(const lanes<I, W>& v) noexcept {
+  constexpr int bytes = int(sizeof(I)) * W;
+  if constexpr (W == 1) {
+    return v != 0;
+  } else if constexpr (bytes > 16) {
+    lanes<I, W / 2> half[2];
+    __builtin_memcpy(half, &v, sizeof v);
+    const lanes<I, W / 2> either = half[0] | half[1];
+    return any_lane_set<I, W / 2>(either);
+  }
+#if defined(__SSE2__)
+  else if constexpr (bytes == 16) {
+    using bytes16 = char __attribute__((vector_size(16)));
+    bytes16 b;
+    __builtin_memcpy(&b, &v, 16);
+    return __builtin_ia32_pmovmskb128(b) != 0;
+  }
+#endif
+  else {
+    for (int i = 0; i < W; ++i)
+      if (v[i] != 0) return true;
+    return false;
+  }
+}
+
+}  // namespace detail
+
 template <scalar_type T, int W>
 bool any(batch_mask<T, W> m) noexcept {
-  for (int i = 0; i < W; ++i)
-    if (m[i]) return true;
-  return false;
+  if constexpr (W == 1) return m.v;
+  else return detail::any_lane_set<typename detail::mask_lane<T>::type, W>(m.v);
 }
 template <scalar_type T, int W>
 bool all(batch_mask<T, W> m) noexcept {
-  for (int i = 0; i < W; ++i)
-    if (!m[i]) return false;
-  return true;
+  return !any(!m);
 }
 template <scalar_type T, int W>
 bool none(batch_mask<T, W> m) noexcept {
@@ -283,6 +313,57 @@ template <scalar_type T, int W>
 batch<T, W> sqrt(batch<T, W> a) noexcept {
   detail::lane_sqrt<T, W>(a.v);
   return a;
+}
+
+namespace detail {
+
+/// The hardware estimate of 1/√a (relative error ≤ 1.5·2⁻¹², rsqrtps) for
+/// float lanes, in place; false when the target has none for this width.
+template <class T, int W>
+bool lane_rsqrt_estimate(lanes<T, W>& a) noexcept {
+  constexpr int bytes = int(sizeof(T)) * W;
+  if constexpr (!std::is_same_v<T, float> || W == 1) {
+    return false;
+  }
+#if defined(__AVX__)
+  else if constexpr (bytes == 32) {
+    a = __builtin_ia32_rsqrtps256(a);
+    return true;
+  }
+#endif
+#if defined(__SSE__)
+  else if constexpr (bytes == 16) {
+    a = __builtin_ia32_rsqrtps(a);
+    return true;
+  }
+#endif
+  else if constexpr (bytes > 16) {
+    lanes<T, W / 2> half[2];
+    __builtin_memcpy(half, &a, sizeof a);
+    if (!lane_rsqrt_estimate<T, W / 2>(half[0])) return false;
+    lane_rsqrt_estimate<T, W / 2>(half[1]);
+    __builtin_memcpy(&a, half, sizeof a);
+    return true;
+  } else {
+    return false;
+  }
+}
+
+}  // namespace detail
+
+/// 1/√a for positive, finite, normal a. Float lanes take the hardware
+/// estimate and one Newton–Raphson step, y ← y·(3 − a·y²)/2, which squares
+/// its relative error: 3.7e-4 becomes 2e-7 with the step's own rounding
+/// (1.65e-7, 2.8 ulp, is the worst found over 2^-100 … 2^100; a test holds
+/// it under 2e-7). That is
+/// the accuracy of the particle forces that use it, at a fraction of a
+/// square root and a division. Double lanes (x86 has no estimate below
+/// AVX-512) and W = 1 compute 1/sqrt(a), correctly rounded twice.
+template <scalar_type T, int W>
+batch<T, W> rsqrt(batch<T, W> a) noexcept {
+  batch<T, W> y = a;
+  if (detail::lane_rsqrt_estimate<T, W>(y.v)) return y * (T(1.5) - (a * T(0.5)) * y * y);
+  return T(1) / sqrt(a);
 }
 
 }  // namespace impulse

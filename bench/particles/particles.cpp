@@ -1,0 +1,204 @@
+// bench/particles — particle-steps per second on DESIGN.md's `particles` scene.
+//
+// For N = 10^3 … 4·10^6, float and double, and every integrator, times
+// particle_system::step (the fused SoA kernel at the native batch width) and
+// the same physics written the way a typical engine ships it: an array of
+// structs {vec3 pos, vel; T mass, age;} stepped one particle at a time with
+// the same integrator policy. Beside each, a STREAM-style copy (b[i] = a[i]
+// over arrays of the same total size as the particle data) measured in the
+// same run gives the memory roof at that size, so the table reads as a
+// fraction of what the machine can move, not as a lone time.
+//
+// Output: CSV on stdout,
+//   integrator,scalar,width,n,msteps_per_s,gb_per_s,bandwidth_fraction
+// width is the batch width, or "aos" for the baseline. Each figure is the
+// median of `repeats` timed runs, each run long enough (≥ 0.1 s) to swamp the
+// clock. --quick runs N ≤ 10^5 with 3 repeats, for a smoke test.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "particles_scene.hpp"
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+namespace ps = particles_scene;
+
+struct settings {
+  std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000, 4000000};
+  int repeats = 7;
+  double min_seconds = 0.1;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// Seconds per call of f, median over repeats of runs of at least min_seconds.
+template <class F>
+double seconds_per_call(F&& f, const settings& s) {
+  f();  // warm the caches and the branch predictors
+  auto t0 = clock_type::now();
+  f();
+  const double once = std::chrono::duration<double>(clock_type::now() - t0).count();
+  const long calls = std::max(3L, long(s.min_seconds / std::max(once, 1e-9)));
+  std::vector<double> runs;
+  for (int r = 0; r < s.repeats; ++r) {
+    t0 = clock_type::now();
+    for (long c = 0; c < calls; ++c) f();
+    runs.push_back(std::chrono::duration<double>(clock_type::now() - t0).count() / double(calls));
+  }
+  return median(runs);
+}
+
+/// The copy roof: bytes moved per second by b[i] = a[i] over `bytes` in total
+/// (half read, half written), the way STREAM counts them.
+double copy_bandwidth(std::size_t bytes, const settings& s) {
+  const std::size_t n = std::max<std::size_t>(bytes / 2 / sizeof(float), 64);
+  std::vector<float> a(n, 1.0f), b(n, 0.0f);
+  volatile float sink = 0;
+  const double t = seconds_per_call(
+      [&] {
+        float* __restrict out = b.data();
+        const float* __restrict in = a.data();
+        for (std::size_t i = 0; i < n; ++i) out[i] = in[i];
+        sink = sink + b[n / 2];
+      },
+      s);
+  return double(2 * n * sizeof(float)) / t;
+}
+
+template <class T, class I>
+struct config : impulse::default_config {
+  using scalar = T;
+  using integrator = I;
+  static constexpr bool particle_lifetime = false;  // the scene has no ageing
+};
+
+// ---- the array-of-structs baseline ----------------------------------------------
+
+template <class T>
+struct particle {
+  impulse::vec3<T> pos, vel;
+  T mass, age;
+};
+
+template <class T, class I>
+struct aos_system {
+  std::vector<particle<T>> particles;
+  std::array<ps::plane_spec<T>, 3> planes = ps::scene_planes<T>();
+  std::array<impulse::vec3<T>, 3> attractor_positions{{{0, 5, 0}, {-5, 8, 3}, {5, 3, -4}}};
+  std::array<T, 3> strengths{20, 10, 15};
+
+  impulse::vec3<T> acceleration(const impulse::vec3<T>& x, const impulse::vec3<T>& v, T inverse_mass) const {
+    impulse::vec3<T> f = v * T(-0.1);
+    for (int k = 0; k < 3; ++k) {
+      const impulse::vec3<T> d = attractor_positions[k] - x;
+      const T r2 = dot(d, d) + T(0.05);
+      f = f + d * (strengths[k] / (r2 * std::sqrt(r2)));
+    }
+    return impulse::vec3<T>{0, T(-9.81), 0} + f * inverse_mass;
+  }
+
+  void step(T dt) {
+    for (particle<T>& p : particles) {
+      const T inverse_mass = T(1) / p.mass;
+      I::step(p.pos, p.vel, dt, [&](const impulse::vec3<T>& x, const impulse::vec3<T>& v) {
+        return acceleration(x, v, inverse_mass);
+      });
+      for (const auto& plane : planes) {
+        const T s = dot(plane.normal, p.pos) + plane.offset;
+        if (s >= T(0)) continue;
+        p.pos = p.pos - plane.normal * s;
+        T vn = dot(p.vel, plane.normal);
+        const impulse::vec3<T> tangential = p.vel - plane.normal * vn;
+        if (vn < T(0)) vn = -T(ps::restitution) * vn;
+        p.vel = tangential * T(1 - ps::friction) + plane.normal * vn;
+      }
+      p.age += dt;
+    }
+  }
+};
+
+// ---- one row ----------------------------------------------------------------------
+
+struct row {
+  const char* integrator;
+  const char* scalar;
+  std::string width;
+  std::size_t n;
+  double steps_per_s, bytes_per_step, roof;
+};
+
+void print(const row& r) {
+  const double gb_per_s = r.steps_per_s * r.bytes_per_step / 1e9;
+  std::printf("%s,%s,%s,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.n,
+              r.steps_per_s / 1e6, gb_per_s, gb_per_s * 1e9 / r.roof);
+  std::fflush(stdout);
+}
+
+template <class T, class I>
+void run(const char* integrator_name, std::size_t n, double roof_soa, double roof_aos, const settings& s) {
+  using system_type = ps::system<config<T, I>>;
+  const char* scalar_name = sizeof(T) == 4 ? "float" : "double";
+  const T dt = T(ps::dt);
+  {
+    system_type system = ps::make<config<T, I>>(n);
+    for (int k = 0; k < 10; ++k) system.step(dt);  // let the first bounces happen
+    const double t = seconds_per_call([&] { system.step(dt); }, s);
+    // Read and written: x, y, z, vx, vy, vz; read: inverse mass.
+    print({integrator_name, scalar_name, std::to_string(system_type::width), n, double(n) / t,
+           double(13 * sizeof(T)), roof_soa});
+  }
+  {
+    aos_system<T, I> aos;
+    impulse::lcg32 random{12345};
+    aos.particles.resize(n);
+    for (particle<T>& p : aos.particles) {
+      const auto start = ps::draw<T>(random);
+      p = {start.position, start.velocity, T(1), T(0)};
+    }
+    for (int k = 0; k < 10; ++k) aos.step(dt);
+    const double t = seconds_per_call([&] { aos.step(dt); }, s);
+    print({integrator_name, scalar_name, "aos", n, double(n) / t, double(2 * sizeof(particle<T>)), roof_aos});
+  }
+}
+
+template <class T>
+void run_scalar(std::size_t n, const settings& s) {
+  const double roof_soa = copy_bandwidth(n * 13 * sizeof(T), s);
+  const double roof_aos = copy_bandwidth(n * 2 * sizeof(particle<T>), s);
+  namespace in = impulse::integrators;
+  run<T, in::euler>("euler", n, roof_soa, roof_aos, s);
+  run<T, in::symplectic_euler>("symplectic_euler", n, roof_soa, roof_aos, s);
+  run<T, in::midpoint>("midpoint", n, roof_soa, roof_aos, s);
+  run<T, in::rk4>("rk4", n, roof_soa, roof_aos, s);
+  std::fprintf(stderr, "copy roof at n = %zu (%s): %.2f GB/s soa footprint, %.2f GB/s aos footprint\n", n,
+               sizeof(T) == 4 ? "float" : "double", roof_soa / 1e9, roof_aos / 1e9);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  settings s;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--quick") == 0) {
+      s.sizes = {1000, 10000, 100000};
+      s.repeats = 3;
+      s.min_seconds = 0.02;
+    } else {
+      std::fprintf(stderr, "usage: %s [--quick]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::printf("integrator,scalar,width,n,msteps_per_s,gb_per_s,bandwidth_fraction\n");
+  for (std::size_t n : s.sizes) {
+    run_scalar<float>(n, s);
+    run_scalar<double>(n, s);
+  }
+}

@@ -1,0 +1,509 @@
+// impulse/particles/particle_system.hpp — particles in SIMD batches, stepped by
+// one fused pass.
+//
+//   struct snow_config : impulse::default_config {};
+//   impulse::particle_system<snow_config, gravity, wind> snow{10'000};
+//   snow.add_plane(plane_collider<float>::half_space({0, 1, 0}, 0, 0, 1));
+//   snow.add_emitter({.position = {0, 20, 0}, .half_extents = {10, 0, 10}, .rate = 500});
+//   snow.step(1.0f / 60);
+//
+// Storage is structure-of-arrays: one 64-byte-aligned column per component
+// (x, y, z, vx, vy, vz, inverse mass, and the per-particle wind variation,
+// age and lifetime when the configuration uses them), each padded to whole
+// batches of W lanes. A step loads a batch into registers, runs the
+// configured integrator over it with the force list evaluated at every stage,
+// resolves the planes, ages it and stores it: every byte is read and written
+// once per step whatever the integrator, so RK4 moves the bytes Euler moves.
+//
+// Springs couple particles across batches, so a force list that contains them
+// is stepped in stages instead (detail/pooled_state.hpp): each integrator
+// stage sweeps all batches and then the springs. The same integrator code
+// runs both paths.
+//
+// Indices are positions in the columns. Killing a particle, or its death by
+// age, moves the last particle into its slot, so the columns stay dense and
+// the kernel never spends lanes on the dead; a spring follows the particle
+// it is attached to.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "../core/aligned_array.hpp"
+#include "../core/policy.hpp"
+#include "../core/random.hpp"
+#include "../integrators/ode_state.hpp"
+#include "detail/pooled_state.hpp"
+#include "emitter.hpp"
+#include "force.hpp"
+#include "plane_collider.hpp"
+
+namespace impulse::particles {
+
+/// Batch width of a configuration's particle systems: Config::particle_width
+/// when it sets one, else the widest the target compiles for.
+template <class Config>
+inline constexpr int particle_width_of = [] {
+  if constexpr (requires { Config::particle_width; }) return int(Config::particle_width);
+  else return native_width<typename Config::scalar>;
+}();
+
+/// Whether particles age and die: Config::particle_lifetime, default true.
+/// Without it the age and lifetime columns do not exist and a step moves
+/// 12 fewer bytes per float particle.
+template <class Config>
+inline constexpr bool particle_lifetime_of = [] {
+  if constexpr (requires { Config::particle_lifetime; }) return bool(Config::particle_lifetime);
+  else return true;
+}();
+
+/// Read-only view of three columns as vectors.
+template <class T>
+struct vec3_columns {
+  std::span<const T> x, y, z;
+  [[nodiscard]] std::size_t size() const noexcept { return x.size(); }
+  vec3<T> operator[](std::size_t i) const noexcept { return {x[i], y[i], z[i]}; }
+};
+
+template <class Config, template <class> class... Forces>
+class particle_system {
+ public:
+  using config = Config;
+  using scalar = typename Config::scalar;
+  using integrator = typename Config::integrator;
+  static constexpr int width = particle_width_of<Config>;
+  static constexpr bool has_lifetime = particle_lifetime_of<Config>;
+
+  static_assert(scalar_type<scalar>, "impulse particle_system: Config::scalar must be float or double");
+  static_assert(batch_width<scalar, width>,
+                "impulse particle_system: Config::particle_width must be 1, 2, 4, 8 or 16 and at most 64 bytes");
+  static_assert(integrator_policy<integrator>,
+                "impulse particle_system: Config::integrator must be an integrator policy");
+  static_assert((particle_force<Forces<scalar>, scalar, width> && ...),
+                "impulse particle_system: every force must state its effect, validate() and evaluate(x, v, p)");
+  static_assert(((Forces<scalar>::effect == force_effect::pairwise ? 1 : 0) + ... + 0) <= 1,
+                "impulse particle_system: at most one pairwise force (springs) in the list");
+
+ private:
+  using T = scalar;
+  using lanes = batch<T, width>;
+  using state = vec3_batch<T, width>;
+  template <class F>
+  static constexpr bool is_pairwise = F::effect == force_effect::pairwise;
+  static constexpr bool has_pairwise = (is_pairwise<Forces<T>> || ...);
+  static constexpr bool needs_inverse_mass = ((Forces<T>::effect != force_effect::acceleration) || ...);
+  static constexpr bool needs_variation = (uses_variation<Forces<T>>() || ...);
+
+ public:
+  /// A system that holds up to `capacity` particles, with each force's
+  /// default parameters.
+  explicit particle_system(std::size_t capacity)
+    requires(sizeof...(Forces) > 0)
+      : particle_system(capacity, Forces<T>{}...) {}
+  /// A system that holds up to `capacity` particles, with the forces' parameters.
+  explicit particle_system(std::size_t capacity, Forces<T>... forces)
+      : forces_(std::move(forces)...),
+        capacity_(capacity),
+        stride_((capacity + width - 1) / width * width),
+        x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
+        inverse_mass_(stride_),
+        variation_(needs_variation ? stride_ : 0),
+        age_(has_lifetime ? stride_ : 0),
+        lifetime_(has_lifetime ? stride_ : 0) {
+    if (capacity == 0 || capacity > std::size_t(std::numeric_limits<std::uint32_t>::max()))
+      impulse::detail::report_error(error_code::invalid_parameter,
+                                    "particle_system: capacity must be between 1 and 2^32 - 1");
+    died_batches_.reserve(stride_ / width);
+  }
+
+  // ---- particles --------------------------------------------------------------
+
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
+  [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
+
+  /// Adds a particle and returns its index. Lifetime in s (has_lifetime only);
+  /// an infinite lifetime never dies.
+  std::uint32_t add(const vec3<T>& position, const vec3<T>& velocity = {}, T mass = T(1),
+                    T lifetime = std::numeric_limits<T>::infinity()) {
+    check_particle(position, velocity, mass, no_object);
+    detail::require(lifetime > T(0), error_code::invalid_parameter,
+                    "particle_system: lifetime must be positive (infinity for none)");
+    detail::require(size_ < capacity_, error_code::capacity_exceeded,
+                    "particle_system: add() on a full system (capacity reached)");
+    const std::size_t i = size_++;
+    write(i, position, velocity, T(1) / mass, lifetime);
+    return std::uint32_t(i);
+  }
+
+  /// Adds `count` particles drawn from the emitter's distribution now, as far
+  /// as they fit; returns how many were added.
+  std::size_t emit(emitter<T>& source, std::size_t count) {
+    source.validate();
+    return emit_unchecked(source, count);
+  }
+
+  /// Removes particle i; the last particle takes its index.
+  void kill(std::uint32_t i) {
+    check_index(i);
+    begin_removals();
+    remove(i);
+    end_removals();
+  }
+
+  /// Removes every particle (forces, planes and emitters stay).
+  void clear() noexcept {
+    size_ = 0;
+    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).list.clear();
+  }
+
+  [[nodiscard]] vec3<T> position(std::uint32_t i) const { check_index(i); return {x_[i], y_[i], z_[i]}; }
+  [[nodiscard]] vec3<T> velocity(std::uint32_t i) const { check_index(i); return {vx_[i], vy_[i], vz_[i]}; }
+  [[nodiscard]] T mass(std::uint32_t i) const { check_index(i); return T(1) / inverse_mass_[i]; }
+  [[nodiscard]] T age(std::uint32_t i) const requires has_lifetime { check_index(i); return age_[i]; }
+  [[nodiscard]] T lifetime(std::uint32_t i) const requires has_lifetime { check_index(i); return lifetime_[i]; }
+
+  void set_position(std::uint32_t i, const vec3<T>& p) {
+    check_index(i);
+    detail::require_finite(p, "particle_system: position is not finite", i);
+    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
+  }
+  void set_velocity(std::uint32_t i, const vec3<T>& v) {
+    check_index(i);
+    detail::require_finite(v, "particle_system: velocity is not finite", i);
+    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
+  }
+  void set_mass(std::uint32_t i, T m) {
+    check_index(i);
+    check_mass(m, i);
+    inverse_mass_[i] = T(1) / m;
+  }
+
+  [[nodiscard]] vec3_columns<T> positions() const noexcept { return {column(x_), column(y_), column(z_)}; }
+  [[nodiscard]] vec3_columns<T> velocities() const noexcept { return {column(vx_), column(vy_), column(vz_)}; }
+  [[nodiscard]] std::span<const T> inverse_masses() const noexcept { return column(inverse_mass_); }
+  [[nodiscard]] std::span<const T> ages() const noexcept requires has_lifetime { return column(age_); }
+  [[nodiscard]] std::span<const T> lifetimes() const noexcept requires has_lifetime { return column(lifetime_); }
+
+  // ---- forces, planes, emitters ---------------------------------------------------
+
+  /// The parameters of force F (one of the system's force list).
+  template <template <class> class F>
+  F<T>& force() noexcept { return std::get<F<T>>(forces_); }
+  template <template <class> class F>
+  const F<T>& force() const noexcept { return std::get<F<T>>(forces_); }
+
+  /// Adds a plane; it must be valid now, and is checked again at every step.
+  std::uint32_t add_plane(const plane_collider<T>& plane) {
+    plane.validate(std::uint32_t(planes_.size()));
+    planes_.push_back(plane);
+    return std::uint32_t(planes_.size() - 1);
+  }
+  std::span<plane_collider<T>> planes() noexcept { return planes_; }
+  std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
+
+  std::uint32_t add_emitter(const emitter<T>& source) {
+    source.validate(std::uint32_t(emitters_.size()));
+    emitters_.push_back(source);
+    return std::uint32_t(emitters_.size() - 1);
+  }
+  std::span<emitter<T>> emitters() noexcept { return emitters_; }
+  std::span<const emitter<T>> emitters() const noexcept { return emitters_; }
+
+  /// Simulated time, s: the sum of the steps taken.
+  [[nodiscard]] double time() const noexcept { return time_; }
+
+  // ---- stepping ---------------------------------------------------------------------
+
+  /// Advances every particle by dt seconds: forces and integration, planes,
+  /// ageing and death, then emission. Every parameter is checked first; on a
+  /// bad one nothing moves.
+  void step(T dt) {
+    validate(dt);
+    if (size_ != 0) {
+      fill_padding();
+      if constexpr (has_pairwise) step_staged(dt);
+      else step_fused(dt);
+      if constexpr (has_lifetime) remove_dead();
+    }
+    for (emitter<T>& source : emitters_) emit_unchecked(source, source.due(dt));
+    time_ += double(dt);
+  }
+
+ private:
+  // ---- the kernel -----------------------------------------------------------------
+
+  /// Pointers to one batch's slice of every column.
+  struct slice {
+    T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
+  };
+  slice at(std::size_t first) noexcept {
+    auto p = [first](aligned_array<T>& column) { return column.size() ? column.data() + first : nullptr; };
+    return {p(x_), p(y_), p(z_), p(vx_), p(vy_), p(vz_), p(inverse_mass_), p(variation_), p(age_), p(lifetime_)};
+  }
+
+  /// Acceleration of a batch: the accelerations as they are plus the forces
+  /// over the mass. Only the listed forces are compiled in.
+  state acceleration(const state& x, const state& v, lanes inverse_mass,
+                     const particle_lanes<T, width>& p) const noexcept {
+    state accel{}, force{};
+    bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
+    auto add = [&]<class F>(const F& f) {
+      if constexpr (F::effect == force_effect::acceleration) {
+        accel = have_accel ? accel + f.evaluate(x, v, p) : f.evaluate(x, v, p);
+        have_accel = true;
+      } else if constexpr (F::effect == force_effect::force) {
+        force = have_force ? force + f.evaluate(x, v, p) : f.evaluate(x, v, p);
+        have_force = true;
+      }
+    };
+    std::apply([&](const auto&... f) { (add(f), ...); }, forces_);
+    if (!have_force) return have_accel ? accel : state::broadcast({});
+    return have_accel ? accel + force * inverse_mass : force * inverse_mass;
+  }
+
+  lanes load_inverse_mass(const slice& s) const noexcept {
+    if constexpr (needs_inverse_mass) return lanes::load(s.inverse_mass);
+    else return lanes::broadcast(T(1));
+  }
+  particle_lanes<T, width> load_lanes(const slice& s) const noexcept {
+    if constexpr (needs_variation) return {lanes::load(s.variation)};
+    else return {lanes::broadcast(T(0))};
+  }
+
+  /// Planes, then age: the part of a step after integration. x0 is where the
+  /// batch started the step. Records the batch if a particle in it died.
+  void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v, T dt) {
+    if (!planes_.empty()) collide(x0, x, v);
+    x.store(s.x, s.y, s.z);
+    v.store(s.vx, s.vy, s.vz);
+    if constexpr (has_lifetime) {
+      const lanes age = lanes::load(s.age) + dt;
+      age.store(s.age);
+      if (any(age >= lanes::load(s.lifetime))) died_batches_.push_back(first / width);
+    }
+  }
+
+  void collide(const state& x0, state& x, state& v) const noexcept {
+    for (const plane_collider<T>& plane : planes_)
+      if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+    // Projecting onto one half-space can push a particle behind another one
+    // that meets it at an angle (a wedge). Cyclic projection onto convex sets
+    // converges to a point inside all of them; four sweeps leave at most
+    // cos²⁴(θ) of the first overshoot, θ the wedge's half-angle.
+    for (int sweep = 0; sweep < 4; ++sweep) {
+      bool moved = false;
+      for (const plane_collider<T>& plane : planes_)
+        if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
+      if (!moved) return;
+    }
+    // Still moving after four sweeps: a deep corner. Lanes left behind a
+    // plane go back to where they started the step, which was inside, and
+    // stop there; the guarantee "no particle behind a plane" holds.
+    const lanes zero = lanes::broadcast(T(0));
+    batch_mask<T, width> behind = zero < zero, was_behind = behind;
+    for (const plane_collider<T>& plane : planes_)
+      if (!plane.finite) {
+        behind = behind | detail::behind_half_space(plane, x);
+        was_behind = was_behind | detail::behind_half_space(plane, x0);
+      }
+    const batch_mask<T, width> revert = behind & !was_behind;
+    x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
+    v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
+  }
+
+  void step_fused(T dt) {
+    const std::size_t used = padded(size_);
+    for (std::size_t first = 0; first < used; first += width) {
+      const slice s = at(first);
+      const state x0 = state::load(s.x, s.y, s.z);
+      state x = x0;
+      state v = state::load(s.vx, s.vy, s.vz);
+      const lanes inverse_mass = load_inverse_mass(s);
+      const particle_lanes<T, width> p = load_lanes(s);
+      integrator::step(x, v, dt, [&](const state& xs, const state& vs) {
+        return acceleration(xs, vs, inverse_mass, p);
+      });
+      finish_batch(s, first, x0, x, v, dt);
+    }
+  }
+
+  void step_staged(T dt) requires has_pairwise {
+    const std::size_t used = padded(size_);
+    pool_.resize(stride_, used);
+    using whole = detail::pooled_state<T>;
+    whole x(pool_), v(pool_);
+    copy_columns(x.data(), x_, y_, z_, used);
+    copy_columns(v.data(), vx_, vy_, vz_, used);
+    const auto& pairwise = std::get<pairwise_index()>(forces_);
+    integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
+      whole a(pool_);
+      for (std::size_t first = 0; first < used; first += width) {
+        const slice s = at(first);
+        const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
+        acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+            a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+      }
+      pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
+      return a;
+    });
+    for (std::size_t first = 0; first < used; first += width) {
+      const slice s = at(first);
+      const state x0 = state::load(s.x, s.y, s.z);
+      state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
+      finish_batch(s, first, x0, xb, vb, dt);
+    }
+  }
+
+  state load_from(const T* columns, std::size_t first) const noexcept {
+    return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
+  }
+  void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
+                    std::size_t used) const noexcept {
+    for (std::size_t i = 0; i < used; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
+  }
+
+  static constexpr std::size_t pairwise_index() {
+    std::size_t index = 0, i = 0;
+    ((is_pairwise<Forces<T>> ? (index = i, ++i) : ++i), ...);
+    return index;
+  }
+
+  // ---- storage upkeep -----------------------------------------------------------
+
+  std::size_t padded(std::size_t n) const noexcept { return (n + width - 1) / width * width; }
+
+  /// The lanes past the last particle in its batch are computed with it and
+  /// thrown away. They hold copies of the last particle, so they stay finite
+  /// and cost nothing special; they never die (infinite lifetime).
+  void fill_padding() noexcept {
+    const std::size_t last = size_ - 1;
+    for (std::size_t i = size_; i < padded(size_); ++i) {
+      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
+      if constexpr (has_lifetime) lifetime_[i] = std::numeric_limits<T>::infinity();
+    }
+  }
+
+  std::array<aligned_array<T>*, 10> all_columns() noexcept {
+    return {&x_, &y_, &z_, &vx_, &vy_, &vz_, &inverse_mass_, &variation_, &age_, &lifetime_};
+  }
+  /// The columns this configuration stores.
+  std::span<aligned_array<T>*> columns() noexcept {
+    columns_ = all_columns();
+    std::size_t n = 0;
+    for (aligned_array<T>* c : columns_)
+      if (c->size() != 0) columns_[n++] = c;
+    return {columns_.data(), n};
+  }
+
+  void write(std::size_t i, const vec3<T>& p, const vec3<T>& v, T inverse_mass, T lifetime) noexcept {
+    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
+    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
+    inverse_mass_[i] = inverse_mass;
+    if constexpr (needs_variation) variation_[i] = hash_signed_unit<T>(serial_);
+    ++serial_;
+    if constexpr (has_lifetime) age_[i] = T(0), lifetime_[i] = lifetime;
+  }
+
+  std::size_t emit_unchecked(emitter<T>& source, std::size_t count) {
+    const std::size_t fit = std::min(count, capacity_ - size_);
+    for (std::size_t k = 0; k < fit; ++k) {
+      const auto d = source.next();
+      write(size_++, d.position, d.velocity, T(1) / source.mass, d.lifetime);
+    }
+    source.dropped += count - fit;
+    return fit;
+  }
+
+  // Removal keeps the columns dense: the last particle moves into the hole.
+  // With springs, origin_ records which original particle each slot holds
+  // so that the springs can be re-pointed once, after all the moves.
+  void begin_removals() {
+    if constexpr (has_pairwise) {
+      origin_.resize(size_);
+      for (std::size_t i = 0; i < size_; ++i) origin_[i] = std::uint32_t(i);
+      removed_from_ = size_;
+    }
+  }
+  void remove(std::size_t i) noexcept {
+    const std::size_t last = --size_;
+    if (i != last)
+      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
+    if constexpr (has_pairwise) origin_[i] = origin_[last];
+  }
+  void end_removals() {
+    if constexpr (has_pairwise) {
+      remap_.assign(removed_from_, no_object);
+      for (std::size_t i = 0; i < size_; ++i) remap_[origin_[i]] = std::uint32_t(i);
+      std::get<pairwise_index()>(forces_).remap(remap_.data());
+    }
+  }
+
+  /// Particles whose age reached their lifetime this step. Batches are
+  /// visited from the end so that the particle moved into a hole is always
+  /// one already known to be alive.
+  void remove_dead() requires has_lifetime {
+    if (died_batches_.empty()) return;
+    begin_removals();
+    for (auto b = died_batches_.rbegin(); b != died_batches_.rend(); ++b)
+      for (int lane = width - 1; lane >= 0; --lane) {
+        const std::size_t i = *b * width + std::size_t(lane);
+        if (i < size_ && age_[i] >= lifetime_[i]) remove(i);
+      }
+    end_removals();
+    died_batches_.clear();
+  }
+
+  // ---- checks ---------------------------------------------------------------------
+
+  void check_index(std::uint32_t i) const {
+    detail::require(i < size_, error_code::out_of_range, "particle_system: no particle has this index", i);
+  }
+  static void check_mass(T mass, std::uint32_t i) {
+    detail::require_finite(mass, "particle_system: mass is not finite", i);
+    detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
+  }
+  static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
+    detail::require_finite(p, "particle_system: position is not finite", i);
+    detail::require_finite(v, "particle_system: velocity is not finite", i);
+    check_mass(mass, i);
+  }
+
+  void validate(T dt) const {
+    detail::require(std::isfinite(dt) && dt > T(0), error_code::invalid_parameter,
+                    "particle_system: step() needs a finite, positive dt");
+    std::apply([](const auto&... f) { (f.validate(), ...); }, forces_);
+    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).validate_indices(size_);
+    for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
+    for (std::size_t i = 0; i < emitters_.size(); ++i) emitters_[i].validate(std::uint32_t(i));
+  }
+
+  std::span<const T> column(const aligned_array<T>& c) const noexcept { return {c.data(), size_}; }
+
+  std::tuple<Forces<T>...> forces_;
+  std::size_t capacity_, stride_, size_ = 0;
+  aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
+  std::vector<plane_collider<T>> planes_;
+  std::vector<emitter<T>> emitters_;
+  std::vector<std::size_t> died_batches_;
+  std::array<aligned_array<T>*, 10> columns_{};
+  std::vector<std::uint32_t> origin_, remap_;
+  std::size_t removed_from_ = 0;
+  detail::column_pool<T> pool_;
+  std::uint32_t serial_ = 0;
+  double time_ = 0;
+};
+
+}  // namespace impulse::particles
+
+namespace impulse {
+using particles::particle_system;
+}  // namespace impulse

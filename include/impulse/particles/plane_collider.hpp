@@ -1,0 +1,174 @@
+// impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
+//
+// A plane is n·x + d ≥ 0 on its free side. An infinite plane is a half-space:
+// a particle found behind it after the move is projected back onto it, which
+// is exact at any speed because the whole space behind is solid. A finite
+// rectangle is a thin board, solid from both sides: the segment a particle
+// travelled this step is tested against it (a swept test), so a particle fast
+// enough to cross the board within one step is still stopped. In both cases
+// the contact then
+//  - reflects the normal velocity with restitution e, only if the particle is
+//    moving into the plane (one that already separates keeps its speed), and
+//  - scales the tangential velocity by (1 − μ), a per-contact friction loss
+//    (the model of DESIGN.md's `particles` scene, not Coulomb's law: a
+//    particle lying on a plane loses that fraction every step).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "../math/scalar_traits.hpp"
+#include "force.hpp"
+
+namespace impulse::particles {
+
+template <class T>
+struct plane_collider {
+  /// Unit normal pointing to the free side.
+  vec3<T> normal{T(0), T(1), T(0)};
+  /// d in n·x + d ≥ 0, m: the plane is at distance −d from the origin along n.
+  T offset = T(0);
+  /// e ∈ [0, 1]: the normal speed after a bounce over the speed before.
+  T restitution = T(0.5);
+  /// μ ∈ [0, 1]: the fraction of tangential velocity removed at each contact.
+  T friction = T(0.2);
+
+  /// A finite rectangle instead of a half-space: centred at `center` (on the
+  /// plane), spanning ±half_u along axis_u and ±half_v along normal × axis_u.
+  bool finite = false;
+  vec3<T> center{};
+  vec3<T> axis_u{T(1), T(0), T(0)};
+  T half_u = T(0), half_v = T(0);
+
+  /// The half-space n·x + d ≥ 0.
+  static plane_collider half_space(const vec3<T>& n, T d, T restitution, T friction) {
+    plane_collider p;
+    p.normal = n;
+    p.offset = d;
+    p.restitution = restitution;
+    p.friction = friction;
+    return p;
+  }
+  /// A two-sided rectangle; axis_u must be a unit vector perpendicular to n.
+  static plane_collider rectangle(const vec3<T>& center, const vec3<T>& n, const vec3<T>& axis_u,
+                                  T half_u, T half_v, T restitution, T friction) {
+    plane_collider p = half_space(n, -dot(n, center), restitution, friction);
+    p.finite = true;
+    p.center = center;
+    p.axis_u = axis_u;
+    p.half_u = half_u;
+    p.half_v = half_v;
+    return p;
+  }
+
+  void validate(std::uint32_t index = no_object) const {
+    using detail::require;
+    const T tolerance = scalar_traits<T>::unit_tolerance;
+    detail::require_finite(normal, "plane_collider: normal is not finite", index);
+    detail::require_finite(offset, "plane_collider: offset is not finite", index);
+    require(length_squared(normal) > scalar_traits<T>::zero_length_squared, error_code::degenerate_shape,
+            "plane_collider: normal has zero length", index);
+    require(std::abs(length(normal) - T(1)) <= tolerance, error_code::not_normalized,
+            "plane_collider: normal is not a unit vector", index);
+    require(restitution >= T(0) && restitution <= T(1), error_code::invalid_parameter,
+            "plane_collider: restitution is outside [0, 1]", index);
+    require(friction >= T(0) && friction <= T(1), error_code::invalid_parameter,
+            "plane_collider: friction is outside [0, 1]", index);
+    if (!finite) return;
+    detail::require_finite(center, "plane_collider: center is not finite", index);
+    detail::require_finite(axis_u, "plane_collider: axis_u is not finite", index);
+    require(std::isfinite(half_u) && std::isfinite(half_v) && half_u > T(0) && half_v > T(0),
+            error_code::degenerate_shape, "plane_collider: a rectangle's half extents must be positive",
+            index);
+    require(std::abs(length(axis_u) - T(1)) <= tolerance &&
+                std::abs(dot(axis_u, normal)) <= tolerance,
+            error_code::not_normalized, "plane_collider: axis_u is not a unit vector in the plane", index);
+    require(std::abs(dot(normal, center) + offset) <= tolerance * (T(1) + length(center)),
+            error_code::invalid_parameter, "plane_collider: center is not on the plane", index);
+  }
+};
+
+namespace detail {
+
+/// Velocity after contact with a plane of unit normal n (facing the particle)
+/// in the lanes of `touching`.
+template <class T, int W>
+void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
+                    const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
+  const batch<T, W> vn = dot(v, n);
+  const vec3_batch<T, W> tangential = v - n * vn;
+  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
+  const batch<T, W> vn_after = select(touching & (vn < zero), vn * -plane.restitution, vn);
+  const batch<T, W> keep = select(touching, batch<T, W>::broadcast(T(1) - plane.friction),
+                                  batch<T, W>::broadcast(T(1)));
+  v = tangential * keep + n * vn_after;
+}
+
+/// Half-space: lanes behind are projected onto the plane. Returns whether any was.
+template <class T, int W>
+bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
+                        vec3_batch<T, W>& v) noexcept {
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
+  const batch<T, W> s = dot(x, n) + plane.offset;
+  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
+  const batch_mask<T, W> behind = s < zero;
+  if (none(behind)) return false;
+  x = x - n * select(behind, s, zero);
+  plane_response(plane, behind, n, v);
+  return true;
+}
+
+/// How far behind a plane rounding can leave a point just projected onto it:
+/// s = n·x + d and x − s·n each round every term once, ~8ε·(|x| + |d|); twice
+/// that, plus 16ε of headroom near the origin.
+template <class T>
+T plane_rounding(const plane_collider<T>& plane, T largest_coordinate) noexcept {
+  return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(plane.offset) + largest_coordinate);
+}
+
+/// Lanes behind the half-space by more than rounding.
+template <class T, int W>
+batch_mask<T, W> behind_half_space(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  const batch<T, W> s = dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
+  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
+  const T scale = T(16) * scalar_traits<T>::epsilon;
+  return s < -((largest + (T(1) + std::abs(plane.offset))) * scale);
+}
+
+/// Rectangle: lanes whose move x0 -> x crossed it within its extent are put
+/// back on the side they came from, just off the surface, and respond.
+template <class T, int W>
+void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x0,
+                       vec3_batch<T, W>& x, vec3_batch<T, W>& v) noexcept {
+  using lanes = batch<T, W>;
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
+  const lanes zero = lanes::broadcast(T(0));
+  const lanes s0 = dot(x0, n) + plane.offset;
+  const lanes s1 = dot(x, n) + plane.offset;
+  // From the front, arriving on or behind the plane; or from behind, arriving
+  // in front. A particle exactly on the plane counts as in front.
+  const batch_mask<T, W> crossed = ((s0 >= zero) & (s1 < zero)) | ((s0 < zero) & (s1 >= zero));
+  if (none(crossed)) return;
+  const lanes t = select(crossed, s0 / (s0 - s1), zero);
+  vec3_batch<T, W> p = x0 + (x - x0) * t;
+  p = p - n * (dot(p, n) + plane.offset);  // onto the plane, to rounding
+  const vec3_batch<T, W> r = p - vec3_batch<T, W>::broadcast(plane.center);
+  const vec3<T> axis_v = cross(plane.normal, plane.axis_u);
+  const batch_mask<T, W> inside = (abs(dot(r, vec3_batch<T, W>::broadcast(plane.axis_u))) <= lanes::broadcast(plane.half_u)) &
+                                  (abs(dot(r, vec3_batch<T, W>::broadcast(axis_v))) <= lanes::broadcast(plane.half_v));
+  const batch_mask<T, W> hit = crossed & inside;
+  if (none(hit)) return;
+  // The side it came from, and a skin that keeps it strictly on that side:
+  // 16 roundings of the largest coordinate on the board, so that the next
+  // step's s0 has the right sign however far the particle then moves.
+  const lanes side = select(s0 >= zero, lanes::broadcast(T(1)), lanes::broadcast(T(-1)));
+  const vec3_batch<T, W> n_side = n * side;
+  const T skin = T(16) * scalar_traits<T>::epsilon *
+                 (T(1) + max_component(abs(plane.center)) + plane.half_u + plane.half_v);
+  const vec3_batch<T, W> placed = p + n_side * skin;
+  x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
+  plane_response(plane, hit, n_side, v);
+}
+
+}  // namespace detail
+}  // namespace impulse::particles

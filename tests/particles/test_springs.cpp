@@ -1,0 +1,154 @@
+// Damped springs: the largest stable time step of each integrator for a
+// given stiffness, found from the method itself and checked on a particle
+// system stepped just inside and just outside it.
+//
+// Two particles of mass m joined by a spring of stiffness k and damping c
+// oscillate in their separation r like one body of the reduced mass m/2:
+//     r'' = −ω²·(r − L) − 2ζω·r',   ω² = 2k/m,   2ζω = 2c/m.
+// Every integrator here is linear on this equation, so one step is a 2×2
+// matrix M(h) acting on (r − L, r'); the step is stable while M's spectral
+// radius is at most 1. The largest such h is the method's limit:
+//   - explicit Euler: ρ = √(1 − 2ζωh + ω²h²) (for ζ < 1), stable for h < 2ζ/ω,
+//     and never when undamped;
+//   - symplectic Euler: h < 2/ω undamped (the leapfrog limit);
+//   - midpoint: ρ² = 1 + (ωh)⁴/4 undamped, never stable without damping;
+//   - RK4: h < 2√2/ω undamped.
+// docs/particles.md tabulates ω·h_max for ζ = 0 and ζ = 0.05.
+#include <cmath>
+#include <complex>
+
+#include "particle_test.hpp"
+
+namespace {
+
+using namespace impulse::particles;
+using particle_test::epsilon;
+namespace in = impulse::integrators;
+
+/// Spectral radius of one step of integrator I on x'' = −ω²x − 2ζωx'.
+template <class I>
+double spectral_radius(double omega, double zeta, double h) {
+  auto accel = [&](const double& x, const double& v) { return -omega * omega * x - 2 * zeta * omega * v; };
+  double x1 = 1, v1 = 0, x2 = 0, v2 = 1;
+  I::step(x1, v1, h, accel);
+  I::step(x2, v2, h, accel);
+  // Eigenvalues of [[x1, x2], [v1, v2]].
+  const double trace = x1 + v2, det = x1 * v2 - x2 * v1;
+  const std::complex<double> root = std::sqrt(std::complex<double>(trace * trace / 4 - det));
+  return std::fmax(std::abs(trace / 2 + root), std::abs(trace / 2 - root));
+}
+
+/// Largest h with ρ(M(h)) ≤ 1, by bisection between a stable and an unstable
+/// step (0 when no step is stable).
+template <class I>
+double largest_stable_step(double omega, double zeta) {
+  double lo = 1e-6 / omega, hi = 10 / omega;
+  if (spectral_radius<I>(omega, zeta, lo) > 1) return 0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = (lo + hi) / 2;
+    (spectral_radius<I>(omega, zeta, mid) <= 1 ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+TEST_CASE("the stability limits found by bisection match each method's closed form") {
+  const double omega = 10;
+  CHECK(largest_stable_step<in::symplectic_euler>(omega, 0) * omega == doctest::Approx(2).epsilon(1e-9));
+  CHECK(largest_stable_step<in::rk4>(omega, 0) * omega == doctest::Approx(2 * std::sqrt(2.0)).epsilon(1e-9));
+  // Undamped explicit Euler and midpoint grow at every step size, too slowly
+  // for bisection to see at small h (midpoint's excess is (ωh)⁴/16): check
+  // their growth factors, √(1 + (ωh)²) and √(1 + (ωh)⁴/4), instead.
+  for (double wh : {0.05, 0.5, 1.0}) {
+    CHECK(spectral_radius<in::euler>(omega, 0, wh / omega) == doctest::Approx(std::sqrt(1 + wh * wh)).epsilon(1e-12));
+    CHECK(spectral_radius<in::midpoint>(omega, 0, wh / omega) ==
+          doctest::Approx(std::sqrt(1 + wh * wh * wh * wh / 4)).epsilon(1e-12));
+  }
+  CHECK(largest_stable_step<in::euler>(omega, 0.05) * omega == doctest::Approx(0.1).epsilon(1e-9));
+  for (double zeta : {0.0, 0.05}) {
+    MESSAGE("zeta = " << zeta << ": omega*h_max euler " << largest_stable_step<in::euler>(omega, zeta) * omega
+                      << ", symplectic euler " << largest_stable_step<in::symplectic_euler>(omega, zeta) * omega
+                      << ", midpoint " << largest_stable_step<in::midpoint>(omega, zeta) * omega << ", rk4 "
+                      << largest_stable_step<in::rk4>(omega, zeta) * omega);
+  }
+}
+
+/// Largest |r − L| over the first and over the last tenth of a run of two
+/// particles joined by a spring, released with the spring stretched by `stretch`.
+struct amplitudes {
+  double early = 0, late = 0;
+};
+template <class C>
+amplitudes amplitude(double k, double c, double h, int steps, double stretch) {
+  using T = typename C::scalar;
+  particle_system<C, springs> s{2};
+  s.add({0, 0, 0});
+  s.add({T(1 + stretch), 0, 0});
+  s.template force<springs>().add(0, 1, 1, T(k), T(c));
+  amplitudes a;
+  for (int i = 0; i < steps; ++i) {
+    s.step(T(h));
+    const double stretch_now = std::abs(double(s.position(1).x - s.position(0).x) - 1);
+    if (i < steps / 10) a.early = std::fmax(a.early, stretch_now);
+    if (i >= steps - steps / 10) a.late = std::fmax(a.late, stretch_now);
+  }
+  return a;
+}
+
+template <class I>
+void check_limit_on_particles(double zeta) {
+  using T = double;
+  using C = particle_test::config<T, particle_test::native<T>, I>;
+  const double k = 1000, m = 1, omega = std::sqrt(2 * k / m), c = zeta * omega * m;
+  const double h_max = largest_stable_step<I>(omega, zeta);
+  REQUIRE(h_max > 0);
+  const double stretch = 0.01;
+  // Just inside: the oscillation does not grow from the first tenth of the
+  // run to the last (undamped symplectic Euler swings inside a fixed band
+  // wider than the release stretch, by 1/√(1 − (ωh/2)²), whose peak the
+  // steps sample to within 1 %; the others decay).
+  const amplitudes inside = amplitude<C>(k, c, 0.95 * h_max, 4000, stretch);
+  CHECK(inside.late <= inside.early * 1.01);
+  // Just outside: it grows by ρ per step; run until ρ^N = 10^3.
+  const double rho = spectral_radius<I>(omega, zeta, 1.05 * h_max);
+  const int steps = int(std::ceil(std::log(1e3) / std::log(rho)));
+  CAPTURE(rho);
+  CAPTURE(steps);
+  const amplitudes outside = amplitude<C>(k, c, 1.05 * h_max, steps, stretch);
+  CHECK(outside.late >= 10 * outside.early);
+}
+
+TEST_CASE("a stiff spring is stable just inside each integrator's limit and grows just outside it") {
+  SUBCASE("symplectic Euler, undamped") { check_limit_on_particles<in::symplectic_euler>(0); }
+  SUBCASE("RK4, undamped") { check_limit_on_particles<in::rk4>(0); }
+  SUBCASE("explicit Euler, damping ratio 0.05") { check_limit_on_particles<in::euler>(0.05); }
+  SUBCASE("midpoint, damping ratio 0.05") { check_limit_on_particles<in::midpoint>(0.05); }
+  SUBCASE("symplectic Euler, damping ratio 0.05") { check_limit_on_particles<in::symplectic_euler>(0.05); }
+  SUBCASE("RK4, damping ratio 0.05") { check_limit_on_particles<in::rk4>(0.05); }
+}
+
+TEST_CASE_TEMPLATE("a spring oscillates at its natural frequency and conserves momentum", C, PARTICLE_CONFIGS) {
+  using T = typename C::scalar;
+  // Undamped, symplectic Euler at ωh = 0.05: the period is 2π/ω to O((ωh)²).
+  const T k = 50, omega = std::sqrt(2 * k), h = T(0.05) / omega;
+  particle_system<C, springs> s{2};
+  s.add({0, 0, 0});
+  s.add({T(1.2), 0, 0});
+  s.template force<springs>().add(0, 1, 1, k);
+  // Count upward crossings of the rest length over 10 periods' worth of steps.
+  const int steps = int(std::lround(10 * 2 * 3.141592653589793 / (omega * h)));
+  int crossings = 0;
+  T previous = 0.2;
+  for (int i = 0; i < steps; ++i) {
+    s.step(h);
+    const vec3_columns<T> p = s.positions();
+    const T stretch = impulse::length(p[1] - p[0]) - 1;
+    if (previous < 0 && stretch >= 0) ++crossings;
+    previous = stretch;
+    // Equal and opposite forces: the total momentum stays zero.
+    const vec3_columns<T> v = s.velocities();
+    REQUIRE(impulse::length(v[0] + v[1]) <= 64 * epsilon<T>);
+  }
+  CHECK(crossings == 10);
+}
+
+}  // namespace
