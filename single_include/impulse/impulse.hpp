@@ -2227,6 +2227,17 @@ struct plane_collider {
     return p;
   }
 
+  /// Signed distance n·x + d, m: negative behind the plane.
+  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
+
+  /// How far behind the plane rounding can leave a particle at x that was
+  /// just projected onto it, m: s = n·x + d and x − s·n each round every
+  /// term once, ~8ε·(|x| + |d|); this is twice that, plus 16ε of headroom
+  /// near the origin. "No particle behind a plane" means distance(x) ≥ −rounding_at(x).
+  T rounding_at(const vec3<T>& x) const noexcept {
+    return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(offset) + max_component(abs(x)));
+  }
+
   void validate(std::uint32_t index = no_object) const {
     using detail::require;
     const T tolerance = scalar_traits<T>::unit_tolerance;
@@ -2257,9 +2268,10 @@ struct plane_collider {
 namespace detail {
 
 /// Velocity after contact with a plane of unit normal n (facing the particle)
-/// in the lanes of `touching`.
+/// in the lanes of `touching`. Always inlined: as a call, its vector
+/// arguments go through memory (GCC 12 outlines it otherwise).
 template <class T, int W>
-void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
+[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
                     const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
   const batch<T, W> vn = dot(v, n);
   const vec3_batch<T, W> tangential = v - n * vn;
@@ -2284,21 +2296,38 @@ bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
   return true;
 }
 
-/// How far behind a plane rounding can leave a point just projected onto it:
-/// s = n·x + d and x − s·n each round every term once, ~8ε·(|x| + |d|); twice
-/// that, plus 16ε of headroom near the origin.
-template <class T>
-T plane_rounding(const plane_collider<T>& plane, T largest_coordinate) noexcept {
-  return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(plane.offset) + largest_coordinate);
+/// plane_collider::rounding_at for each lane.
+template <class T, int W>
+batch<T, W> rounding_at(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
+  return (largest + (T(1) + std::abs(plane.offset))) * (T(16) * scalar_traits<T>::epsilon);
+}
+
+template <class T, int W>
+batch<T, W> distance(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  return dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
 }
 
 /// Lanes behind the half-space by more than rounding.
 template <class T, int W>
 batch_mask<T, W> behind_half_space(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
-  const batch<T, W> s = dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
-  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
-  const T scale = T(16) * scalar_traits<T>::epsilon;
-  return s < -((largest + (T(1) + std::abs(plane.offset))) * scale);
+  return distance(plane, x) < -rounding_at(plane, x);
+}
+
+/// Moves the lanes of `lanes_in` onto the line where planes a and b meet:
+/// x' = x − α·n_a − β·n_b with n_a·x' + d_a = 0 = n_b·x' + d_b, i.e.
+/// α = (s_a − c·s_b)/(1 − c²), β = (s_b − c·s_a)/(1 − c²), c = n_a·n_b.
+/// The point of a crease nearest to a particle driven into it.
+template <class T, int W>
+void project_onto_crease(const plane_collider<T>& a, const plane_collider<T>& b, batch_mask<T, W> lanes_in,
+                         vec3_batch<T, W>& x) noexcept {
+  const T c = dot(a.normal, b.normal);
+  const T inverse = T(1) / (T(1) - c * c);
+  const batch<T, W> s_a = distance(a, x), s_b = distance(b, x);
+  const batch<T, W> alpha = (s_a - s_b * c) * inverse, beta = (s_b - s_a * c) * inverse;
+  const vec3_batch<T, W> moved = x - vec3_batch<T, W>::broadcast(a.normal) * alpha -
+                                 vec3_batch<T, W>::broadcast(b.normal) * beta;
+  x = {select(lanes_in, moved.x, x.x), select(lanes_in, moved.y, x.y), select(lanes_in, moved.z, x.z)};
 }
 
 /// Rectangle: lanes whose move x0 -> x crossed it within its extent are put
@@ -2501,6 +2530,8 @@ class particle_system {
     planes_.push_back(plane);
     return std::uint32_t(planes_.size() - 1);
   }
+  /// Removes every plane.
+  void clear_planes() noexcept { planes_.clear(); }
   std::span<plane_collider<T>> planes() noexcept { return planes_; }
   std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
 
@@ -2522,6 +2553,7 @@ class particle_system {
   /// bad one nothing moves.
   void step(T dt) {
     validate(dt);
+    prepare_planes();
     if (size_ != 0) {
       fill_padding();
       if constexpr (has_pairwise) step_staged(dt);
@@ -2539,14 +2571,18 @@ class particle_system {
   struct slice {
     T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
   };
+  /// Which columns exist is known at compile time, so this has no branches.
   slice at(std::size_t first) noexcept {
-    auto p = [first](aligned_array<T>& column) { return column.size() ? column.data() + first : nullptr; };
-    return {p(x_), p(y_), p(z_), p(vx_), p(vy_), p(vz_), p(inverse_mass_), p(variation_), p(age_), p(lifetime_)};
+    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
+            vy_.data() + first, vz_.data() + first, inverse_mass_.data() + first, nullptr, nullptr, nullptr};
+    if constexpr (needs_variation) s.variation = variation_.data() + first;
+    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
+    return s;
   }
 
   /// Acceleration of a batch: the accelerations as they are plus the forces
   /// over the mass. Only the listed forces are compiled in.
-  state acceleration(const state& x, const state& v, lanes inverse_mass,
+  state acceleration(const state& x, const state& v, const lanes& inverse_mass,
                      const particle_lanes<T, width>& p) const noexcept {
     state accel{}, force{};
     bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
@@ -2589,19 +2625,31 @@ class particle_system {
   void collide(const state& x0, state& x, state& v) const noexcept {
     for (const plane_collider<T>& plane : planes_)
       if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
-    // Projecting onto one half-space can push a particle behind another one
-    // that meets it at an angle (a wedge). Cyclic projection onto convex sets
-    // converges to a point inside all of them; four sweeps leave at most
-    // cos²⁴(θ) of the first overshoot, θ the wedge's half-angle.
-    for (int sweep = 0; sweep < 4; ++sweep) {
-      bool moved = false;
-      for (const plane_collider<T>& plane : planes_)
-        if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
-      if (!moved) return;
+    bool moved = false;
+    for (const plane_collider<T>& plane : planes_)
+      if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
+    if (!moved || half_spaces_ < 2) return;
+    // Projecting onto one half-space can push a particle back behind another
+    // that meets it at an acute angle (a crease). Cyclic projection would
+    // converge there only geometrically, by cos² of the angle per sweep, so
+    // a lane still behind plane a while on or behind plane b is moved
+    // straight onto the line where the two meet.
+    for (std::size_t a = 0; a < planes_.size(); ++a) {
+      if (planes_[a].finite) continue;
+      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
+      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
+        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
+        const batch_mask<T, width> on_b =
+            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
+        const batch_mask<T, width> in_crease = behind_a & on_b;
+        if (none(in_crease)) continue;
+        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
+        behind_a = behind_a & !in_crease;
+      }
     }
-    // Still moving after four sweeps: a deep corner. Lanes left behind a
-    // plane go back to where they started the step, which was inside, and
-    // stop there; the guarantee "no particle behind a plane" holds.
+    // Three or more planes meeting at a corner can still leave a lane
+    // behind one: it goes back to where it started the step, which was
+    // inside, and stops there. "No particle behind a plane" holds always.
     const lanes zero = lanes::broadcast(T(0));
     batch_mask<T, width> behind = zero < zero, was_behind = behind;
     for (const plane_collider<T>& plane : planes_)
@@ -2610,6 +2658,7 @@ class particle_system {
         was_behind = was_behind | detail::behind_half_space(plane, x0);
       }
     const batch_mask<T, width> revert = behind & !was_behind;
+    if (none(revert)) return;
     x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
     v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
   }
@@ -2669,6 +2718,19 @@ class particle_system {
     std::size_t index = 0, i = 0;
     ((is_pairwise<Forces<T>> ? (index = i, ++i) : ++i), ...);
     return index;
+  }
+
+  /// Which pairs of half-spaces can form a crease: not parallel, where
+  /// 1 − c² would vanish and one projection settles both anyway. Planes can
+  /// be edited between steps, so this is redone (k² dot products) each step.
+  void prepare_planes() {
+    const std::size_t k = planes_.size();
+    half_spaces_ = 0;
+    for (const plane_collider<T>& p : planes_) half_spaces_ += !p.finite;
+    crease_.assign(k * k, 0);
+    for (std::size_t a = 0; a < k; ++a)
+      for (std::size_t b = 0; b < k; ++b)
+        crease_[a * k + b] = a != b && std::abs(dot(planes_[a].normal, planes_[b].normal)) < T(1) - T(1e-3);
   }
 
   // ---- storage upkeep -----------------------------------------------------------
@@ -2786,6 +2848,8 @@ class particle_system {
   std::size_t capacity_, stride_, size_ = 0;
   aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
   std::vector<plane_collider<T>> planes_;
+  std::vector<unsigned char> crease_;
+  std::size_t half_spaces_ = 0;
   std::vector<emitter<T>> emitters_;
   std::vector<std::size_t> died_batches_;
   std::array<aligned_array<T>*, 10> columns_{};

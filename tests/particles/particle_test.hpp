@@ -53,16 +53,12 @@ struct snapshot {
 /// (0 when all are inside), in units of the rounding a projection leaves.
 template <class System>
 double worst_penetration_in_roundings(const System& s) {
-  using T = typename System::scalar;
   double worst = 0;
   const auto p = s.positions();
   for (const auto& plane : s.planes()) {
     if (plane.finite) continue;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const T depth = -(dot(plane.normal, p[i]) + plane.offset);
-      const T rounding = impulse::particles::detail::plane_rounding(plane, max_component(abs(p[i])));
-      worst = std::fmax(worst, double(depth / rounding));
-    }
+    for (std::size_t i = 0; i < s.size(); ++i)
+      worst = std::fmax(worst, double(-plane.distance(p[i]) / plane.rounding_at(p[i])));
   }
   return worst;
 }

@@ -207,6 +207,8 @@ class particle_system {
     planes_.push_back(plane);
     return std::uint32_t(planes_.size() - 1);
   }
+  /// Removes every plane.
+  void clear_planes() noexcept { planes_.clear(); }
   std::span<plane_collider<T>> planes() noexcept { return planes_; }
   std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
 
@@ -228,6 +230,7 @@ class particle_system {
   /// bad one nothing moves.
   void step(T dt) {
     validate(dt);
+    prepare_planes();
     if (size_ != 0) {
       fill_padding();
       if constexpr (has_pairwise) step_staged(dt);
@@ -245,14 +248,18 @@ class particle_system {
   struct slice {
     T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
   };
+  /// Which columns exist is known at compile time, so this has no branches.
   slice at(std::size_t first) noexcept {
-    auto p = [first](aligned_array<T>& column) { return column.size() ? column.data() + first : nullptr; };
-    return {p(x_), p(y_), p(z_), p(vx_), p(vy_), p(vz_), p(inverse_mass_), p(variation_), p(age_), p(lifetime_)};
+    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
+            vy_.data() + first, vz_.data() + first, inverse_mass_.data() + first, nullptr, nullptr, nullptr};
+    if constexpr (needs_variation) s.variation = variation_.data() + first;
+    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
+    return s;
   }
 
   /// Acceleration of a batch: the accelerations as they are plus the forces
   /// over the mass. Only the listed forces are compiled in.
-  state acceleration(const state& x, const state& v, lanes inverse_mass,
+  state acceleration(const state& x, const state& v, const lanes& inverse_mass,
                      const particle_lanes<T, width>& p) const noexcept {
     state accel{}, force{};
     bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
@@ -295,19 +302,31 @@ class particle_system {
   void collide(const state& x0, state& x, state& v) const noexcept {
     for (const plane_collider<T>& plane : planes_)
       if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
-    // Projecting onto one half-space can push a particle behind another one
-    // that meets it at an angle (a wedge). Cyclic projection onto convex sets
-    // converges to a point inside all of them; four sweeps leave at most
-    // cos²⁴(θ) of the first overshoot, θ the wedge's half-angle.
-    for (int sweep = 0; sweep < 4; ++sweep) {
-      bool moved = false;
-      for (const plane_collider<T>& plane : planes_)
-        if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
-      if (!moved) return;
+    bool moved = false;
+    for (const plane_collider<T>& plane : planes_)
+      if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
+    if (!moved || half_spaces_ < 2) return;
+    // Projecting onto one half-space can push a particle back behind another
+    // that meets it at an acute angle (a crease). Cyclic projection would
+    // converge there only geometrically, by cos² of the angle per sweep, so
+    // a lane still behind plane a while on or behind plane b is moved
+    // straight onto the line where the two meet.
+    for (std::size_t a = 0; a < planes_.size(); ++a) {
+      if (planes_[a].finite) continue;
+      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
+      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
+        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
+        const batch_mask<T, width> on_b =
+            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
+        const batch_mask<T, width> in_crease = behind_a & on_b;
+        if (none(in_crease)) continue;
+        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
+        behind_a = behind_a & !in_crease;
+      }
     }
-    // Still moving after four sweeps: a deep corner. Lanes left behind a
-    // plane go back to where they started the step, which was inside, and
-    // stop there; the guarantee "no particle behind a plane" holds.
+    // Three or more planes meeting at a corner can still leave a lane
+    // behind one: it goes back to where it started the step, which was
+    // inside, and stops there. "No particle behind a plane" holds always.
     const lanes zero = lanes::broadcast(T(0));
     batch_mask<T, width> behind = zero < zero, was_behind = behind;
     for (const plane_collider<T>& plane : planes_)
@@ -316,6 +335,7 @@ class particle_system {
         was_behind = was_behind | detail::behind_half_space(plane, x0);
       }
     const batch_mask<T, width> revert = behind & !was_behind;
+    if (none(revert)) return;
     x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
     v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
   }
@@ -375,6 +395,19 @@ class particle_system {
     std::size_t index = 0, i = 0;
     ((is_pairwise<Forces<T>> ? (index = i, ++i) : ++i), ...);
     return index;
+  }
+
+  /// Which pairs of half-spaces can form a crease: not parallel, where
+  /// 1 − c² would vanish and one projection settles both anyway. Planes can
+  /// be edited between steps, so this is redone (k² dot products) each step.
+  void prepare_planes() {
+    const std::size_t k = planes_.size();
+    half_spaces_ = 0;
+    for (const plane_collider<T>& p : planes_) half_spaces_ += !p.finite;
+    crease_.assign(k * k, 0);
+    for (std::size_t a = 0; a < k; ++a)
+      for (std::size_t b = 0; b < k; ++b)
+        crease_[a * k + b] = a != b && std::abs(dot(planes_[a].normal, planes_[b].normal)) < T(1) - T(1e-3);
   }
 
   // ---- storage upkeep -----------------------------------------------------------
@@ -492,6 +525,8 @@ class particle_system {
   std::size_t capacity_, stride_, size_ = 0;
   aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
   std::vector<plane_collider<T>> planes_;
+  std::vector<unsigned char> crease_;
+  std::size_t half_spaces_ = 0;
   std::vector<emitter<T>> emitters_;
   std::vector<std::size_t> died_batches_;
   std::array<aligned_array<T>*, 10> columns_{};

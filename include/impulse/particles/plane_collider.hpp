@@ -61,6 +61,17 @@ struct plane_collider {
     return p;
   }
 
+  /// Signed distance n·x + d, m: negative behind the plane.
+  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
+
+  /// How far behind the plane rounding can leave a particle at x that was
+  /// just projected onto it, m: s = n·x + d and x − s·n each round every
+  /// term once, ~8ε·(|x| + |d|); this is twice that, plus 16ε of headroom
+  /// near the origin. "No particle behind a plane" means distance(x) ≥ −rounding_at(x).
+  T rounding_at(const vec3<T>& x) const noexcept {
+    return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(offset) + max_component(abs(x)));
+  }
+
   void validate(std::uint32_t index = no_object) const {
     using detail::require;
     const T tolerance = scalar_traits<T>::unit_tolerance;
@@ -91,9 +102,10 @@ struct plane_collider {
 namespace detail {
 
 /// Velocity after contact with a plane of unit normal n (facing the particle)
-/// in the lanes of `touching`.
+/// in the lanes of `touching`. Always inlined: as a call, its vector
+/// arguments go through memory (GCC 12 outlines it otherwise).
 template <class T, int W>
-void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
+[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
                     const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
   const batch<T, W> vn = dot(v, n);
   const vec3_batch<T, W> tangential = v - n * vn;
@@ -118,21 +130,38 @@ bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
   return true;
 }
 
-/// How far behind a plane rounding can leave a point just projected onto it:
-/// s = n·x + d and x − s·n each round every term once, ~8ε·(|x| + |d|); twice
-/// that, plus 16ε of headroom near the origin.
-template <class T>
-T plane_rounding(const plane_collider<T>& plane, T largest_coordinate) noexcept {
-  return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(plane.offset) + largest_coordinate);
+/// plane_collider::rounding_at for each lane.
+template <class T, int W>
+batch<T, W> rounding_at(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
+  return (largest + (T(1) + std::abs(plane.offset))) * (T(16) * scalar_traits<T>::epsilon);
+}
+
+template <class T, int W>
+batch<T, W> distance(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  return dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
 }
 
 /// Lanes behind the half-space by more than rounding.
 template <class T, int W>
 batch_mask<T, W> behind_half_space(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
-  const batch<T, W> s = dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
-  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
-  const T scale = T(16) * scalar_traits<T>::epsilon;
-  return s < -((largest + (T(1) + std::abs(plane.offset))) * scale);
+  return distance(plane, x) < -rounding_at(plane, x);
+}
+
+/// Moves the lanes of `lanes_in` onto the line where planes a and b meet:
+/// x' = x − α·n_a − β·n_b with n_a·x' + d_a = 0 = n_b·x' + d_b, i.e.
+/// α = (s_a − c·s_b)/(1 − c²), β = (s_b − c·s_a)/(1 − c²), c = n_a·n_b.
+/// The point of a crease nearest to a particle driven into it.
+template <class T, int W>
+void project_onto_crease(const plane_collider<T>& a, const plane_collider<T>& b, batch_mask<T, W> lanes_in,
+                         vec3_batch<T, W>& x) noexcept {
+  const T c = dot(a.normal, b.normal);
+  const T inverse = T(1) / (T(1) - c * c);
+  const batch<T, W> s_a = distance(a, x), s_b = distance(b, x);
+  const batch<T, W> alpha = (s_a - s_b * c) * inverse, beta = (s_b - s_a * c) * inverse;
+  const vec3_batch<T, W> moved = x - vec3_batch<T, W>::broadcast(a.normal) * alpha -
+                                 vec3_batch<T, W>::broadcast(b.normal) * beta;
+  x = {select(lanes_in, moved.x, x.x), select(lanes_in, moved.y, x.y), select(lanes_in, moved.z, x.z)};
 }
 
 /// Rectangle: lanes whose move x0 -> x crossed it within its extent are put
