@@ -11,9 +11,14 @@
 //
 // Output: CSV on stdout,
 //   integrator,scalar,width,n,msteps_per_s,gb_per_s,bandwidth_fraction
-// width is the batch width, or "aos" for the baseline. Each figure is the
-// median of `repeats` timed runs, each run long enough (≥ 0.1 s) to swamp the
-// clock. --quick runs N ≤ 10^5 with 3 repeats, for a smoke test.
+// width is the batch width, or "aos" for the baseline.
+//
+// The cost of a step depends on the state (a particle on a plane takes the
+// contact path), so every N is timed over the same stretch of the scene:
+// steps 10 to 40 (t = 1/12 s to 1/3 s), restarted from a copy of the state
+// at step 10 for each timed run. Each figure is the median of the runs
+// (7, or 3 at N ≥ 10^6), with enough runs at small N that ≥ 0.1 s is timed.
+// --quick runs N ≤ 10^5, for a smoke test.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -56,6 +61,26 @@ double seconds_per_call(F&& f, const settings& s) {
   return median(runs);
 }
 
+inline constexpr int warm_steps = 10, timed_steps = 30;
+
+/// Seconds per step over the scene's steps warm_steps … warm_steps +
+/// timed_steps, each run restarted from a copy of `start` (not timed).
+template <class System>
+double seconds_per_scene_step(const System& start, std::size_t n, const settings& s) {
+  const int runs = std::max(n >= 1000000 ? 3 : s.repeats, 1);
+  std::vector<double> per_step;
+  double timed = 0;
+  for (int r = 0; r < runs || timed < s.min_seconds; ++r) {
+    System system = start;
+    const auto t0 = clock_type::now();
+    for (int k = 0; k < timed_steps; ++k) system.step(typename System::scalar(particles_scene::dt));
+    const double t = std::chrono::duration<double>(clock_type::now() - t0).count();
+    timed += t;
+    per_step.push_back(t / timed_steps);
+  }
+  return median(per_step);
+}
+
 /// The copy roof: bytes moved per second by b[i] = a[i] over `bytes` in total
 /// (half read, half written), the way STREAM counts them.
 double copy_bandwidth(std::size_t bytes, const settings& s) {
@@ -90,6 +115,7 @@ struct particle {
 
 template <class T, class I>
 struct aos_system {
+  using scalar = T;
   std::vector<particle<T>> particles;
   std::array<ps::plane_spec<T>, 3> planes = ps::scene_planes<T>();
   std::array<impulse::vec3<T>, 3> attractor_positions{{{0, 5, 0}, {-5, 8, 3}, {5, 3, -4}}};
@@ -149,8 +175,8 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
   const T dt = T(ps::dt);
   {
     system_type system = ps::make<config<T, I>>(n);
-    for (int k = 0; k < 10; ++k) system.step(dt);  // let the first bounces happen
-    const double t = seconds_per_call([&] { system.step(dt); }, s);
+    for (int k = 0; k < warm_steps; ++k) system.step(dt);
+    const double t = seconds_per_scene_step(system, n, s);
     // Read and written: x, y, z, vx, vy, vz; read: inverse mass.
     print({integrator_name, scalar_name, std::to_string(system_type::width), n, double(n) / t,
            double(13 * sizeof(T)), roof_soa});
@@ -163,8 +189,8 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
       const auto start = ps::draw<T>(random);
       p = {start.position, start.velocity, T(1), T(0)};
     }
-    for (int k = 0; k < 10; ++k) aos.step(dt);
-    const double t = seconds_per_call([&] { aos.step(dt); }, s);
+    for (int k = 0; k < warm_steps; ++k) aos.step(dt);
+    const double t = seconds_per_scene_step(aos, n, s);
     print({integrator_name, scalar_name, "aos", n, double(n) / t, double(2 * sizeof(particle<T>)), roof_aos});
   }
 }

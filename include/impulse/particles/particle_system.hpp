@@ -26,7 +26,6 @@
 // it is attached to.
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -302,18 +301,25 @@ class particle_system {
   void collide(const state& x0, state& x, state& v) const noexcept {
     for (const plane_collider<T>& plane : planes_)
       if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
-    bool moved = false;
-    for (const plane_collider<T>& plane : planes_)
-      if (!plane.finite) moved |= detail::collide_half_space(plane, x, v);
-    if (!moved || half_spaces_ < 2) return;
+    // Moving a lane out of plane k along n_k lowers its distance to plane j
+    // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
+    // checked before k (risky_[k]). The floor and its walls meet at right
+    // angles, so most contacts skip the check below.
+    bool check = false;
+    for (std::size_t k = 0; k < planes_.size(); ++k)
+      if (!planes_[k].finite && detail::collide_half_space(planes_[k], x, v)) check |= risky_[k] != 0;
+    if (!check) return;
     // Projecting onto one half-space can push a particle back behind another
     // that meets it at an acute angle (a crease). Cyclic projection would
     // converge there only geometrically, by cos² of the angle per sweep, so
     // a lane still behind plane a while on or behind plane b is moved
     // straight onto the line where the two meet.
+    bool residual = false;
     for (std::size_t a = 0; a < planes_.size(); ++a) {
       if (planes_[a].finite) continue;
       batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
+      if (none(behind_a)) continue;
+      residual = true;
       for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
         if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
         const batch_mask<T, width> on_b =
@@ -324,6 +330,7 @@ class particle_system {
         behind_a = behind_a & !in_crease;
       }
     }
+    if (!residual) return;  // the common case: one sweep settled every lane
     // Three or more planes meeting at a corner can still leave a lane
     // behind one: it goes back to where it started the step, which was
     // inside, and stops there. "No particle behind a plane" holds always.
@@ -397,17 +404,21 @@ class particle_system {
     return index;
   }
 
-  /// Which pairs of half-spaces can form a crease: not parallel, where
-  /// 1 − c² would vanish and one projection settles both anyway. Planes can
-  /// be edited between steps, so this is redone (k² dot products) each step.
+  /// Which pairs of half-spaces can form a crease (not parallel, where
+  /// 1 − c² would vanish and one projection settles both anyway), and which
+  /// planes can push a lane behind an earlier one. Planes can be edited
+  /// between steps, so this is redone (k² dot products) each step.
   void prepare_planes() {
     const std::size_t k = planes_.size();
-    half_spaces_ = 0;
-    for (const plane_collider<T>& p : planes_) half_spaces_ += !p.finite;
     crease_.assign(k * k, 0);
+    risky_.assign(k, 0);
     for (std::size_t a = 0; a < k; ++a)
-      for (std::size_t b = 0; b < k; ++b)
-        crease_[a * k + b] = a != b && std::abs(dot(planes_[a].normal, planes_[b].normal)) < T(1) - T(1e-3);
+      for (std::size_t b = 0; b < k; ++b) {
+        if (a == b || planes_[a].finite || planes_[b].finite) continue;
+        const T c = dot(planes_[a].normal, planes_[b].normal);
+        crease_[a * k + b] = std::abs(c) < T(1) - T(1e-3);
+        if (b < a && c < T(0)) risky_[a] = 1;
+      }
   }
 
   // ---- storage upkeep -----------------------------------------------------------
@@ -447,7 +458,7 @@ class particle_system {
   }
 
   std::size_t emit_unchecked(emitter<T>& source, std::size_t count) {
-    const std::size_t fit = std::min(count, capacity_ - size_);
+    const std::size_t room = capacity_ - size_, fit = count < room ? count : room;
     for (std::size_t k = 0; k < fit; ++k) {
       const auto d = source.next();
       write(size_++, d.position, d.velocity, T(1) / source.mass, d.lifetime);
@@ -525,8 +536,7 @@ class particle_system {
   std::size_t capacity_, stride_, size_ = 0;
   aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
   std::vector<plane_collider<T>> planes_;
-  std::vector<unsigned char> crease_;
-  std::size_t half_spaces_ = 0;
+  std::vector<unsigned char> crease_, risky_;
   std::vector<emitter<T>> emitters_;
   std::vector<std::size_t> died_batches_;
   std::array<aligned_array<T>*, 10> columns_{};
