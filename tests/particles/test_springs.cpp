@@ -64,12 +64,11 @@ TEST_CASE("the stability limits found by bisection match each method's closed fo
           doctest::Approx(std::sqrt(1 + wh * wh * wh * wh / 4)).epsilon(1e-12));
   }
   CHECK(largest_stable_step<in::euler>(omega, 0.05) * omega == doctest::Approx(0.1).epsilon(1e-9));
-  for (double zeta : {0.0, 0.05}) {
-    MESSAGE("zeta = " << zeta << ": omega*h_max euler " << largest_stable_step<in::euler>(omega, zeta) * omega
-                      << ", symplectic euler " << largest_stable_step<in::symplectic_euler>(omega, zeta) * omega
-                      << ", midpoint " << largest_stable_step<in::midpoint>(omega, zeta) * omega << ", rk4 "
-                      << largest_stable_step<in::rk4>(omega, zeta) * omega);
-  }
+  MESSAGE("zeta = 0.05: omega*h_max euler " << largest_stable_step<in::euler>(omega, 0.05) * omega
+                                          << ", symplectic euler "
+                                          << largest_stable_step<in::symplectic_euler>(omega, 0.05) * omega
+                                          << ", midpoint " << largest_stable_step<in::midpoint>(omega, 0.05) * omega
+                                          << ", rk4 " << largest_stable_step<in::rk4>(omega, 0.05) * omega);
 }
 
 /// Largest |r − L| over the first and over the last tenth of a run of two
