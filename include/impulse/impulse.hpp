@@ -7,3 +7,4 @@
 #include "integrators.hpp"
 #include "math.hpp"
 #include "particles.hpp"
+#include "shapes.hpp"

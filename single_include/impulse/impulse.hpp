@@ -3099,4 +3099,434 @@ struct wind {
 }  // namespace impulse::particles
 // ---- end impulse/particles/wind.hpp ----
 // ---- end impulse/particles.hpp ----
+// ---- begin impulse/shapes.hpp ----
+// impulse/shapes.hpp — the shape module: sphere, box, capsule, plane,
+// triangle_mesh, with support functions, bounds and exact mass properties.
+
+// ---- begin impulse/shapes/box.hpp ----
+// impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
+
+
+// ---- begin impulse/shapes/mass_properties.hpp ----
+// impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
+//
+// mass_properties holds what a rigid body needs of its shape: the mass, the
+// centre of mass in shape space, and the inertia tensor about that centre.
+// Closed forms for the primitive solids live with each shape; this file has
+// the general polyhedron (Eberly, "Polyhedral Mass Properties (Revisited)",
+// 2002, a streamlined form of Mirtich's surface integrals, JGT 1996), the
+// parallel-axis shift and the sum of parts, from which compounds are built.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct mass_properties {
+  T mass = T(0);              ///< kg
+  vec3<T> center{};           ///< centre of mass, m, in shape space
+  mat3<T> inertia{};          ///< kg·m², about `center`, shape-space axes
+};
+
+namespace detail {
+
+template <scalar_type T>
+void require_density(T density) {
+  if (!std::isfinite(density)) report_error(error_code::non_finite, "mass properties: density is not finite");
+  if (!(density > T(0))) report_error(error_code::non_positive_mass, "mass properties: density must be positive");
+}
+
+/// Inertia of a point mass m at offset r about the origin: m·(|r|²·1 − r rᵀ).
+template <scalar_type T>
+mat3<T> point_inertia(T m, const vec3<T>& r) noexcept {
+  return (mat3<T>::identity() * dot(r, r) - outer(r, r)) * m;
+}
+
+}  // namespace detail
+
+/// The same body's inertia about a point `offset` away from its centre of
+/// mass (parallel-axis theorem, in tensor form).
+template <scalar_type T>
+mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcept {
+  return p.inertia + detail::point_inertia(p.mass, p.center - point);
+}
+
+/// The part placed in its parent's space by a rotation (as a matrix) and a
+/// translation: centre moved, inertia rotated to R·I·Rᵀ.
+template <scalar_type T>
+mass_properties<T> transformed(const mass_properties<T>& p, const mat3<T>& rotation, const vec3<T>& translation) noexcept {
+  return {p.mass, rotation * p.center + translation, rotation * p.inertia * transpose(rotation)};
+}
+
+/// Two parts as one body: masses add, the centre is the mass-weighted mean,
+/// and each part's inertia is carried to the common centre.
+template <scalar_type T>
+mass_properties<T> combine(const mass_properties<T>& a, const mass_properties<T>& b) noexcept {
+  mass_properties<T> sum;
+  sum.mass = a.mass + b.mass;
+  sum.center = (a.center * a.mass + b.center * b.mass) / sum.mass;
+  sum.inertia = inertia_about(a, sum.center) + inertia_about(b, sum.center);
+  return sum;
+}
+
+/// Mass properties of the closed, outward-oriented triangle mesh
+/// (triangles wound counter-clockwise seen from outside) filled with
+/// `density`. Integrated in double about the mean vertex, so a polyhedron far
+/// from the origin loses no digits to cancellation.
+template <scalar_type T>
+mass_properties<T> polyhedron_mass_properties(std::span<const vec3<T>> vertices,
+                                              std::span<const std::uint32_t> triangles, T density) {
+  detail::require_density(density);
+  if (vertices.empty() || triangles.size() < 12 || triangles.size() % 3 != 0)
+    detail::report_error(error_code::degenerate_shape,
+                         "polyhedron_mass_properties: needs at least 4 triangles (a closed mesh)");
+  for (std::uint32_t i : triangles)
+    if (i >= vertices.size())
+      detail::report_error(error_code::out_of_range, "polyhedron_mass_properties: a triangle names a missing vertex");
+  vec3<double> reference{};
+  for (const vec3<T>& v : vertices) reference += vec3<double>{double(v.x), double(v.y), double(v.z)};
+  reference = reference / double(vertices.size());
+  auto at = [&](std::uint32_t i) {
+    return vec3<double>{double(vertices[i].x), double(vertices[i].y), double(vertices[i].z)} - reference;
+  };
+  // Eberly's integrals of 1, x, y, z, x², y², z², xy, yz, zx over the solid,
+  // each a sum over triangles of the face normal's component times a
+  // polynomial in the corners (the divergence theorem).
+  double integral[10] = {};
+  auto sub = [](double w0, double w1, double w2, double& f1, double& f2, double& f3, double& g0, double& g1,
+                double& g2) {
+    const double t0 = w0 + w1, t1 = w0 * w0, t2 = t1 + w1 * t0;
+    f1 = t0 + w2;
+    f2 = t2 + w2 * f1;
+    f3 = w0 * t1 + w1 * t2 + w2 * f2;
+    g0 = f2 + w0 * (f1 + w0);
+    g1 = f2 + w1 * (f1 + w1);
+    g2 = f2 + w2 * (f1 + w2);
+  };
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const vec3<double> p0 = at(triangles[t]), p1 = at(triangles[t + 1]), p2 = at(triangles[t + 2]);
+    const vec3<double> d = cross(p1 - p0, p2 - p0);
+    double f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
+    sub(p0.x, p1.x, p2.x, f1x, f2x, f3x, g0x, g1x, g2x);
+    sub(p0.y, p1.y, p2.y, f1y, f2y, f3y, g0y, g1y, g2y);
+    sub(p0.z, p1.z, p2.z, f1z, f2z, f3z, g0z, g1z, g2z);
+    integral[0] += d.x * f1x;
+    integral[1] += d.x * f2x;
+    integral[2] += d.y * f2y;
+    integral[3] += d.z * f2z;
+    integral[4] += d.x * f3x;
+    integral[5] += d.y * f3y;
+    integral[6] += d.z * f3z;
+    integral[7] += d.x * (p0.y * g0x + p1.y * g1x + p2.y * g2x);
+    integral[8] += d.y * (p0.z * g0y + p1.z * g1y + p2.z * g2y);
+    integral[9] += d.z * (p0.x * g0z + p1.x * g1z + p2.x * g2z);
+  }
+  constexpr double scale[10] = {1.0 / 6,  1.0 / 24, 1.0 / 24, 1.0 / 24,  1.0 / 60,
+                                1.0 / 60, 1.0 / 60, 1.0 / 120, 1.0 / 120, 1.0 / 120};
+  for (int i = 0; i < 10; ++i) integral[i] *= scale[i] * double(density);
+  const double mass = integral[0];
+  if (!(mass > 0))
+    detail::report_error(error_code::degenerate_shape,
+                         "polyhedron_mass_properties: the mesh encloses no volume (open, flat or inside out)");
+  const vec3<double> c{integral[1] / mass, integral[2] / mass, integral[3] / mass};
+  const double xx = integral[5] + integral[6] - mass * (c.y * c.y + c.z * c.z);
+  const double yy = integral[4] + integral[6] - mass * (c.z * c.z + c.x * c.x);
+  const double zz = integral[4] + integral[5] - mass * (c.x * c.x + c.y * c.y);
+  const double xy = -(integral[7] - mass * c.x * c.y);
+  const double yz = -(integral[8] - mass * c.y * c.z);
+  const double zx = -(integral[9] - mass * c.z * c.x);
+  mass_properties<T> p;
+  p.mass = T(mass);
+  p.center = vec3<T>{T(c.x + reference.x), T(c.y + reference.y), T(c.z + reference.z)};
+  p.inertia = mat3<T>::from_rows({T(xx), T(xy), T(zx)}, {T(xy), T(yy), T(yz)}, {T(zx), T(yz), T(zz)});
+  return p;
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/mass_properties.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct box {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  vec3<T> half_extents{T(0.5), T(0.5), T(0.5)};  ///< m, each > 0
+
+  static box make(const vec3<T>& half_extents) {
+    const box b{half_extents};
+    b.validate();
+    return b;
+  }
+  void validate() const {
+    if (!is_finite(half_extents)) detail::report_error(error_code::non_finite, "box: half extents are not finite");
+    if (!(min_component(half_extents) > T(0)))
+      detail::report_error(error_code::degenerate_shape, "box: every half extent must be positive");
+  }
+
+  /// The corner farthest along `direction`; on a tie (a zero component) the
+  /// positive side, so the result is always a vertex.
+  vec3<T> support(const vec3<T>& d) const noexcept {
+    return {d.x < T(0) ? -half_extents.x : half_extents.x, d.y < T(0) ? -half_extents.y : half_extents.y,
+            d.z < T(0) ? -half_extents.z : half_extents.z};
+  }
+  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, half_extents); }
+  /// Exact: the rotated box's extent along each axis is |R|·h.
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(local_aabb(), pose); }
+};
+
+/// Solid box of sides 2a, 2b, 2c: m = 8ρabc, I = m/3·diag(b² + c², c² + a², a² + b²).
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const box<T>& b, T density) {
+  b.validate();
+  detail::require_density(density);
+  const vec3<T> h = b.half_extents, h2 = mul(h, h);
+  const T m = T(8) * density * h.x * h.y * h.z;
+  return {m, {}, mat3<T>::diagonal(vec3<T>{h2.y + h2.z, h2.z + h2.x, h2.x + h2.y} * (m / T(3)))};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/box.hpp ----
+// ---- begin impulse/shapes/capsule.hpp ----
+// impulse/shapes/capsule.hpp — a cylinder with hemispherical caps, along y.
+//
+// The set of points within `radius` of the segment from (0, −h, 0) to
+// (0, h, 0): a swept sphere, the cheapest shape that rolls on its side and
+// stands on its end.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct capsule {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  T radius = T(0.25);       ///< m, > 0
+  T half_height = T(0.5);   ///< h, m, ≥ 0: half the length of the core segment
+
+  static capsule make(T radius, T half_height) {
+    const capsule c{radius, half_height};
+    c.validate();
+    return c;
+  }
+  void validate() const {
+    if (!std::isfinite(radius) || !std::isfinite(half_height))
+      detail::report_error(error_code::non_finite, "capsule: radius or half height is not finite");
+    if (!(radius > T(0)) || !(half_height >= T(0)))
+      detail::report_error(error_code::degenerate_shape,
+                           "capsule: radius must be positive and half height non-negative");
+  }
+
+  vec3<T> support(const vec3<T>& d) const noexcept {
+    const vec3<T> end{T(0), d.y < T(0) ? -half_height : half_height, T(0)};
+    return end + normalize_or(d, vec3<T>::unit_y()) * radius;
+  }
+  aabb<T> local_aabb() const noexcept {
+    return aabb<T>::from_center_half_extents({}, {radius, half_height + radius, radius});
+  }
+  /// Exact: the box around the two transformed cap centres, grown by the radius.
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    const vec3<T> axis = rotate(pose.rotation, vec3<T>{T(0), half_height, T(0)});
+    const vec3<T> reach = abs(axis) + vec3<T>::splat(radius);
+    return aabb<T>::from_center_half_extents(pose.position, reach);
+  }
+};
+
+/// Cylinder (mass m_c, radius r, height 2h) plus two hemispheres (together a
+/// ball of mass m_s). About the axis: m_c·r²/2 + 2/5·m_s·r². Across it: the
+/// cylinder's m_c·(r²/4 + h²/3), and each hemisphere's own 83/320·(m_s/2)·r²
+/// about its centre of mass, 3r/8 beyond the cylinder's end, carried to the
+/// middle: together m_s·(2r²/5 + h² + 3hr/4).
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const capsule<T>& c, T density) {
+  c.validate();
+  detail::require_density(density);
+  const T pi = T(3.14159265358979323846), r = c.radius, h = c.half_height, r2 = r * r;
+  const T m_cylinder = density * pi * r2 * T(2) * h;
+  const T m_sphere = density * T(4) / T(3) * pi * r2 * r;
+  const T axial = m_cylinder * r2 / T(2) + T(0.4) * m_sphere * r2;
+  const T across = m_cylinder * (r2 / T(4) + h * h / T(3)) + m_sphere * (T(0.4) * r2 + h * h + T(0.75) * h * r);
+  return {m_cylinder + m_sphere, {}, mat3<T>::diagonal({across, axial, across})};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/capsule.hpp ----
+// ---- begin impulse/shapes/fwd.hpp ----
+// impulse/shapes/fwd.hpp — the shape module's names.
+
+
+namespace impulse {
+
+template <scalar_type T> struct sphere;
+template <scalar_type T> struct box;
+template <scalar_type T> struct capsule;
+template <scalar_type T> struct plane;
+template <scalar_type T> class triangle_mesh;
+template <scalar_type T> struct mass_properties;
+
+}  // namespace impulse
+// ---- end impulse/shapes/fwd.hpp ----
+// ---- begin impulse/shapes/plane.hpp ----
+// impulse/shapes/plane.hpp — a static half-space, the ground of most scenes.
+//
+// Solid where n·x + offset < 0; the surface is n·x + offset = 0 and the free
+// side is where n points (the convention of particles::plane_collider). It
+// is unbounded, so it has no mass properties and belongs only to static
+// bodies: mass_properties_of(plane) does not exist, and asking for it is a
+// compile error.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct plane {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, pointing out of the solid
+  T offset = T(0);                   ///< m: the surface is n·x + offset = 0
+
+  static plane make(const vec3<T>& normal, T offset) {
+    const plane p{normal, offset};
+    p.validate();
+    return p;
+  }
+  void validate() const {
+    if (!is_finite(normal) || !std::isfinite(offset))
+      detail::report_error(error_code::non_finite, "plane: normal or offset is not finite");
+    if (!(length_squared(normal) > scalar_traits<T>::zero_length_squared))
+      detail::report_error(error_code::degenerate_shape, "plane: normal has zero length");
+    if (!(std::abs(length(normal) - T(1)) <= scalar_traits<T>::unit_tolerance))
+      detail::report_error(error_code::not_normalized, "plane: normal is not a unit vector");
+  }
+
+  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
+
+  /// Unbounded in every direction a broad phase cares about.
+  aabb<T> local_aabb() const noexcept {
+    const T big = std::numeric_limits<T>::max();
+    return {vec3<T>::splat(-big), vec3<T>::splat(big)};
+  }
+  aabb<T> world_aabb(const transform<T>&) const noexcept { return local_aabb(); }
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/plane.hpp ----
+// ---- begin impulse/shapes/sphere.hpp ----
+// impulse/shapes/sphere.hpp — a solid ball centred at the body origin.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct sphere {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  T radius = T(0.5);  ///< m, > 0
+
+  /// A sphere of the given radius; a zero, negative or non-finite radius is refused.
+  static sphere make(T radius) {
+    const sphere s{radius};
+    s.validate();
+    return s;
+  }
+  void validate() const {
+    if (!std::isfinite(radius)) detail::report_error(error_code::non_finite, "sphere: radius is not finite");
+    if (!(radius > T(0))) detail::report_error(error_code::degenerate_shape, "sphere: radius must be positive");
+  }
+
+  /// The point of the sphere farthest along `direction` (any point of the
+  /// surface for a zero direction).
+  vec3<T> support(const vec3<T>& direction) const noexcept {
+    return normalize_or(direction, vec3<T>::unit_x()) * radius;
+  }
+  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, vec3<T>::splat(radius)); }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    return aabb<T>::from_center_half_extents(pose.position, vec3<T>::splat(radius));
+  }
+};
+
+/// Solid ball: m = ρ·4/3·πr³, I = 2/5·m·r² about every axis.
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const sphere<T>& s, T density) {
+  s.validate();
+  detail::require_density(density);
+  const T pi = T(3.14159265358979323846);
+  const T m = density * T(4) / T(3) * pi * s.radius * s.radius * s.radius;
+  return {m, {}, mat3<T>::diagonal(vec3<T>::splat(T(0.4) * m * s.radius * s.radius))};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/sphere.hpp ----
+// ---- begin impulse/shapes/triangle_mesh.hpp ----
+// impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
+//
+// Vertices and index triples, counter-clockwise seen from the free side.
+// Static only: it need not be closed, so it has no volume and no mass
+// properties. The narrow phase adds a bounding-volume tree over its
+// triangles; this file holds the geometry and its bounds.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+class triangle_mesh {
+ public:
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  /// Copies the mesh after checking it: finite vertices, indices in range,
+  /// at least one triangle, and no triangle of zero area.
+  static triangle_mesh make(std::span<const vec3<T>> vertices, std::span<const std::uint32_t> indices) {
+    if (indices.empty() || indices.size() % 3 != 0)
+      detail::report_error(error_code::degenerate_shape, "triangle_mesh: needs whole triangles, at least one");
+    triangle_mesh mesh;
+    for (const vec3<T>& v : vertices) {
+      if (!is_finite(v)) detail::report_error(error_code::non_finite, "triangle_mesh: a vertex is not finite");
+      mesh.bounds_ = mesh.vertices_.empty() ? aabb<T>{v, v} : merge(mesh.bounds_, v);
+      mesh.vertices_.push_back(v);
+    }
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+      for (std::size_t k = 0; k < 3; ++k)
+        if (indices[t + k] >= vertices.size())
+          detail::report_error(error_code::out_of_range, "triangle_mesh: an index names a missing vertex",
+                               std::uint32_t(t / 3));
+      const vec3<T> a = vertices[indices[t]], b = vertices[indices[t + 1]], c = vertices[indices[t + 2]];
+      // Zero area relative to the triangle's own size: ε² of its longest edge squared.
+      const T scale = max_component(abs(b - a)) + max_component(abs(c - a));
+      if (!(length_squared(cross(b - a, c - a)) > scalar_traits<T>::epsilon * scalar_traits<T>::epsilon * scale * scale * scale * scale))
+        detail::report_error(error_code::degenerate_shape, "triangle_mesh: a triangle has zero area",
+                             std::uint32_t(t / 3));
+    }
+    mesh.indices_.assign(indices.begin(), indices.end());
+    return mesh;
+  }
+
+  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
+  [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
+  /// The three corners of triangle t.
+  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
+    a = vertices_[indices_[3 * t]];
+    b = vertices_[indices_[3 * t + 1]];
+    c = vertices_[indices_[3 * t + 2]];
+  }
+
+  aabb<T> local_aabb() const noexcept { return bounds_; }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    aabb<T> box{apply(pose, vertices_[0]), apply(pose, vertices_[0])};
+    for (const vec3<T>& v : vertices_) box = merge(box, apply(pose, v));
+    return box;
+  }
+
+ private:
+  std::vector<vec3<T>> vertices_;
+  std::vector<std::uint32_t> indices_;
+  aabb<T> bounds_{};
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/triangle_mesh.hpp ----
+// ---- end impulse/shapes.hpp ----
 // ---- end impulse/impulse.hpp ----

@@ -1,0 +1,11 @@
+// impulse/shapes.hpp — the shape module: sphere, box, capsule, plane,
+// triangle_mesh, with support functions, bounds and exact mass properties.
+#pragma once
+
+#include "shapes/box.hpp"
+#include "shapes/capsule.hpp"
+#include "shapes/fwd.hpp"
+#include "shapes/mass_properties.hpp"
+#include "shapes/plane.hpp"
+#include "shapes/sphere.hpp"
+#include "shapes/triangle_mesh.hpp"
