@@ -4,6 +4,7 @@
 
 #include "config.hpp"
 #include "core.hpp"
+#include "dynamics.hpp"
 #include "integrators.hpp"
 #include "math.hpp"
 #include "particles.hpp"

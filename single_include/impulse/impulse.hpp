@@ -930,124 +930,40 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 }  // namespace impulse
 // ---- end impulse/core/version.hpp ----
 // ---- end impulse/core.hpp ----
-// ---- begin impulse/integrators.hpp ----
-// impulse/integrators.hpp — the integrator policies: euler, symplectic_euler,
-// midpoint, rk4, over any state modelling integrators::ode_state.
+// ---- begin impulse/dynamics.hpp ----
+// impulse/dynamics.hpp — the dynamics module: rigid body state and loads.
+// (Integration of bodies, springs on bodies, contacts and joints follow.)
 
-// ---- begin impulse/integrators/euler.hpp ----
-// impulse/integrators/euler.hpp — explicit (forward) Euler.
+// ---- begin impulse/dynamics/fwd.hpp ----
+// impulse/dynamics/fwd.hpp — the dynamics module's names.
+
+
+
+namespace impulse {
+
+enum class body_type : std::uint8_t;
+template <scalar_type T> struct rigid_body;
+
+}  // namespace impulse
+// ---- end impulse/dynamics/fwd.hpp ----
+// ---- begin impulse/dynamics/rigid_body.hpp ----
+// impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
 //
-// x1 = x0 + v0·h, v1 = v0 + a(x0, v0)·h. First order; energy of an undamped
-// oscillator grows by the factor (1 + ω²h²) every step, so it is the
-// baseline the others are measured against, not a method to ship a game with.
-
-
-namespace impulse::integrators {
-
-struct euler {
-  static constexpr policy_kind kind = policy_kind::integrator;
-  static constexpr int order = 1;
-  static constexpr int stages = 1;  // evaluations of a(x, v) per step
-
-  template <class S, class H, class Accel>
-    requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const S a0 = accel(x, v);
-    x = drift(x, v, h);
-    v = v + a0 * h;
-  }
-};
-
-}  // namespace impulse::integrators
-// ---- end impulse/integrators/euler.hpp ----
-// ---- begin impulse/integrators/fwd.hpp ----
-// impulse/integrators/fwd.hpp — the integrator policies by name.
-
-namespace impulse::integrators {
-
-struct euler;
-struct symplectic_euler;
-struct midpoint;
-struct rk4;
-
-}  // namespace impulse::integrators
-// ---- end impulse/integrators/fwd.hpp ----
-// ---- begin impulse/integrators/midpoint.hpp ----
-// impulse/integrators/midpoint.hpp — explicit midpoint method (RK2).
+// The state is Baraff's ("Physically Based Modeling: Rigid Body Dynamics",
+// SIGGRAPH 2001 course notes): the position x of the centre of mass, the
+// orientation quaternion q, the linear momentum P and the angular momentum
+// L, all in world space. Velocities are derived, v = P/m and ω = I_w⁻¹·L
+// with I_w⁻¹ = R·I_body⁻¹·Rᵀ. Keeping L rather than ω is what makes free
+// rotation right without special care: with no torque L is constant exactly,
+// and the gyroscopic precession of ω follows from the turning of I_w.
 //
-// Half an Euler step to the midpoint, then a full step with the slopes found
-// there. Second order, two evaluations of a(x, v) per step.
-
-
-namespace impulse::integrators {
-
-struct midpoint {
-  static constexpr policy_kind kind = policy_kind::integrator;
-  static constexpr int order = 2;
-  static constexpr int stages = 2;
-
-  template <class S, class H, class Accel>
-    requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S a0 = accel(x, v);
-    const S v_mid = v + a0 * half;
-    const S a_mid = accel(drift(x, v, half), v_mid);
-    x = drift(x, v_mid, h);
-    v = v + a_mid * h;
-  }
-};
-
-}  // namespace impulse::integrators
-// ---- end impulse/integrators/midpoint.hpp ----
-// ---- begin impulse/integrators/rk4.hpp ----
-// impulse/integrators/rk4.hpp — classical fourth-order Runge–Kutta.
-//
-// The four-slope method applied to (x, v)' = (v, a(x, v)). Fourth order,
-// four evaluations of a(x, v) per step. For x the slopes are velocities, so
-// the final position is one drift along their weighted mean.
-
-
-namespace impulse::integrators {
-
-struct rk4 {
-  static constexpr policy_kind kind = policy_kind::integrator;
-  static constexpr int order = 4;
-  static constexpr int stages = 4;
-
-  template <class S, class H, class Accel>
-    requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S k1v = accel(x, v);                        // k1x = v
-    const S k2x = v + k1v * half;
-    const S k2v = accel(drift(x, v, half), k2x);
-    const S k3x = v + k2v * half;
-    const S k3v = accel(drift(x, k2x, half), k3x);
-    const S k4x = v + k3v * h;
-    const S k4v = accel(drift(x, k3x, h), k4x);
-    const H sixth = h / H(6);
-    x = drift(x, v + (k2x + k3x) * H(2) + k4x, sixth);  // (k1x + 2k2x + 2k3x + k4x)·h/6
-    v = v + (k1v + (k2v + k3v) * H(2) + k4v) * sixth;
-  }
-};
-
-}  // namespace impulse::integrators
-// ---- end impulse/integrators/rk4.hpp ----
-// ---- end impulse/integrators.hpp ----
-// ---- begin impulse/math.hpp ----
-// impulse/math.hpp — the math module: vectors, quaternions, matrices,
-// transforms and bounding boxes for float and double, and vec3_batch, the
-// structure-of-arrays form of vec3 the particle kernels integrate.
-
-// ---- begin impulse/math/aabb.hpp ----
-// impulse/math/aabb.hpp — axis-aligned bounding box.
-//
-// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
-// upper = -max), the identity of merge, so a box can be grown point by point
-// from it; is_valid is false for it until something is merged in.
+// A body is static (never moves, infinite mass), kinematic (moves as told,
+// infinite mass: contacts do not push it) or dynamic. Loads accumulate in
+// `force` and `torque` (about the centre of mass) until the step consumes
+// them; impulses change the momenta at once.
 
 #include <limits>
+#include <optional>
 
 // ---- begin impulse/math/mat3.hpp ----
 // impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
@@ -1056,7 +972,6 @@ struct rk4 {
 // of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
 // column c.
 
-#include <optional>
 
 // ---- begin impulse/math/vec3.hpp ----
 // impulse/math/vec3.hpp — three-component vector of float or double.
@@ -1364,12 +1279,6 @@ bool is_finite(const mat3<T>& m) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/math/mat3.hpp ----
-// ---- begin impulse/math/transform.hpp ----
-// impulse/math/transform.hpp — rigid transform: a rotation followed by a translation.
-//
-// apply(t, p) = rotate(t.rotation, p) + t.position maps body space to world
-// space. (a * b) applies b first, then a, matching quaternion composition.
-
 // ---- begin impulse/math/quat.hpp ----
 // impulse/math/quat.hpp — unit quaternions for orientation (Hamilton convention).
 //
@@ -1549,6 +1458,12 @@ T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/math/quat.hpp ----
+// ---- begin impulse/math/transform.hpp ----
+// impulse/math/transform.hpp — rigid transform: a rotation followed by a translation.
+//
+// apply(t, p) = rotate(t.rotation, p) + t.position maps body space to world
+// space. (a * b) applies b first, then a, matching quaternion composition.
+
 
 namespace impulse {
 
@@ -1610,6 +1525,439 @@ constexpr transform<T> inverse_mul(const transform<T>& a, const transform<T>& b)
 
 }  // namespace impulse
 // ---- end impulse/math/transform.hpp ----
+// ---- begin impulse/shapes/mass_properties.hpp ----
+// impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
+//
+// mass_properties holds what a rigid body needs of its shape: the mass, the
+// centre of mass in shape space, and the inertia tensor about that centre.
+// Closed forms for the primitive solids live with each shape; this file has
+// the general polyhedron (Eberly, "Polyhedral Mass Properties (Revisited)",
+// 2002, a streamlined form of Mirtich's surface integrals, JGT 1996), the
+// parallel-axis shift and the sum of parts, from which compounds are built.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct mass_properties {
+  T mass = T(0);              ///< kg
+  vec3<T> center{};           ///< centre of mass, m, in shape space
+  mat3<T> inertia{};          ///< kg·m², about `center`, shape-space axes
+};
+
+namespace detail {
+
+template <scalar_type T>
+void require_density(T density) {
+  if (!std::isfinite(density)) report_error(error_code::non_finite, "mass properties: density is not finite");
+  if (!(density > T(0))) report_error(error_code::non_positive_mass, "mass properties: density must be positive");
+}
+
+/// Inertia of a point mass m at offset r about the origin: m·(|r|²·1 − r rᵀ).
+template <scalar_type T>
+mat3<T> point_inertia(T m, const vec3<T>& r) noexcept {
+  return (mat3<T>::identity() * dot(r, r) - outer(r, r)) * m;
+}
+
+}  // namespace detail
+
+/// The same body's inertia about a point `offset` away from its centre of
+/// mass (parallel-axis theorem, in tensor form).
+template <scalar_type T>
+mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcept {
+  return p.inertia + detail::point_inertia(p.mass, p.center - point);
+}
+
+/// The part placed in its parent's space by a rotation (as a matrix) and a
+/// translation: centre moved, inertia rotated to R·I·Rᵀ.
+template <scalar_type T>
+mass_properties<T> transformed(const mass_properties<T>& p, const mat3<T>& rotation, const vec3<T>& translation) noexcept {
+  return {p.mass, rotation * p.center + translation, rotation * p.inertia * transpose(rotation)};
+}
+
+/// Two parts as one body: masses add, the centre is the mass-weighted mean,
+/// and each part's inertia is carried to the common centre.
+template <scalar_type T>
+mass_properties<T> combine(const mass_properties<T>& a, const mass_properties<T>& b) noexcept {
+  mass_properties<T> sum;
+  sum.mass = a.mass + b.mass;
+  sum.center = (a.center * a.mass + b.center * b.mass) / sum.mass;
+  sum.inertia = inertia_about(a, sum.center) + inertia_about(b, sum.center);
+  return sum;
+}
+
+/// Mass properties of the closed, outward-oriented triangle mesh
+/// (triangles wound counter-clockwise seen from outside) filled with
+/// `density`. Integrated in double about the mean vertex, so a polyhedron far
+/// from the origin loses no digits to cancellation.
+template <scalar_type T>
+mass_properties<T> polyhedron_mass_properties(std::span<const vec3<T>> vertices,
+                                              std::span<const std::uint32_t> triangles, T density) {
+  detail::require_density(density);
+  if (vertices.empty() || triangles.size() < 12 || triangles.size() % 3 != 0)
+    detail::report_error(error_code::degenerate_shape,
+                         "polyhedron_mass_properties: needs at least 4 triangles (a closed mesh)");
+  for (std::uint32_t i : triangles)
+    if (i >= vertices.size())
+      detail::report_error(error_code::out_of_range, "polyhedron_mass_properties: a triangle names a missing vertex");
+  vec3<double> reference{};
+  for (const vec3<T>& v : vertices) reference += vec3<double>{double(v.x), double(v.y), double(v.z)};
+  reference = reference / double(vertices.size());
+  auto at = [&](std::uint32_t i) {
+    return vec3<double>{double(vertices[i].x), double(vertices[i].y), double(vertices[i].z)} - reference;
+  };
+  // Eberly's integrals of 1, x, y, z, x², y², z², xy, yz, zx over the solid,
+  // each a sum over triangles of the face normal's component times a
+  // polynomial in the corners (the divergence theorem).
+  double integral[10] = {};
+  auto sub = [](double w0, double w1, double w2, double& f1, double& f2, double& f3, double& g0, double& g1,
+                double& g2) {
+    const double t0 = w0 + w1, t1 = w0 * w0, t2 = t1 + w1 * t0;
+    f1 = t0 + w2;
+    f2 = t2 + w2 * f1;
+    f3 = w0 * t1 + w1 * t2 + w2 * f2;
+    g0 = f2 + w0 * (f1 + w0);
+    g1 = f2 + w1 * (f1 + w1);
+    g2 = f2 + w2 * (f1 + w2);
+  };
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const vec3<double> p0 = at(triangles[t]), p1 = at(triangles[t + 1]), p2 = at(triangles[t + 2]);
+    const vec3<double> d = cross(p1 - p0, p2 - p0);
+    double f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
+    sub(p0.x, p1.x, p2.x, f1x, f2x, f3x, g0x, g1x, g2x);
+    sub(p0.y, p1.y, p2.y, f1y, f2y, f3y, g0y, g1y, g2y);
+    sub(p0.z, p1.z, p2.z, f1z, f2z, f3z, g0z, g1z, g2z);
+    integral[0] += d.x * f1x;
+    integral[1] += d.x * f2x;
+    integral[2] += d.y * f2y;
+    integral[3] += d.z * f2z;
+    integral[4] += d.x * f3x;
+    integral[5] += d.y * f3y;
+    integral[6] += d.z * f3z;
+    integral[7] += d.x * (p0.y * g0x + p1.y * g1x + p2.y * g2x);
+    integral[8] += d.y * (p0.z * g0y + p1.z * g1y + p2.z * g2y);
+    integral[9] += d.z * (p0.x * g0z + p1.x * g1z + p2.x * g2z);
+  }
+  constexpr double scale[10] = {1.0 / 6,  1.0 / 24, 1.0 / 24, 1.0 / 24,  1.0 / 60,
+                                1.0 / 60, 1.0 / 60, 1.0 / 120, 1.0 / 120, 1.0 / 120};
+  for (int i = 0; i < 10; ++i) integral[i] *= scale[i] * double(density);
+  const double mass = integral[0];
+  if (!(mass > 0))
+    detail::report_error(error_code::degenerate_shape,
+                         "polyhedron_mass_properties: the mesh encloses no volume (open, flat or inside out)");
+  const vec3<double> c{integral[1] / mass, integral[2] / mass, integral[3] / mass};
+  const double xx = integral[5] + integral[6] - mass * (c.y * c.y + c.z * c.z);
+  const double yy = integral[4] + integral[6] - mass * (c.z * c.z + c.x * c.x);
+  const double zz = integral[4] + integral[5] - mass * (c.x * c.x + c.y * c.y);
+  const double xy = -(integral[7] - mass * c.x * c.y);
+  const double yz = -(integral[8] - mass * c.y * c.z);
+  const double zx = -(integral[9] - mass * c.z * c.x);
+  mass_properties<T> p;
+  p.mass = T(mass);
+  p.center = vec3<T>{T(c.x + reference.x), T(c.y + reference.y), T(c.z + reference.z)};
+  p.inertia = mat3<T>::from_rows({T(xx), T(xy), T(zx)}, {T(xy), T(yy), T(yz)}, {T(zx), T(yz), T(zz)});
+  return p;
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/mass_properties.hpp ----
+
+namespace impulse {
+
+enum class body_type : std::uint8_t { static_body, kinematic, dynamic };
+
+template <scalar_type T>
+struct rigid_body {
+  body_type type = body_type::dynamic;
+
+  // ---- state (world space) ----
+  vec3<T> position{};                          ///< centre of mass, m
+  quat<T> orientation = quat<T>::identity();   ///< body to world, unit
+  vec3<T> linear_momentum{};                   ///< P, kg·m/s
+  vec3<T> angular_momentum{};                  ///< L about the centre of mass, kg·m²/s
+
+  // ---- constants (body space) ----
+  T mass = T(1);                                        ///< kg; infinite for static and kinematic
+  T inverse_mass = T(1);                                ///< 1/kg; 0 for static and kinematic
+  mat3<T> inertia = mat3<T>::identity();                ///< I_body about the centre of mass, kg·m²
+  mat3<T> inverse_inertia = mat3<T>::identity();        ///< I_body⁻¹; zero for static and kinematic
+
+  // ---- kinematic bodies move at a set velocity (they have no momentum) ----
+  vec3<T> kinematic_velocity{};          ///< m/s
+  vec3<T> kinematic_angular_velocity{};  ///< rad/s, world
+
+  // ---- accumulated loads, cleared by each step ----
+  vec3<T> force{};   ///< N, through the centre of mass
+  vec3<T> torque{};  ///< N·m, about the centre of mass
+
+  /// A dynamic body with the given mass properties (from a shape's
+  /// mass_properties_of, or the user's own) placed with its centre of mass
+  /// at `pose`. Refuses a non-positive or non-finite mass and an inertia
+  /// that is not symmetric positive definite.
+  static rigid_body dynamic(const mass_properties<T>& p, const transform<T>& pose = transform<T>::identity()) {
+    rigid_body b;
+    b.type = body_type::dynamic;
+    b.set_pose(pose);
+    b.set_mass_properties(p);
+    return b;
+  }
+  /// A static (immovable) or kinematic body at `pose`.
+  static rigid_body fixed(body_type type, const transform<T>& pose = transform<T>::identity()) {
+    if (type == body_type::dynamic)
+      detail::report_error(error_code::invalid_parameter, "rigid_body::fixed: a dynamic body needs mass properties");
+    rigid_body b;
+    b.type = type;
+    b.set_pose(pose);
+    b.mass = std::numeric_limits<T>::infinity();
+    b.inverse_mass = T(0);
+    b.inverse_inertia = mat3<T>::zero();
+    return b;
+  }
+
+  void set_pose(const transform<T>& pose) {
+    if (!is_finite(pose.position) || !std::isfinite(pose.rotation.x) || !std::isfinite(pose.rotation.y) ||
+        !std::isfinite(pose.rotation.z) || !std::isfinite(pose.rotation.w))
+      detail::report_error(error_code::non_finite, "rigid_body: pose is not finite");
+    if (!is_normalized(pose.rotation))
+      detail::report_error(error_code::not_normalized, "rigid_body: orientation is not a unit quaternion");
+    position = pose.position;
+    orientation = pose.rotation;
+  }
+
+  /// Mass and body-space inertia about the centre of mass. The centre of
+  /// mass in `p` is where the shape's origin sits relative to it; the body
+  /// keeps positions of its centre of mass, so a shape whose centre is off
+  /// its origin (a hull) is offset by the caller.
+  void set_mass_properties(const mass_properties<T>& p) {
+    if (!std::isfinite(p.mass)) detail::report_error(error_code::non_finite, "rigid_body: mass is not finite");
+    if (!(p.mass > T(0))) detail::report_error(error_code::non_positive_mass, "rigid_body: mass must be positive");
+    const mat3<T>& i = p.inertia;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(i(r, c))) detail::report_error(error_code::non_finite, "rigid_body: inertia is not finite");
+    // Symmetric, and positive definite by Sylvester's criterion; the
+    // principal moments of a real solid also obey the triangle inequality
+    // (I_a + I_b ≥ I_c), which a hand-made tensor can break.
+    const T scale = trace(i), tolerance = T(64) * scalar_traits<T>::epsilon * scale;
+    const bool symmetric = std::abs(i(0, 1) - i(1, 0)) <= tolerance && std::abs(i(0, 2) - i(2, 0)) <= tolerance &&
+                           std::abs(i(1, 2) - i(2, 1)) <= tolerance;
+    const T minor2 = i(0, 0) * i(1, 1) - i(0, 1) * i(1, 0);
+    const bool positive = i(0, 0) > T(0) && minor2 > T(0) && determinant(i) > T(0);
+    const bool physical = i(0, 0) + i(1, 1) >= i(2, 2) - tolerance && i(1, 1) + i(2, 2) >= i(0, 0) - tolerance &&
+                          i(2, 2) + i(0, 0) >= i(1, 1) - tolerance;
+    const std::optional<mat3<T>> inverse = try_inverse(i);
+    if (!symmetric || !positive || !physical || !inverse)
+      detail::report_error(error_code::degenerate_shape,
+                           "rigid_body: inertia must be symmetric positive definite (a real solid's)");
+    type = body_type::dynamic;
+    mass = p.mass;
+    inverse_mass = T(1) / p.mass;
+    inertia = i;
+    inverse_inertia = *inverse;
+  }
+
+  // ---- derived quantities ----
+
+  [[nodiscard]] transform<T> pose() const noexcept { return {position, orientation}; }
+  [[nodiscard]] mat3<T> rotation() const noexcept { return to_mat3(orientation); }
+  /// I_w⁻¹ = R·I_body⁻¹·Rᵀ.
+  [[nodiscard]] mat3<T> inverse_inertia_world() const noexcept {
+    const mat3<T> r = rotation();
+    return r * inverse_inertia * transpose(r);
+  }
+  [[nodiscard]] mat3<T> inertia_world() const noexcept {
+    const mat3<T> r = rotation();
+    return r * inertia * transpose(r);
+  }
+  [[nodiscard]] vec3<T> linear_velocity() const noexcept {
+    if (type == body_type::kinematic) return kinematic_velocity;
+    return linear_momentum * inverse_mass;
+  }
+  [[nodiscard]] vec3<T> angular_velocity() const noexcept {
+    if (type == body_type::kinematic) return kinematic_angular_velocity;
+    return inverse_inertia_world() * angular_momentum;
+  }
+  /// Velocity of the material point now at world point p: v + ω × (p − x).
+  [[nodiscard]] vec3<T> velocity_at(const vec3<T>& p) const noexcept {
+    return linear_velocity() + cross(angular_velocity(), p - position);
+  }
+  /// ½·m·v² + ½·ω·L, J (0 for static and kinematic bodies, whose mass is infinite).
+  [[nodiscard]] T kinetic_energy() const noexcept {
+    if (type != body_type::dynamic) return T(0);
+    return T(0.5) * (dot(linear_momentum, linear_velocity()) + dot(angular_velocity(), angular_momentum));
+  }
+
+  /// Sets the velocities: the momenta P = m·v, L = I_w·ω of a dynamic body,
+  /// the velocities of a kinematic one. A static body refuses.
+  void set_velocity(const vec3<T>& v, const vec3<T>& omega) {
+    if (!is_finite(v) || !is_finite(omega)) detail::report_error(error_code::non_finite, "rigid_body: velocity is not finite");
+    if (type == body_type::static_body)
+      detail::report_error(error_code::invalid_parameter, "rigid_body: a static body cannot be given a velocity");
+    if (type == body_type::kinematic) {
+      kinematic_velocity = v;
+      kinematic_angular_velocity = omega;
+      return;
+    }
+    linear_momentum = v * mass;
+    angular_momentum = inertia_world() * omega;
+  }
+
+  // ---- loads ----
+
+  void apply_force(const vec3<T>& f) {
+    require_finite(f, "rigid_body: force is not finite");
+    force += f;
+  }
+  void apply_torque(const vec3<T>& t) {
+    require_finite(t, "rigid_body: torque is not finite");
+    torque += t;
+  }
+  /// A force at world point p: the force, and its moment (p − x) × f.
+  void apply_force_at(const vec3<T>& f, const vec3<T>& p) {
+    require_finite(f, "rigid_body: force is not finite");
+    require_finite(p, "rigid_body: point is not finite");
+    force += f;
+    torque += cross(p - position, f);
+  }
+  /// An impulse j at world point p changes the momenta at once: ΔP = j,
+  /// ΔL = (p − x) × j. Static and kinematic bodies are not moved by it.
+  void apply_impulse_at(const vec3<T>& j, const vec3<T>& p) {
+    require_finite(j, "rigid_body: impulse is not finite");
+    require_finite(p, "rigid_body: point is not finite");
+    if (type != body_type::dynamic) return;
+    linear_momentum += j;
+    angular_momentum += cross(p - position, j);
+  }
+  void clear_loads() noexcept { force = {}, torque = {}; }
+
+ private:
+  static void require_finite(const vec3<T>& v, const char* message) {
+    if (!is_finite(v)) detail::report_error(error_code::non_finite, message);
+  }
+};
+
+}  // namespace impulse
+// ---- end impulse/dynamics/rigid_body.hpp ----
+// ---- end impulse/dynamics.hpp ----
+// ---- begin impulse/integrators.hpp ----
+// impulse/integrators.hpp — the integrator policies: euler, symplectic_euler,
+// midpoint, rk4, over any state modelling integrators::ode_state.
+
+// ---- begin impulse/integrators/euler.hpp ----
+// impulse/integrators/euler.hpp — explicit (forward) Euler.
+//
+// x1 = x0 + v0·h, v1 = v0 + a(x0, v0)·h. First order; energy of an undamped
+// oscillator grows by the factor (1 + ω²h²) every step, so it is the
+// baseline the others are measured against, not a method to ship a game with.
+
+
+namespace impulse::integrators {
+
+struct euler {
+  static constexpr policy_kind kind = policy_kind::integrator;
+  static constexpr int order = 1;
+  static constexpr int stages = 1;  // evaluations of a(x, v) per step
+
+  template <class S, class H, class Accel>
+    requires ode_state<S, H> && acceleration_field<Accel, S>
+  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+    const S a0 = accel(x, v);
+    x = drift(x, v, h);
+    v = v + a0 * h;
+  }
+};
+
+}  // namespace impulse::integrators
+// ---- end impulse/integrators/euler.hpp ----
+// ---- begin impulse/integrators/fwd.hpp ----
+// impulse/integrators/fwd.hpp — the integrator policies by name.
+
+namespace impulse::integrators {
+
+struct euler;
+struct symplectic_euler;
+struct midpoint;
+struct rk4;
+
+}  // namespace impulse::integrators
+// ---- end impulse/integrators/fwd.hpp ----
+// ---- begin impulse/integrators/midpoint.hpp ----
+// impulse/integrators/midpoint.hpp — explicit midpoint method (RK2).
+//
+// Half an Euler step to the midpoint, then a full step with the slopes found
+// there. Second order, two evaluations of a(x, v) per step.
+
+
+namespace impulse::integrators {
+
+struct midpoint {
+  static constexpr policy_kind kind = policy_kind::integrator;
+  static constexpr int order = 2;
+  static constexpr int stages = 2;
+
+  template <class S, class H, class Accel>
+    requires ode_state<S, H> && acceleration_field<Accel, S>
+  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+    const H half = h * H(0.5);
+    const S a0 = accel(x, v);
+    const S v_mid = v + a0 * half;
+    const S a_mid = accel(drift(x, v, half), v_mid);
+    x = drift(x, v_mid, h);
+    v = v + a_mid * h;
+  }
+};
+
+}  // namespace impulse::integrators
+// ---- end impulse/integrators/midpoint.hpp ----
+// ---- begin impulse/integrators/rk4.hpp ----
+// impulse/integrators/rk4.hpp — classical fourth-order Runge–Kutta.
+//
+// The four-slope method applied to (x, v)' = (v, a(x, v)). Fourth order,
+// four evaluations of a(x, v) per step. For x the slopes are velocities, so
+// the final position is one drift along their weighted mean.
+
+
+namespace impulse::integrators {
+
+struct rk4 {
+  static constexpr policy_kind kind = policy_kind::integrator;
+  static constexpr int order = 4;
+  static constexpr int stages = 4;
+
+  template <class S, class H, class Accel>
+    requires ode_state<S, H> && acceleration_field<Accel, S>
+  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+    const H half = h * H(0.5);
+    const S k1v = accel(x, v);                        // k1x = v
+    const S k2x = v + k1v * half;
+    const S k2v = accel(drift(x, v, half), k2x);
+    const S k3x = v + k2v * half;
+    const S k3v = accel(drift(x, k2x, half), k3x);
+    const S k4x = v + k3v * h;
+    const S k4v = accel(drift(x, k3x, h), k4x);
+    const H sixth = h / H(6);
+    x = drift(x, v + (k2x + k3x) * H(2) + k4x, sixth);  // (k1x + 2k2x + 2k3x + k4x)·h/6
+    v = v + (k1v + (k2v + k3v) * H(2) + k4v) * sixth;
+  }
+};
+
+}  // namespace impulse::integrators
+// ---- end impulse/integrators/rk4.hpp ----
+// ---- end impulse/integrators.hpp ----
+// ---- begin impulse/math.hpp ----
+// impulse/math.hpp — the math module: vectors, quaternions, matrices,
+// transforms and bounding boxes for float and double, and vec3_batch, the
+// structure-of-arrays form of vec3 the particle kernels integrate.
+
+// ---- begin impulse/math/aabb.hpp ----
+// impulse/math/aabb.hpp — axis-aligned bounding box.
+//
+// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
+// upper = -max), the identity of merge, so a box can be grown point by point
+// from it; is_valid is false for it until something is merged in.
+
+
 
 namespace impulse {
 
@@ -3107,143 +3455,6 @@ struct wind {
 // impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
 
 
-// ---- begin impulse/shapes/mass_properties.hpp ----
-// impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
-//
-// mass_properties holds what a rigid body needs of its shape: the mass, the
-// centre of mass in shape space, and the inertia tensor about that centre.
-// Closed forms for the primitive solids live with each shape; this file has
-// the general polyhedron (Eberly, "Polyhedral Mass Properties (Revisited)",
-// 2002, a streamlined form of Mirtich's surface integrals, JGT 1996), the
-// parallel-axis shift and the sum of parts, from which compounds are built.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct mass_properties {
-  T mass = T(0);              ///< kg
-  vec3<T> center{};           ///< centre of mass, m, in shape space
-  mat3<T> inertia{};          ///< kg·m², about `center`, shape-space axes
-};
-
-namespace detail {
-
-template <scalar_type T>
-void require_density(T density) {
-  if (!std::isfinite(density)) report_error(error_code::non_finite, "mass properties: density is not finite");
-  if (!(density > T(0))) report_error(error_code::non_positive_mass, "mass properties: density must be positive");
-}
-
-/// Inertia of a point mass m at offset r about the origin: m·(|r|²·1 − r rᵀ).
-template <scalar_type T>
-mat3<T> point_inertia(T m, const vec3<T>& r) noexcept {
-  return (mat3<T>::identity() * dot(r, r) - outer(r, r)) * m;
-}
-
-}  // namespace detail
-
-/// The same body's inertia about a point `offset` away from its centre of
-/// mass (parallel-axis theorem, in tensor form).
-template <scalar_type T>
-mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcept {
-  return p.inertia + detail::point_inertia(p.mass, p.center - point);
-}
-
-/// The part placed in its parent's space by a rotation (as a matrix) and a
-/// translation: centre moved, inertia rotated to R·I·Rᵀ.
-template <scalar_type T>
-mass_properties<T> transformed(const mass_properties<T>& p, const mat3<T>& rotation, const vec3<T>& translation) noexcept {
-  return {p.mass, rotation * p.center + translation, rotation * p.inertia * transpose(rotation)};
-}
-
-/// Two parts as one body: masses add, the centre is the mass-weighted mean,
-/// and each part's inertia is carried to the common centre.
-template <scalar_type T>
-mass_properties<T> combine(const mass_properties<T>& a, const mass_properties<T>& b) noexcept {
-  mass_properties<T> sum;
-  sum.mass = a.mass + b.mass;
-  sum.center = (a.center * a.mass + b.center * b.mass) / sum.mass;
-  sum.inertia = inertia_about(a, sum.center) + inertia_about(b, sum.center);
-  return sum;
-}
-
-/// Mass properties of the closed, outward-oriented triangle mesh
-/// (triangles wound counter-clockwise seen from outside) filled with
-/// `density`. Integrated in double about the mean vertex, so a polyhedron far
-/// from the origin loses no digits to cancellation.
-template <scalar_type T>
-mass_properties<T> polyhedron_mass_properties(std::span<const vec3<T>> vertices,
-                                              std::span<const std::uint32_t> triangles, T density) {
-  detail::require_density(density);
-  if (vertices.empty() || triangles.size() < 12 || triangles.size() % 3 != 0)
-    detail::report_error(error_code::degenerate_shape,
-                         "polyhedron_mass_properties: needs at least 4 triangles (a closed mesh)");
-  for (std::uint32_t i : triangles)
-    if (i >= vertices.size())
-      detail::report_error(error_code::out_of_range, "polyhedron_mass_properties: a triangle names a missing vertex");
-  vec3<double> reference{};
-  for (const vec3<T>& v : vertices) reference += vec3<double>{double(v.x), double(v.y), double(v.z)};
-  reference = reference / double(vertices.size());
-  auto at = [&](std::uint32_t i) {
-    return vec3<double>{double(vertices[i].x), double(vertices[i].y), double(vertices[i].z)} - reference;
-  };
-  // Eberly's integrals of 1, x, y, z, x², y², z², xy, yz, zx over the solid,
-  // each a sum over triangles of the face normal's component times a
-  // polynomial in the corners (the divergence theorem).
-  double integral[10] = {};
-  auto sub = [](double w0, double w1, double w2, double& f1, double& f2, double& f3, double& g0, double& g1,
-                double& g2) {
-    const double t0 = w0 + w1, t1 = w0 * w0, t2 = t1 + w1 * t0;
-    f1 = t0 + w2;
-    f2 = t2 + w2 * f1;
-    f3 = w0 * t1 + w1 * t2 + w2 * f2;
-    g0 = f2 + w0 * (f1 + w0);
-    g1 = f2 + w1 * (f1 + w1);
-    g2 = f2 + w2 * (f1 + w2);
-  };
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
-    const vec3<double> p0 = at(triangles[t]), p1 = at(triangles[t + 1]), p2 = at(triangles[t + 2]);
-    const vec3<double> d = cross(p1 - p0, p2 - p0);
-    double f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
-    sub(p0.x, p1.x, p2.x, f1x, f2x, f3x, g0x, g1x, g2x);
-    sub(p0.y, p1.y, p2.y, f1y, f2y, f3y, g0y, g1y, g2y);
-    sub(p0.z, p1.z, p2.z, f1z, f2z, f3z, g0z, g1z, g2z);
-    integral[0] += d.x * f1x;
-    integral[1] += d.x * f2x;
-    integral[2] += d.y * f2y;
-    integral[3] += d.z * f2z;
-    integral[4] += d.x * f3x;
-    integral[5] += d.y * f3y;
-    integral[6] += d.z * f3z;
-    integral[7] += d.x * (p0.y * g0x + p1.y * g1x + p2.y * g2x);
-    integral[8] += d.y * (p0.z * g0y + p1.z * g1y + p2.z * g2y);
-    integral[9] += d.z * (p0.x * g0z + p1.x * g1z + p2.x * g2z);
-  }
-  constexpr double scale[10] = {1.0 / 6,  1.0 / 24, 1.0 / 24, 1.0 / 24,  1.0 / 60,
-                                1.0 / 60, 1.0 / 60, 1.0 / 120, 1.0 / 120, 1.0 / 120};
-  for (int i = 0; i < 10; ++i) integral[i] *= scale[i] * double(density);
-  const double mass = integral[0];
-  if (!(mass > 0))
-    detail::report_error(error_code::degenerate_shape,
-                         "polyhedron_mass_properties: the mesh encloses no volume (open, flat or inside out)");
-  const vec3<double> c{integral[1] / mass, integral[2] / mass, integral[3] / mass};
-  const double xx = integral[5] + integral[6] - mass * (c.y * c.y + c.z * c.z);
-  const double yy = integral[4] + integral[6] - mass * (c.z * c.z + c.x * c.x);
-  const double zz = integral[4] + integral[5] - mass * (c.x * c.x + c.y * c.y);
-  const double xy = -(integral[7] - mass * c.x * c.y);
-  const double yz = -(integral[8] - mass * c.y * c.z);
-  const double zx = -(integral[9] - mass * c.z * c.x);
-  mass_properties<T> p;
-  p.mass = T(mass);
-  p.center = vec3<T>{T(c.x + reference.x), T(c.y + reference.y), T(c.z + reference.z)};
-  p.inertia = mat3<T>::from_rows({T(xx), T(xy), T(zx)}, {T(xy), T(yy), T(yz)}, {T(zx), T(yz), T(zz)});
-  return p;
-}
-
-}  // namespace impulse
-// ---- end impulse/shapes/mass_properties.hpp ----
 
 namespace impulse {
 
