@@ -11,6 +11,7 @@
 #include "impulse/math/quat.hpp"
 #include "impulse/shapes/box.hpp"
 #include "impulse/shapes/capsule.hpp"
+#include "impulse/shapes/convex_hull.hpp"
 #include "impulse/shapes/mass_properties.hpp"
 #include "impulse/shapes/sphere.hpp"
 
@@ -82,6 +83,21 @@ TEST_CASE_TEMPLATE("a hull of a box's corners has the box's mass properties", T,
   CHECK(std::abs(mesh.mass - exact.mass) <= T(1e-6) * exact.mass);
   CHECK(relative_difference(mesh.inertia, exact.inertia) <= T(1e-6));
   CHECK(max_component(abs(mesh.center)) <= T(1e-6));
+}
+
+TEST_CASE_TEMPLATE("the convex hull of a box's corners has the box's mass properties", T, float, double) {
+  const impulse::box<T> b{{T(0.5), T(1.25), T(2)}};
+  std::vector<vec3<T>> v;
+  std::vector<std::uint32_t> t;
+  box_mesh(b.half_extents, vec3<T>{T(3), T(-1), T(7)}, v, t);
+  v.push_back(vec3<T>{T(3), T(-1), T(7)});  // an inside point, dropped by the hull
+  const auto hull = impulse::convex_hull<T>::from_points(v);
+  REQUIRE(hull.face_count() == 6);
+  const auto exact = mass_properties_of(b, T(3));
+  const auto solid = mass_properties_of(hull, T(3));
+  CHECK(std::abs(solid.mass - exact.mass) <= T(1e-6) * exact.mass);
+  CHECK(relative_difference(solid.inertia, exact.inertia) <= T(1e-6));
+  CHECK(max_component(abs(solid.center - vec3<T>{T(3), T(-1), T(7)})) <= T(1e-6) * T(8));
 }
 
 TEST_CASE_TEMPLATE("a finer tessellated sphere converges to the sphere's mass properties at second order", T, float, double) {

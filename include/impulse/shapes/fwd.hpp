@@ -10,6 +10,8 @@ template <scalar_type T> struct box;
 template <scalar_type T> struct capsule;
 template <scalar_type T> struct plane;
 template <scalar_type T> class triangle_mesh;
+template <scalar_type T> class convex_hull;
+struct hull_edge;
 template <scalar_type T> struct mass_properties;
 
 }  // namespace impulse
