@@ -9,6 +9,8 @@
 #include "impulse/dynamics/rigid_body.hpp"
 #include "impulse/shapes/box.hpp"
 
+#include "../error_code_of.hpp"
+
 namespace {
 
 using impulse::body_type;
@@ -80,19 +82,11 @@ TEST_CASE_TEMPLATE("static and kinematic bodies are not moved by impulses", T, f
 
 TEST_CASE_TEMPLATE("bad mass inertia pose and loads are refused and leave the body unchanged", T, float, double) {
   using impulse::error_code;
-  auto code_of = [](auto&& f) {
-    try {
-      f();
-    } catch (const impulse::invalid_argument& e) {
-      return e.code();
-    }
-    return error_code::none;
-  };
   const T nan = std::numeric_limits<T>::quiet_NaN();
   rigid_body<T> b = spun_box<T>();
   const rigid_body<T> before = b;
   impulse::mass_properties<T> p{T(1), {}, mat3<T>::identity()};
-  auto set = [&](impulse::mass_properties<T> q) { return code_of([&] { b.set_mass_properties(q); }); };
+  auto set = [&](impulse::mass_properties<T> q) { return impulse::test::error_code_of([&] { b.set_mass_properties(q); }); };
   p.mass = 0;
   CHECK(set(p) == error_code::non_positive_mass);
   p.mass = -2;
@@ -109,19 +103,19 @@ TEST_CASE_TEMPLATE("bad mass inertia pose and loads are refused and leave the bo
   CHECK(set(p) == error_code::degenerate_shape);
   p.inertia = mat3<T>::zero();
   CHECK(set(p) == error_code::degenerate_shape);
-  CHECK(code_of([&] { b.set_pose({{0, nan, 0}, quat<T>::identity()}); }) == error_code::non_finite);
-  CHECK(code_of([&] { b.set_pose({{}, quat<T>{0, 0, 0, 2}}); }) == error_code::not_normalized);
-  CHECK(code_of([&] { b.apply_force({nan, 0, 0}); }) == error_code::non_finite);
-  CHECK(code_of([&] { b.apply_impulse_at({1, 0, 0}, {0, 0, nan}); }) == error_code::non_finite);
-  CHECK(code_of([&] { b.set_velocity({0, 0, 0}, {nan, 0, 0}); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([&] { b.set_pose({{0, nan, 0}, quat<T>::identity()}); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([&] { b.set_pose({{}, quat<T>{0, 0, 0, 2}}); }) == error_code::not_normalized);
+  CHECK(impulse::test::error_code_of([&] { b.apply_force({nan, 0, 0}); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([&] { b.apply_impulse_at({1, 0, 0}, {0, 0, nan}); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([&] { b.set_velocity({0, 0, 0}, {nan, 0, 0}); }) == error_code::non_finite);
   CHECK(b.position == before.position);
   CHECK(b.mass == before.mass);
   CHECK(b.inertia == before.inertia);
   CHECK(b.linear_momentum == before.linear_momentum);
   CHECK(b.force == before.force);
-  CHECK(code_of([] { (void)rigid_body<T>::fixed(body_type::dynamic); }) == error_code::invalid_parameter);
+  CHECK(impulse::test::error_code_of([] { (void)rigid_body<T>::fixed(body_type::dynamic); }) == error_code::invalid_parameter);
   rigid_body<T> wall = rigid_body<T>::fixed(body_type::static_body);
-  CHECK(code_of([&] { wall.set_velocity({1, 0, 0}, {}); }) == error_code::invalid_parameter);
+  CHECK(impulse::test::error_code_of([&] { wall.set_velocity({1, 0, 0}, {}); }) == error_code::invalid_parameter);
 }
 
 }  // namespace

@@ -15,6 +15,8 @@
 #include "impulse/shapes/mass_properties.hpp"
 #include "impulse/shapes/sphere.hpp"
 
+#include "../error_code_of.hpp"
+
 namespace {
 
 using impulse::mat3;
@@ -186,29 +188,21 @@ TEST_CASE_TEMPLATE("two half boxes combined by the parallel-axis theorem make th
 
 TEST_CASE_TEMPLATE("bad densities and dimensions are refused with a clear error", T, float, double) {
   const T nan = std::numeric_limits<T>::quiet_NaN();
-  auto code_of = [](auto&& f) {
-    try {
-      f();
-    } catch (const impulse::invalid_argument& e) {
-      return e.code();
-    }
-    return impulse::error_code::none;
-  };
   using impulse::error_code;
-  CHECK(code_of([] { (void)mass_properties_of(impulse::sphere<T>{1}, T(0)); }) == error_code::non_positive_mass);
-  CHECK(code_of([] { (void)mass_properties_of(impulse::box<T>{}, T(-1)); }) == error_code::non_positive_mass);
-  CHECK(code_of([&] { (void)mass_properties_of(impulse::box<T>{}, nan); }) == error_code::non_finite);
-  CHECK(code_of([] { (void)impulse::sphere<T>::make(0); }) == error_code::degenerate_shape);
-  CHECK(code_of([] { (void)impulse::box<T>::make({1, 0, 1}); }) == error_code::degenerate_shape);
-  CHECK(code_of([&] { (void)impulse::box<T>::make({1, nan, 1}); }) == error_code::non_finite);
-  CHECK(code_of([] { (void)impulse::capsule<T>::make(0, 1); }) == error_code::degenerate_shape);
-  CHECK(code_of([] { (void)impulse::capsule<T>::make(1, -1); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([] { (void)mass_properties_of(impulse::sphere<T>{1}, T(0)); }) == error_code::non_positive_mass);
+  CHECK(impulse::test::error_code_of([] { (void)mass_properties_of(impulse::box<T>{}, T(-1)); }) == error_code::non_positive_mass);
+  CHECK(impulse::test::error_code_of([&] { (void)mass_properties_of(impulse::box<T>{}, nan); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::sphere<T>::make(0); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::box<T>::make({1, 0, 1}); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::box<T>::make({1, nan, 1}); }) == error_code::non_finite);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::capsule<T>::make(0, 1); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::capsule<T>::make(1, -1); }) == error_code::degenerate_shape);
   // A flat "polyhedron" encloses nothing.
   std::vector<vec3<T>> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   std::vector<std::uint32_t> t = {0, 1, 2, 2, 1, 3, 0, 2, 1, 2, 3, 1};
-  CHECK(code_of([&] { (void)impulse::polyhedron_mass_properties<T>(v, t, T(1)); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::polyhedron_mass_properties<T>(v, t, T(1)); }) == error_code::degenerate_shape);
   t[0] = 9;
-  CHECK(code_of([&] { (void)impulse::polyhedron_mass_properties<T>(v, t, T(1)); }) == error_code::out_of_range);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::polyhedron_mass_properties<T>(v, t, T(1)); }) == error_code::out_of_range);
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 #include "impulse/shapes/sphere.hpp"
 #include "impulse/shapes/triangle_mesh.hpp"
 
+#include "../error_code_of.hpp"
+
 namespace {
 
 using impulse::vec3;
@@ -90,22 +92,14 @@ TEST_CASE_TEMPLATE("world AABBs are the tight boxes around posed shapes", T, flo
 }
 
 TEST_CASE_TEMPLATE("planes and triangle meshes refuse degenerate input", T, float, double) {
-  auto code_of = [](auto&& f) {
-    try {
-      f();
-    } catch (const impulse::invalid_argument& e) {
-      return e.code();
-    }
-    return impulse::error_code::none;
-  };
   using impulse::error_code;
-  CHECK(code_of([] { (void)impulse::plane<T>::make({0, 0, 0}, 0); }) == error_code::degenerate_shape);
-  CHECK(code_of([] { (void)impulse::plane<T>::make({0, 2, 0}, 0); }) == error_code::not_normalized);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::plane<T>::make({0, 0, 0}, 0); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([] { (void)impulse::plane<T>::make({0, 2, 0}, 0); }) == error_code::not_normalized);
   const std::vector<vec3<T>> v = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {2, 0, 0}};
   const std::vector<std::uint32_t> ok = {0, 2, 1}, missing = {0, 2, 7}, flat = {0, 1, 3};
-  CHECK(code_of([&] { (void)impulse::triangle_mesh<T>::make(v, ok); }) == error_code::none);
-  CHECK(code_of([&] { (void)impulse::triangle_mesh<T>::make(v, missing); }) == error_code::out_of_range);
-  CHECK(code_of([&] { (void)impulse::triangle_mesh<T>::make(v, flat); }) == error_code::degenerate_shape);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::triangle_mesh<T>::make(v, ok); }) == error_code::none);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::triangle_mesh<T>::make(v, missing); }) == error_code::out_of_range);
+  CHECK(impulse::test::error_code_of([&] { (void)impulse::triangle_mesh<T>::make(v, flat); }) == error_code::degenerate_shape);
   const auto mesh = impulse::triangle_mesh<T>::make(v, ok);
   CHECK(mesh.triangle_count() == 1);
   CHECK(mesh.local_aabb().upper == vec3<T>{2, 0, 1});
