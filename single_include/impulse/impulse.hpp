@@ -194,24 +194,32 @@ consteval bool check_config() {
 // ---- begin impulse/integrators/symplectic_euler.hpp ----
 // impulse/integrators/symplectic_euler.hpp — semi-implicit (symplectic) Euler.
 //
-// v1 = v0 + a(x0, v0)·h, then x1 = x0 + v1·h: the velocity update is used at
-// once by the position update. Still first order, but for forces that depend
-// on position only it is symplectic, so an oscillator's energy oscillates
-// within O(h) of its true value forever instead of drifting. The usual
-// default of game engines (Box2D, Bullet, Jolt) for that reason.
+// p1 = p0 + f(x0, p0)·h, then x1 = x0 + g(x0, p1)·h: the new momentum is
+// used at once by the position update. Still first order, but for forces
+// that depend on position only it is symplectic, so an oscillator's energy
+// oscillates within O(h) of its true value forever instead of drifting. The
+// usual default of game engines (Box2D, Bullet, Jolt) for that reason; for a
+// rigid body it is the "update L, then turn q with the new ω" of those
+// engines, with ω = I_w(q0)⁻¹·L1.
 
 // ---- begin impulse/integrators/ode_state.hpp ----
 // impulse/integrators/ode_state.hpp — what an integrator needs of a state.
 //
-// Every integrator in this folder advances the second-order system
-//     x' = v,   v' = a(x, v)
-// of mechanics, for a position x and velocity v of one type S: a scalar, a
-// vec3, a vec3_batch of particles, and (with its own drift) a rigid body. S
-// needs to be a vector space over the step's scalar: S + S and S * h. The one
-// operation that is not vector arithmetic, moving a position along a
-// velocity, goes through drift(x, v, h), so a state whose positions live on a
-// curved space (an orientation quaternion) supplies its own overload and the
-// integrators stay unchanged.
+// Every integrator in this folder advances a mechanical system in
+// partitioned form,
+//     x' = g(x, p)   (position rate: velocity, or ½ ω⊗q for a quaternion)
+//     p' = f(x, p)   (momentum rate: force, torque, or an acceleration)
+// for a position x and a momentum p. A particle is the special case p = v,
+// g(x, v) = v, f = a(x, v): the second-order form x'' = a(x, v), which every
+// integrator also accepts directly as step(x, v, h, accel). A rigid body is
+// x = (position, orientation), p = (P, L), g = (P/m, ½ ω⊗q) with
+// ω = I_w(q)⁻¹·L, f = (F, τ) (Baraff 2001). Each method is written once,
+// over the partitioned form; the second-order form is an adapter.
+//
+// x and p need to be vector spaces over the step's scalar: S + S and S * h.
+// Moving a position along a rate goes through drift(x, dx, h), x + dx·h by
+// default, so a state whose positions are not a vector space can supply its
+// own overload and the integrators stay unchanged.
 
 
 
@@ -228,14 +236,41 @@ concept ode_state = requires(const S& a, const S& b, H h) {
 template <class F, class S>
 concept acceleration_field = std::is_invocable_r_v<S, F&, const S&, const S&>;
 
-/// Position after moving at velocity v for time h. The default is x + v·h;
+/// Position after moving at rate dx for time h. The default is x + dx·h;
 /// overload it (found by argument-dependent lookup) for a state whose
 /// positions are not a vector space.
-template <class S, class H>
-  requires ode_state<S, H>
-constexpr S drift(const S& x, const S& v, H h) {
-  return x + v * h;
+template <class S, class D, class H>
+  requires ode_state<D, H> && requires(const S& x, const D& d) {
+    { x + d } -> std::convertible_to<S>;
+  }
+constexpr S drift(const S& x, const D& dx, H h) {
+  return x + dx * h;
 }
+
+/// A mechanical system in partitioned form over positions X and momenta P:
+/// `position_rate(x, p)` is x' (any type drift accepts; it may return a
+/// reference to p, as the second-order adapter does) and `momentum_rate(x,
+/// p)` is p'. Both must be callable on any stage state, not only on the
+/// stored one: midpoint and RK4 evaluate them at speculative states.
+template <class System, class X, class P>
+concept mechanical_system = requires(System& s, const X& x, const P& p) {
+  s.position_rate(x, p);
+  { s.momentum_rate(x, p) } -> std::convertible_to<P>;
+};
+
+/// The second-order form x'' = a(x, v) as a mechanical system: p = v.
+template <class Accel>
+struct second_order_system {
+  Accel& accel;
+  template <class S>
+  constexpr const S& position_rate(const S&, const S& v) const noexcept {
+    return v;
+  }
+  template <class S>
+  constexpr S momentum_rate(const S& x, const S& v) const {
+    return accel(x, v);
+  }
+};
 
 }  // namespace impulse::integrators
 // ---- end impulse/integrators/ode_state.hpp ----
@@ -247,11 +282,17 @@ struct symplectic_euler {
   static constexpr int order = 1;
   static constexpr int stages = 1;
 
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    p = p + system.momentum_rate(x, p) * h;
+    x = drift(x, system.position_rate(x, p), h);
+  }
+
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    v = v + accel(x, v) * h;
-    x = drift(x, v, h);
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 
@@ -1847,9 +1888,10 @@ struct rigid_body {
 // ---- begin impulse/integrators/euler.hpp ----
 // impulse/integrators/euler.hpp — explicit (forward) Euler.
 //
-// x1 = x0 + v0·h, v1 = v0 + a(x0, v0)·h. First order; energy of an undamped
-// oscillator grows by the factor (1 + ω²h²) every step, so it is the
-// baseline the others are measured against, not a method to ship a game with.
+// x1 = x0 + g(x0, p0)·h, p1 = p0 + f(x0, p0)·h: both from the start of the
+// step. First order; energy of an undamped oscillator grows by the factor
+// (1 + ω²h²) every step, so it is the baseline the others are measured
+// against, not a method to ship a game with.
 
 
 namespace impulse::integrators {
@@ -1857,14 +1899,21 @@ namespace impulse::integrators {
 struct euler {
   static constexpr policy_kind kind = policy_kind::integrator;
   static constexpr int order = 1;
-  static constexpr int stages = 1;  // evaluations of a(x, v) per step
+  static constexpr int stages = 1;  // evaluations of the rates per step
+
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    const auto& dx = system.position_rate(x, p);
+    const P dp = system.momentum_rate(x, p);
+    x = drift(x, dx, h);
+    p = p + dp * h;
+  }
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const S a0 = accel(x, v);
-    x = drift(x, v, h);
-    v = v + a0 * h;
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 
@@ -1885,8 +1934,8 @@ struct rk4;
 // ---- begin impulse/integrators/midpoint.hpp ----
 // impulse/integrators/midpoint.hpp — explicit midpoint method (RK2).
 //
-// Half an Euler step to the midpoint, then a full step with the slopes found
-// there. Second order, two evaluations of a(x, v) per step.
+// Half an Euler step to the midpoint, then a full step with the rates found
+// there. Second order, two evaluations of the rates per step.
 
 
 namespace impulse::integrators {
@@ -1896,15 +1945,23 @@ struct midpoint {
   static constexpr int order = 2;
   static constexpr int stages = 2;
 
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    const H half = h * H(0.5);
+    const auto& dx0 = system.position_rate(x, p);
+    const X x_mid = drift(x, dx0, half);
+    const P p_mid = p + system.momentum_rate(x, p) * half;
+    const auto& dx_mid = system.position_rate(x_mid, p_mid);
+    const P dp_mid = system.momentum_rate(x_mid, p_mid);
+    x = drift(x, dx_mid, h);
+    p = p + dp_mid * h;
+  }
+
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S a0 = accel(x, v);
-    const S v_mid = v + a0 * half;
-    const S a_mid = accel(drift(x, v, half), v_mid);
-    x = drift(x, v_mid, h);
-    v = v + a_mid * h;
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 
@@ -1913,9 +1970,9 @@ struct midpoint {
 // ---- begin impulse/integrators/rk4.hpp ----
 // impulse/integrators/rk4.hpp — classical fourth-order Runge–Kutta.
 //
-// The four-slope method applied to (x, v)' = (v, a(x, v)). Fourth order,
-// four evaluations of a(x, v) per step. For x the slopes are velocities, so
-// the final position is one drift along their weighted mean.
+// The four-slope method applied to (x, p)' = (g(x, p), f(x, p)). Fourth
+// order, four evaluations of the rates per step. The final position is one
+// drift along the weighted mean of the four position rates.
 
 
 namespace impulse::integrators {
@@ -1925,20 +1982,35 @@ struct rk4 {
   static constexpr int order = 4;
   static constexpr int stages = 4;
 
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    const H half = h * H(0.5);
+    // Stage states are named, so a rate returned by reference (the
+    // second-order adapter returns p itself) outlives its use.
+    const auto& k1x = system.position_rate(x, p);
+    const P k1p = system.momentum_rate(x, p);
+    const X x2 = drift(x, k1x, half);
+    const P p2 = p + k1p * half;
+    const auto& k2x = system.position_rate(x2, p2);
+    const P k2p = system.momentum_rate(x2, p2);
+    const X x3 = drift(x, k2x, half);
+    const P p3 = p + k2p * half;
+    const auto& k3x = system.position_rate(x3, p3);
+    const P k3p = system.momentum_rate(x3, p3);
+    const X x4 = drift(x, k3x, h);
+    const P p4 = p + k3p * h;
+    const auto& k4x = system.position_rate(x4, p4);
+    const P k4p = system.momentum_rate(x4, p4);
+    const H sixth = h / H(6);
+    x = drift(x, k1x + (k2x + k3x) * H(2) + k4x, sixth);
+    p = p + (k1p + (k2p + k3p) * H(2) + k4p) * sixth;
+  }
+
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S k1v = accel(x, v);                        // k1x = v
-    const S k2x = v + k1v * half;
-    const S k2v = accel(drift(x, v, half), k2x);
-    const S k3x = v + k2v * half;
-    const S k3v = accel(drift(x, k2x, half), k3x);
-    const S k4x = v + k3v * h;
-    const S k4v = accel(drift(x, k3x, h), k4x);
-    const H sixth = h / H(6);
-    x = drift(x, v + (k2x + k3x) * H(2) + k4x, sixth);  // (k1x + 2k2x + 2k3x + k4x)·h/6
-    v = v + (k1v + (k2v + k3v) * H(2) + k4v) * sixth;
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 
@@ -2397,7 +2469,7 @@ struct gravity {
 // once per step whatever the integrator, so RK4 moves the bytes Euler moves.
 //
 // Springs couple particles across batches, so a force list that contains them
-// is stepped in stages instead (detail/pooled_state.hpp): each integrator
+// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
 // stage sweeps all batches and then the springs. The same integrator code
 // runs both paths.
 //
@@ -2410,42 +2482,47 @@ struct gravity {
 #include <tuple>
 #include <vector>
 
-// ---- begin impulse/particles/detail/pooled_state.hpp ----
-// impulse/particles/detail/pooled_state.hpp — a whole particle system's
-// positions (or velocities) as one integrator state.
+// ---- begin impulse/core/detail/pooled_state.hpp ----
+// impulse/core/detail/pooled_state.hpp — a whole system's state as one
+// integrator state, with temporaries drawn from a pool.
 //
-// A system with springs cannot be stepped one batch at a time: the springs
-// couple arbitrary particles, so every integrator stage needs every
-// particle's stage position before any acceleration can be evaluated. The
-// integrators are written once, over any ode_state (integrators/ode_state.hpp),
-// so this path hands them a state holding all three columns (x | y | z) of
-// every particle, with + and × as loops over them. The temporaries an
-// integrator makes (RK4 keeps about a dozen alive) come from a pool of
-// buffers allocated on the first step and reused on every later one, so a
-// step allocates nothing once warm.
+// Some systems cannot be stepped one element at a time: springs between
+// particles or between bodies couple arbitrary elements, so every integrator
+// stage needs every element's stage state before any force can be
+// evaluated. The integrators are written once, over any ode_state
+// (integrators/ode_state.hpp), so these systems hand them a state holding
+// every element, with + and × as loops. The temporaries an integrator makes
+// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
+// the first step and reused on every later one, so a step allocates nothing
+// once warm.
+//
+// A buffer is `segments` runs of `stride` elements of which the first `used`
+// are live: the particle system keeps its x, y and z columns (3 segments of
+// scalars), the rigid body system one run of poses or momenta.
 
 
 
-namespace impulse::particles::detail {
+namespace impulse::detail {
 
-template <class T>
-class column_pool {
+template <class E>
+class buffer_pool {
  public:
-  /// Buffers of 3 × stride values; `used` values of each column are live.
-  void resize(std::size_t stride, std::size_t used) {
-    if (stride != stride_) {
+  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
+    if (segments != segments_ || stride != stride_) {
       buffers_.clear();
       free_.clear();
+      segments_ = segments;
       stride_ = stride;
     }
     used_ = used;
   }
+  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
   [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
   [[nodiscard]] std::size_t used() const noexcept { return used_; }
 
   std::size_t acquire() {
     if (free_.empty()) {
-      buffers_.emplace_back(3 * stride_);
+      buffers_.emplace_back(segments_ * stride_);
       return buffers_.size() - 1;
     }
     const std::size_t slot = free_.back();
@@ -2453,20 +2530,21 @@ class column_pool {
     return slot;
   }
   void release(std::size_t slot) { free_.push_back(slot); }
-  T* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
+  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
 
  private:
   // aligned_array's move keeps its pointer, so growing this vector never
-  // invalidates a T* handed out before.
-  std::vector<aligned_array<T>> buffers_;
+  // invalidates an E* handed out before.
+  std::vector<aligned_array<E>> buffers_;
   std::vector<std::size_t> free_;
-  std::size_t stride_ = 0, used_ = 0;
+  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
 };
 
-template <class T>
+/// E needs E + E and E * S for the scalar S the integrator steps with.
+template <class E>
 class pooled_state {
  public:
-  explicit pooled_state(column_pool<T>& pool) : pool_(&pool), slot_(pool.acquire()) {}
+  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
   pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
     for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
   }
@@ -2480,41 +2558,47 @@ class pooled_state {
     if (slot_ != none) pool_->release(slot_);
   }
 
-  T* data() noexcept { return pool_->data(slot_); }
-  const T* data() const noexcept { return pool_->data(slot_); }
+  E* data() noexcept { return pool_->data(slot_); }
+  const E* data() const noexcept { return pool_->data(slot_); }
+  E& operator[](std::size_t i) noexcept { return data()[i]; }
+  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
   [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
 
-  /// Calls f(i) for the index of every live value of the three columns.
+  /// Calls f(i) for the index of every live element of every segment.
   template <class F>
   void for_each(F&& f) const {
-    const std::size_t stride = pool_->stride(), used = pool_->used();
-    for (std::size_t c = 0; c < 3; ++c)
-      for (std::size_t i = c * stride; i < c * stride + used; ++i) f(i);
+    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
+    for (std::size_t s = 0; s < segments; ++s)
+      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
   }
 
   // An rvalue operand lends its buffer to the result, so `a + b * h` uses
   // one temporary, not two.
   friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
-    a.for_each([&](std::size_t i) { a.data()[i] += b.data()[i]; });
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
     return std::move(a);
   }
   friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
   friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
   friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
-  friend pooled_state operator*(pooled_state&& a, T h) {
-    a.for_each([&](std::size_t i) { a.data()[i] *= h; });
+  template <class S>
+  friend pooled_state operator*(pooled_state&& a, S h) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
     return std::move(a);
   }
-  friend pooled_state operator*(const pooled_state& a, T h) { return pooled_state(a) * h; }
+  template <class S>
+  friend pooled_state operator*(const pooled_state& a, S h) {
+    return pooled_state(a) * h;
+  }
 
  private:
   static constexpr std::size_t none = ~std::size_t(0);
-  column_pool<T>* pool_;
+  buffer_pool<E>* pool_;
   std::size_t slot_;
 };
 
-}  // namespace impulse::particles::detail
-// ---- end impulse/particles/detail/pooled_state.hpp ----
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/pooled_state.hpp ----
 // ---- begin impulse/particles/plane_collider.hpp ----
 // impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
 //
@@ -3036,8 +3120,8 @@ class particle_system {
 
   void step_staged(T dt) requires has_pairwise {
     const std::size_t used = padded(size_);
-    pool_.resize(stride_, used);
-    using whole = detail::pooled_state<T>;
+    pool_.resize(3, stride_, used);
+    using whole = impulse::detail::pooled_state<T>;
     whole x(pool_), v(pool_);
     copy_columns(x.data(), x_, y_, z_, used);
     copy_columns(v.data(), vx_, vy_, vz_, used);
@@ -3213,7 +3297,7 @@ class particle_system {
   std::array<aligned_array<T>*, 10> columns_{};
   std::vector<std::uint32_t> origin_, remap_;
   std::size_t removed_from_ = 0;
-  detail::column_pool<T> pool_;
+  impulse::detail::buffer_pool<T> pool_;
   std::uint32_t serial_ = 0;
   double time_ = 0;
 };

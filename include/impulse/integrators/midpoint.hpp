@@ -1,7 +1,7 @@
 // impulse/integrators/midpoint.hpp — explicit midpoint method (RK2).
 //
-// Half an Euler step to the midpoint, then a full step with the slopes found
-// there. Second order, two evaluations of a(x, v) per step.
+// Half an Euler step to the midpoint, then a full step with the rates found
+// there. Second order, two evaluations of the rates per step.
 #pragma once
 
 #include "ode_state.hpp"
@@ -13,15 +13,23 @@ struct midpoint {
   static constexpr int order = 2;
   static constexpr int stages = 2;
 
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    const H half = h * H(0.5);
+    const auto& dx0 = system.position_rate(x, p);
+    const X x_mid = drift(x, dx0, half);
+    const P p_mid = p + system.momentum_rate(x, p) * half;
+    const auto& dx_mid = system.position_rate(x_mid, p_mid);
+    const P dp_mid = system.momentum_rate(x_mid, p_mid);
+    x = drift(x, dx_mid, h);
+    p = p + dp_mid * h;
+  }
+
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S a0 = accel(x, v);
-    const S v_mid = v + a0 * half;
-    const S a_mid = accel(drift(x, v, half), v_mid);
-    x = drift(x, v_mid, h);
-    v = v + a_mid * h;
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 

@@ -1,8 +1,8 @@
 // impulse/integrators/rk4.hpp — classical fourth-order Runge–Kutta.
 //
-// The four-slope method applied to (x, v)' = (v, a(x, v)). Fourth order,
-// four evaluations of a(x, v) per step. For x the slopes are velocities, so
-// the final position is one drift along their weighted mean.
+// The four-slope method applied to (x, p)' = (g(x, p), f(x, p)). Fourth
+// order, four evaluations of the rates per step. The final position is one
+// drift along the weighted mean of the four position rates.
 #pragma once
 
 #include "ode_state.hpp"
@@ -14,20 +14,35 @@ struct rk4 {
   static constexpr int order = 4;
   static constexpr int stages = 4;
 
+  template <class X, class P, class H, class System>
+    requires ode_state<P, H> && mechanical_system<System, X, P>
+  static constexpr void advance(X& x, P& p, H h, System&& system) {
+    const H half = h * H(0.5);
+    // Stage states are named, so a rate returned by reference (the
+    // second-order adapter returns p itself) outlives its use.
+    const auto& k1x = system.position_rate(x, p);
+    const P k1p = system.momentum_rate(x, p);
+    const X x2 = drift(x, k1x, half);
+    const P p2 = p + k1p * half;
+    const auto& k2x = system.position_rate(x2, p2);
+    const P k2p = system.momentum_rate(x2, p2);
+    const X x3 = drift(x, k2x, half);
+    const P p3 = p + k2p * half;
+    const auto& k3x = system.position_rate(x3, p3);
+    const P k3p = system.momentum_rate(x3, p3);
+    const X x4 = drift(x, k3x, h);
+    const P p4 = p + k3p * h;
+    const auto& k4x = system.position_rate(x4, p4);
+    const P k4p = system.momentum_rate(x4, p4);
+    const H sixth = h / H(6);
+    x = drift(x, k1x + (k2x + k3x) * H(2) + k4x, sixth);
+    p = p + (k1p + (k2p + k3p) * H(2) + k4p) * sixth;
+  }
+
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
   static constexpr void step(S& x, S& v, H h, Accel&& accel) {
-    const H half = h * H(0.5);
-    const S k1v = accel(x, v);                        // k1x = v
-    const S k2x = v + k1v * half;
-    const S k2v = accel(drift(x, v, half), k2x);
-    const S k3x = v + k2v * half;
-    const S k3v = accel(drift(x, k2x, half), k3x);
-    const S k4x = v + k3v * h;
-    const S k4v = accel(drift(x, k3x, h), k4x);
-    const H sixth = h / H(6);
-    x = drift(x, v + (k2x + k3x) * H(2) + k4x, sixth);  // (k1x + 2k2x + 2k3x + k4x)·h/6
-    v = v + (k1v + (k2v + k3v) * H(2) + k4v) * sixth;
+    advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
 

@@ -16,7 +16,7 @@
 // once per step whatever the integrator, so RK4 moves the bytes Euler moves.
 //
 // Springs couple particles across batches, so a force list that contains them
-// is stepped in stages instead (detail/pooled_state.hpp): each integrator
+// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
 // stage sweeps all batches and then the springs. The same integrator code
 // runs both paths.
 //
@@ -40,7 +40,7 @@
 #include "../core/policy.hpp"
 #include "../core/random.hpp"
 #include "../integrators/ode_state.hpp"
-#include "detail/pooled_state.hpp"
+#include "../core/detail/pooled_state.hpp"
 #include "emitter.hpp"
 #include "force.hpp"
 #include "plane_collider.hpp"
@@ -365,8 +365,8 @@ class particle_system {
 
   void step_staged(T dt) requires has_pairwise {
     const std::size_t used = padded(size_);
-    pool_.resize(stride_, used);
-    using whole = detail::pooled_state<T>;
+    pool_.resize(3, stride_, used);
+    using whole = impulse::detail::pooled_state<T>;
     whole x(pool_), v(pool_);
     copy_columns(x.data(), x_, y_, z_, used);
     copy_columns(v.data(), vx_, vy_, vz_, used);
@@ -542,7 +542,7 @@ class particle_system {
   std::array<aligned_array<T>*, 10> columns_{};
   std::vector<std::uint32_t> origin_, remap_;
   std::size_t removed_from_ = 0;
-  detail::column_pool<T> pool_;
+  impulse::detail::buffer_pool<T> pool_;
   std::uint32_t serial_ = 0;
   double time_ = 0;
 };

@@ -1,0 +1,120 @@
+// impulse/core/detail/pooled_state.hpp — a whole system's state as one
+// integrator state, with temporaries drawn from a pool.
+//
+// Some systems cannot be stepped one element at a time: springs between
+// particles or between bodies couple arbitrary elements, so every integrator
+// stage needs every element's stage state before any force can be
+// evaluated. The integrators are written once, over any ode_state
+// (integrators/ode_state.hpp), so these systems hand them a state holding
+// every element, with + and × as loops. The temporaries an integrator makes
+// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
+// the first step and reused on every later one, so a step allocates nothing
+// once warm.
+//
+// A buffer is `segments` runs of `stride` elements of which the first `used`
+// are live: the particle system keeps its x, y and z columns (3 segments of
+// scalars), the rigid body system one run of poses or momenta.
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "../aligned_array.hpp"
+
+namespace impulse::detail {
+
+template <class E>
+class buffer_pool {
+ public:
+  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
+    if (segments != segments_ || stride != stride_) {
+      buffers_.clear();
+      free_.clear();
+      segments_ = segments;
+      stride_ = stride;
+    }
+    used_ = used;
+  }
+  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
+  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
+  [[nodiscard]] std::size_t used() const noexcept { return used_; }
+
+  std::size_t acquire() {
+    if (free_.empty()) {
+      buffers_.emplace_back(segments_ * stride_);
+      return buffers_.size() - 1;
+    }
+    const std::size_t slot = free_.back();
+    free_.pop_back();
+    return slot;
+  }
+  void release(std::size_t slot) { free_.push_back(slot); }
+  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
+
+ private:
+  // aligned_array's move keeps its pointer, so growing this vector never
+  // invalidates an E* handed out before.
+  std::vector<aligned_array<E>> buffers_;
+  std::vector<std::size_t> free_;
+  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+};
+
+/// E needs E + E and E * S for the scalar S the integrator steps with.
+template <class E>
+class pooled_state {
+ public:
+  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
+  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
+    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
+  }
+  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
+  pooled_state& operator=(pooled_state other) noexcept {
+    std::swap(pool_, other.pool_);
+    std::swap(slot_, other.slot_);
+    return *this;
+  }
+  ~pooled_state() {
+    if (slot_ != none) pool_->release(slot_);
+  }
+
+  E* data() noexcept { return pool_->data(slot_); }
+  const E* data() const noexcept { return pool_->data(slot_); }
+  E& operator[](std::size_t i) noexcept { return data()[i]; }
+  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
+  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
+
+  /// Calls f(i) for the index of every live element of every segment.
+  template <class F>
+  void for_each(F&& f) const {
+    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
+    for (std::size_t s = 0; s < segments; ++s)
+      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
+  }
+
+  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
+  // one temporary, not two.
+  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
+    return std::move(a);
+  }
+  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
+  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
+  template <class S>
+  friend pooled_state operator*(pooled_state&& a, S h) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
+    return std::move(a);
+  }
+  template <class S>
+  friend pooled_state operator*(const pooled_state& a, S h) {
+    return pooled_state(a) * h;
+  }
+
+ private:
+  static constexpr std::size_t none = ~std::size_t(0);
+  buffer_pool<E>* pool_;
+  std::size_t slot_;
+};
+
+}  // namespace impulse::detail
