@@ -9,4 +9,5 @@
 #include "core/fwd.hpp"
 #include "core/policy.hpp"
 #include "core/random.hpp"
+#include "core/slot_map.hpp"
 #include "core/version.hpp"

@@ -946,6 +946,96 @@ constexpr T hash_signed_unit(std::uint32_t x) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/core/random.hpp ----
+// ---- begin impulse/core/slot_map.hpp ----
+// impulse/core/slot_map.hpp — dense storage addressed by stable, checked ids.
+//
+// Bodies and springs live in dense arrays so that a step runs over
+// contiguous memory, and are named by ids that stay valid while the objects
+// around them come and go (Box2D's b2BodyId works the same way). An id is a
+// slot index and the slot's generation: removing an object bumps its slot's
+// generation, so a stale id is recognised and refused instead of silently
+// naming whatever took the slot next. Removal moves the last element into
+// the hole, so dense positions change; ids do not.
+
+#include <vector>
+
+
+namespace impulse {
+
+/// A stable, checked handle. Tag keeps body and spring ids apart at
+/// compile time.
+template <class Tag>
+struct object_id {
+  std::uint32_t index = no_object;  ///< slot; no_object for "none"
+  std::uint32_t generation = 0;     ///< bumped each time the slot is freed
+
+  [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
+  friend constexpr bool operator==(const object_id&, const object_id&) = default;
+};
+
+template <class V, class Id>
+class slot_map {
+ public:
+  [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
+  [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
+  [[nodiscard]] bool contains(Id id) const noexcept {
+    return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
+           slots_[id.index].dense != free_slot;
+  }
+
+  Id insert(V value) {
+    std::uint32_t slot;
+    if (free_.empty()) {
+      slot = static_cast<std::uint32_t>(slots_.size());
+      slots_.push_back({free_slot, 0});
+    } else {
+      slot = free_.back();
+      free_.pop_back();
+    }
+    slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
+    values_.push_back(std::move(value));
+    ids_.push_back(Id{slot, slots_[slot].generation});
+    return ids_.back();
+  }
+
+  /// Removes the object; the caller has checked contains(id).
+  void erase(Id id) {
+    const std::uint32_t dense = slots_[id.index].dense, last = static_cast<std::uint32_t>(values_.size() - 1);
+    if (dense != last) {
+      values_[dense] = std::move(values_[last]);
+      ids_[dense] = ids_[last];
+      slots_[ids_[dense].index].dense = dense;
+    }
+    values_.pop_back();
+    ids_.pop_back();
+    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
+    free_.push_back(id.index);
+  }
+
+  /// Position of a live id in the dense arrays.
+  [[nodiscard]] std::size_t dense_index(Id id) const noexcept { return slots_[id.index].dense; }
+  [[nodiscard]] V& operator[](Id id) noexcept { return values_[dense_index(id)]; }
+  [[nodiscard]] const V& operator[](Id id) const noexcept { return values_[dense_index(id)]; }
+
+  /// The dense arrays: values()[i] is the object whose id is ids()[i].
+  [[nodiscard]] std::vector<V>& values() noexcept { return values_; }
+  [[nodiscard]] const std::vector<V>& values() const noexcept { return values_; }
+  [[nodiscard]] const std::vector<Id>& ids() const noexcept { return ids_; }
+
+ private:
+  static constexpr std::uint32_t free_slot = 0xffffffffu;
+  struct slot {
+    std::uint32_t dense;
+    std::uint32_t generation;
+  };
+  std::vector<V> values_;
+  std::vector<Id> ids_;
+  std::vector<slot> slots_;
+  std::vector<std::uint32_t> free_;
+};
+
+}  // namespace impulse
+// ---- end impulse/core/slot_map.hpp ----
 // ---- begin impulse/core/version.hpp ----
 // impulse/core/version.hpp — the library version, one place for it.
 //
@@ -972,39 +1062,25 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 // ---- end impulse/core/version.hpp ----
 // ---- end impulse/core.hpp ----
 // ---- begin impulse/dynamics.hpp ----
-// impulse/dynamics.hpp — the dynamics module: rigid body state and loads.
-// (Integration of bodies, springs on bodies, contacts and joints follow.)
+// impulse/dynamics.hpp — the dynamics module: rigid bodies, their motion
+// under forces and springs. (Contacts and joints follow.)
 
-// ---- begin impulse/dynamics/fwd.hpp ----
-// impulse/dynamics/fwd.hpp — the dynamics module's names.
-
-
-
-namespace impulse {
-
-enum class body_type : std::uint8_t;
-template <scalar_type T> struct rigid_body;
-
-}  // namespace impulse
-// ---- end impulse/dynamics/fwd.hpp ----
-// ---- begin impulse/dynamics/rigid_body.hpp ----
-// impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
+// ---- begin impulse/dynamics/body_motion.hpp ----
+// impulse/dynamics/body_motion.hpp — a rigid body's motion as an ODE.
 //
-// The state is Baraff's ("Physically Based Modeling: Rigid Body Dynamics",
-// SIGGRAPH 2001 course notes): the position x of the centre of mass, the
-// orientation quaternion q, the linear momentum P and the angular momentum
-// L, all in world space. Velocities are derived, v = P/m and ω = I_w⁻¹·L
-// with I_w⁻¹ = R·I_body⁻¹·Rᵀ. Keeping L rather than ω is what makes free
-// rotation right without special care: with no torque L is constant exactly,
-// and the gyroscopic precession of ω follows from the turning of I_w.
-//
-// A body is static (never moves, infinite mass), kinematic (moves as told,
-// infinite mass: contacts do not push it) or dynamic. Loads accumulate in
-// `force` and `torque` (about the centre of mass) until the step consumes
-// them; impulses change the momenta at once.
+// Baraff's state (SIGGRAPH 2001 course notes, "Rigid Body Simulation") split
+// for the partitioned integrators (integrators/ode_state.hpp): the pose
+// x = (position, orientation q) and the momenta p = (P, L), with
+//     x' = (v, ½ ω⊗q),   p' = (F, τ),   v = P/m,   ω = R·I_body⁻¹·Rᵀ·L.
+// Between steps q is a unit quaternion; inside a step the integrators combine
+// stage orientations linearly, so q is treated as a point of R⁴. The flow of
+// q' = ½ ω⊗q keeps |q| constant (left multiplication by a pure quaternion is
+// skew-symmetric), so a method of order k leaves |q| off by O(h^(k+1)) per
+// step; R is taken from q/|q| at every stage, and q is renormalised at the
+// end of the step. Integrating L rather than ω is what makes free rotation
+// right: with no torque L is constant, and the gyroscopic precession of ω
+// comes from the turning of R.
 
-#include <limits>
-#include <optional>
 
 // ---- begin impulse/math/mat3.hpp ----
 // impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
@@ -1013,6 +1089,7 @@ template <scalar_type T> struct rigid_body;
 // of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
 // column c.
 
+#include <optional>
 
 // ---- begin impulse/math/vec3.hpp ----
 // impulse/math/vec3.hpp — three-component vector of float or double.
@@ -1021,6 +1098,7 @@ template <scalar_type T> struct rigid_body;
 // functions that need a square root (length, normalize) are not, because
 // std::sqrt is not constexpr in C++20.
 
+#include <limits>
 
 // ---- begin impulse/math/scalar_traits.hpp ----
 // impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
@@ -1499,6 +1577,23 @@ T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/math/quat.hpp ----
+// ---- begin impulse/dynamics/rigid_body.hpp ----
+// impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
+//
+// The state is Baraff's ("Physically Based Modeling: Rigid Body Dynamics",
+// SIGGRAPH 2001 course notes): the position x of the centre of mass, the
+// orientation quaternion q, the linear momentum P and the angular momentum
+// L, all in world space. Velocities are derived, v = P/m and ω = I_w⁻¹·L
+// with I_w⁻¹ = R·I_body⁻¹·Rᵀ. Keeping L rather than ω is what makes free
+// rotation right without special care: with no torque L is constant exactly,
+// and the gyroscopic precession of ω follows from the turning of I_w.
+//
+// A body is static (never moves, infinite mass), kinematic (moves as told,
+// infinite mass: contacts do not push it) or dynamic. Loads accumulate in
+// `force` and `torque` (about the centre of mass) until the step consumes
+// them; impulses change the momenta at once.
+
+
 // ---- begin impulse/math/transform.hpp ----
 // impulse/math/transform.hpp — rigid transform: a rotation followed by a translation.
 //
@@ -1880,6 +1975,761 @@ struct rigid_body {
 
 }  // namespace impulse
 // ---- end impulse/dynamics/rigid_body.hpp ----
+
+namespace impulse {
+
+/// The position part of a body's state: where its centre of mass is and how
+/// it is turned. Adds and scales as an element of R³ × R⁴.
+template <scalar_type T>
+struct body_pose {
+  vec3<T> position{};
+  quat<T> orientation = quat<T>::identity();
+
+  friend constexpr body_pose operator+(const body_pose& a, const body_pose& b) noexcept {
+    return {a.position + b.position, a.orientation + b.orientation};
+  }
+  friend constexpr body_pose operator*(const body_pose& a, T h) noexcept {
+    return {a.position * h, a.orientation * h};
+  }
+};
+
+/// The momentum part: linear momentum P (kg·m/s) and angular momentum L
+/// about the centre of mass (kg·m²/s), world space. Its rate is the wrench.
+template <scalar_type T>
+struct body_momentum {
+  vec3<T> linear{};
+  vec3<T> angular{};
+
+  friend constexpr body_momentum operator+(const body_momentum& a, const body_momentum& b) noexcept {
+    return {a.linear + b.linear, a.angular + b.angular};
+  }
+  friend constexpr body_momentum operator*(const body_momentum& a, T h) noexcept {
+    return {a.linear * h, a.angular * h};
+  }
+};
+
+/// A force (N) through the centre of mass and a torque (N·m) about it.
+template <scalar_type T>
+struct wrench {
+  vec3<T> force{};
+  vec3<T> torque{};
+
+  constexpr wrench& operator+=(const wrench& w) noexcept {
+    force += w.force;
+    torque += w.torque;
+    return *this;
+  }
+};
+
+/// Everything a force model may ask of a body at one (possibly speculative)
+/// state: where it is, how it is turned, how it moves.
+template <scalar_type T>
+struct body_kinematics {
+  vec3<T> position{};
+  quat<T> orientation = quat<T>::identity();  ///< unit
+  mat3<T> rotation = mat3<T>::identity();     ///< of `orientation`
+  vec3<T> linear_velocity{};
+  vec3<T> angular_velocity{};  ///< world, rad/s
+
+  /// World position of a body-space point (relative to the centre of mass).
+  [[nodiscard]] constexpr vec3<T> point(const vec3<T>& local) const noexcept { return position + rotation * local; }
+  /// Velocity of the material point at world position p: v + ω × (p − x).
+  [[nodiscard]] constexpr vec3<T> velocity_at(const vec3<T>& p) const noexcept {
+    return linear_velocity + cross(angular_velocity, p - position);
+  }
+};
+
+/// The pose and momenta stored in a body.
+template <scalar_type T>
+[[nodiscard]] constexpr body_pose<T> pose_of(const rigid_body<T>& b) noexcept {
+  return {b.position, b.orientation};
+}
+template <scalar_type T>
+[[nodiscard]] constexpr body_momentum<T> momentum_of(const rigid_body<T>& b) noexcept {
+  return {b.linear_momentum, b.angular_momentum};
+}
+
+/// Kinematics of body b (its type and mass properties) at state (x, p).
+/// Static bodies do not move; kinematic bodies move at their set velocity.
+template <scalar_type T>
+[[nodiscard]] body_kinematics<T> kinematics_of(const rigid_body<T>& b, const body_pose<T>& x,
+                                               const body_momentum<T>& p) noexcept {
+  body_kinematics<T> k;
+  k.position = x.position;
+  k.orientation = x.orientation * (T(1) / length(x.orientation));
+  k.rotation = to_mat3(k.orientation);
+  if (b.type == body_type::dynamic) {
+    k.linear_velocity = p.linear * b.inverse_mass;
+    k.angular_velocity = k.rotation * (b.inverse_inertia * (transpose(k.rotation) * p.angular));
+  } else if (b.type == body_type::kinematic) {
+    k.linear_velocity = b.kinematic_velocity;
+    k.angular_velocity = b.kinematic_angular_velocity;
+  }
+  return k;
+}
+
+/// x' = (v, ½ ω⊗q), with q as it stands in x (not renormalised, so that the
+/// flow keeps |q| exactly).
+template <scalar_type T>
+[[nodiscard]] constexpr body_pose<T> pose_rate(const body_kinematics<T>& k, const quat<T>& q) noexcept {
+  const vec3<T>& w = k.angular_velocity;
+  return {k.linear_velocity, quat<T>{w.x, w.y, w.z, T(0)} * q * T(0.5)};
+}
+
+}  // namespace impulse
+// ---- end impulse/dynamics/body_motion.hpp ----
+// ---- begin impulse/dynamics/body_spring.hpp ----
+// impulse/dynamics/body_spring.hpp — a damped spring between points of bodies.
+//
+// Hooke's law plus a dashpot along the spring: with d = p_b − p_a, u = d/|d|,
+//     f_a = (k·(|d| − L0) + c·u·(v_b − v_a))·u,   f_b = −f_a,
+// each applied at its end point, so a spring at a corner of a cube turns it
+// as well as pulling it. Damping acts along the spring only: it removes the
+// stretching motion and leaves the swinging alone, like a real coil spring.
+// End b is either a point of a second body or a fixed world anchor.
+
+
+// ---- begin impulse/dynamics/fwd.hpp ----
+// impulse/dynamics/fwd.hpp — the dynamics module's names.
+
+
+
+namespace impulse {
+
+enum class body_type : std::uint8_t;
+template <scalar_type T> struct rigid_body;
+template <scalar_type T> struct body_pose;
+template <scalar_type T> struct body_momentum;
+template <scalar_type T> struct body_kinematics;
+template <scalar_type T> struct wrench;
+template <scalar_type T> struct body_spring;
+
+struct body_tag;
+struct spring_tag;
+/// Names a body of a rigid_body_system (later, of a world).
+using body_id = object_id<body_tag>;
+/// Names a spring of a rigid_body_system.
+using spring_id = object_id<spring_tag>;
+
+struct default_config;
+template <class Config = default_config> class rigid_body_system;
+
+}  // namespace impulse
+// ---- end impulse/dynamics/fwd.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct body_spring {
+  body_id body_a{};       ///< the body at end a
+  vec3<T> point_a{};      ///< end a in body_a's space, relative to its centre of mass, m
+  body_id body_b{};       ///< the body at end b, or none: point_b is a world anchor
+  vec3<T> point_b{};      ///< end b in body_b's space, or the world anchor, m
+  T stiffness = T(0);     ///< k, N/m, ≥ 0
+  T damping = T(0);       ///< c, N·s/m along the spring, ≥ 0
+  T rest_length = T(0);   ///< L0, m, ≥ 0
+
+  /// A spring from a fixed world point to a point of one body.
+  static constexpr body_spring to_anchor(body_id body, const vec3<T>& local_point, const vec3<T>& anchor,
+                                         T stiffness, T damping, T rest_length = T(0)) noexcept {
+    return {body, local_point, body_id{}, anchor, stiffness, damping, rest_length};
+  }
+  /// A spring between a point of body a and a point of body b.
+  static constexpr body_spring between(body_id a, const vec3<T>& local_a, body_id b, const vec3<T>& local_b,
+                                       T stiffness, T damping, T rest_length = T(0)) noexcept {
+    return {a, local_a, b, local_b, stiffness, damping, rest_length};
+  }
+};
+
+/// Where a spring's ends are and the force on end a (end b bears −force).
+template <scalar_type T>
+struct spring_load {
+  vec3<T> point_a{}, point_b{};  ///< world, m
+  vec3<T> force{};               ///< on end a, N
+};
+
+/// The spring's load with end a on a body at kinematics `a` and end b on
+/// `b`, or at its world anchor when `b` is null. At zero length the
+/// direction is undefined and the force is zero.
+template <scalar_type T>
+[[nodiscard]] spring_load<T> spring_load_of(const body_spring<T>& s, const body_kinematics<T>& a,
+                                            const body_kinematics<T>* b) noexcept {
+  spring_load<T> load;
+  load.point_a = a.point(s.point_a);
+  load.point_b = b ? b->point(s.point_b) : s.point_b;
+  const vec3<T> d = load.point_b - load.point_a;
+  const T len = length(d);
+  if (!(len > T(0))) return load;
+  const vec3<T> u = d * (T(1) / len);
+  const vec3<T> relative = (b ? b->velocity_at(load.point_b) : vec3<T>{}) - a.velocity_at(load.point_a);
+  load.force = u * (s.stiffness * (len - s.rest_length) + s.damping * dot(u, relative));
+  return load;
+}
+
+/// ½·k·(|d| − L0)², J.
+template <scalar_type T>
+[[nodiscard]] T spring_energy(const body_spring<T>& s, const vec3<T>& point_a, const vec3<T>& point_b) noexcept {
+  const T stretch = length(point_b - point_a) - s.rest_length;
+  return T(0.5) * s.stiffness * stretch * stretch;
+}
+
+}  // namespace impulse
+// ---- end impulse/dynamics/body_spring.hpp ----
+// ---- begin impulse/dynamics/rigid_body_system.hpp ----
+// impulse/dynamics/rigid_body_system.hpp — bodies moved by forces and springs.
+//
+// A set of rigid bodies under gravity, their accumulated loads, damped
+// springs (body_spring.hpp) and an optional force field, advanced by the
+// config's integrator policy. It is the force-driven half of the world's
+// step ("forces & springs -> integrate", DESIGN.md); contacts and joints
+// come with the world.
+//
+// Forces are evaluated at every stage of the integrator, on the stage's
+// speculative state: springs see where the bodies would be mid-step, and so
+// does a user's field. Loads applied with rigid_body::apply_force are held
+// constant over the step and cleared after it.
+//
+// Two paths run the same integrator code. When no spring joins two moving
+// bodies, each body is independent: it is advanced alone, with its state in
+// registers (body_motion.hpp's pose and momenta as the integrator's x and
+// p). When springs couple bodies, every stage needs every body's stage
+// state, so the integrator is handed the whole set as one state
+// (core/detail/pooled_state.hpp), as the particle system does for its
+// springs.
+//
+// Input is checked before a step changes anything: a non-finite position,
+// orientation, momentum or load, a non-unit orientation, a dynamic body
+// without positive finite mass, or a spring with a missing end or a negative
+// parameter is refused, naming the body or spring, and the set is left as
+// it was. A body whose state becomes non-finite during a step (valid input
+// can still overflow: a spring of stiffness 1e30) is put back where it was
+// at the start of the step, the others keep their step, and the error names
+// it.
+
+
+// ---- begin impulse/core/detail/pooled_state.hpp ----
+// impulse/core/detail/pooled_state.hpp — a whole system's state as one
+// integrator state, with temporaries drawn from a pool.
+//
+// Some systems cannot be stepped one element at a time: springs between
+// particles or between bodies couple arbitrary elements, so every integrator
+// stage needs every element's stage state before any force can be
+// evaluated. The integrators are written once, over any ode_state
+// (integrators/ode_state.hpp), so these systems hand them a state holding
+// every element, with + and × as loops. The temporaries an integrator makes
+// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
+// the first step and reused on every later one, so a step allocates nothing
+// once warm.
+//
+// A buffer is `segments` runs of `stride` elements of which the first `used`
+// are live: the particle system keeps its x, y and z columns (3 segments of
+// scalars), the rigid body system one run of poses or momenta.
+
+
+
+namespace impulse::detail {
+
+template <class E>
+class buffer_pool {
+ public:
+  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
+    if (segments != segments_ || stride != stride_) {
+      buffers_.clear();
+      free_.clear();
+      segments_ = segments;
+      stride_ = stride;
+    }
+    used_ = used;
+  }
+  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
+  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
+  [[nodiscard]] std::size_t used() const noexcept { return used_; }
+
+  std::size_t acquire() {
+    if (free_.empty()) {
+      buffers_.emplace_back(segments_ * stride_);
+      return buffers_.size() - 1;
+    }
+    const std::size_t slot = free_.back();
+    free_.pop_back();
+    return slot;
+  }
+  void release(std::size_t slot) { free_.push_back(slot); }
+  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
+
+ private:
+  // aligned_array's move keeps its pointer, so growing this vector never
+  // invalidates an E* handed out before.
+  std::vector<aligned_array<E>> buffers_;
+  std::vector<std::size_t> free_;
+  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+};
+
+/// E needs E + E and E * S for the scalar S the integrator steps with.
+template <class E>
+class pooled_state {
+ public:
+  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
+  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
+    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
+  }
+  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
+  pooled_state& operator=(pooled_state other) noexcept {
+    std::swap(pool_, other.pool_);
+    std::swap(slot_, other.slot_);
+    return *this;
+  }
+  ~pooled_state() {
+    if (slot_ != none) pool_->release(slot_);
+  }
+
+  E* data() noexcept { return pool_->data(slot_); }
+  const E* data() const noexcept { return pool_->data(slot_); }
+  E& operator[](std::size_t i) noexcept { return data()[i]; }
+  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
+  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
+
+  /// Calls f(i) for the index of every live element of every segment.
+  template <class F>
+  void for_each(F&& f) const {
+    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
+    for (std::size_t s = 0; s < segments; ++s)
+      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
+  }
+
+  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
+  // one temporary, not two.
+  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
+    return std::move(a);
+  }
+  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
+  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
+  template <class S>
+  friend pooled_state operator*(pooled_state&& a, S h) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
+    return std::move(a);
+  }
+  template <class S>
+  friend pooled_state operator*(const pooled_state& a, S h) {
+    return pooled_state(a) * h;
+  }
+
+ private:
+  static constexpr std::size_t none = ~std::size_t(0);
+  buffer_pool<E>* pool_;
+  std::size_t slot_;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/pooled_state.hpp ----
+
+namespace impulse {
+
+namespace detail {
+/// The field used when a step is given none.
+struct no_force_field {};
+}  // namespace detail
+
+/// A force model evaluated per body at every integrator stage:
+/// field(id, kinematics) -> wrench (force through the centre of mass and
+/// torque about it). It must not change the system.
+template <class F, class T>
+concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||
+                           std::is_invocable_r_v<wrench<T>, F&, body_id, const body_kinematics<T>&>;
+
+template <class Config>
+class rigid_body_system {
+ public:
+  using config = Config;
+  using scalar = typename Config::scalar;
+  using integrator = typename Config::integrator;
+  using T = scalar;
+
+  /// Acceleration of gravity on every dynamic body, m/s².
+  vec3<T> gravity{T(0), T(-9.81), T(0)};
+
+  // ---- bodies ----
+
+  /// Adds a body. Its inverse mass and inverse inertia are recomputed from
+  /// mass and inertia (so a hand-built body cannot carry inconsistent
+  /// ones); its state must be finite with a unit orientation.
+  body_id add_body(rigid_body<T> b) {
+    validate_body(b, no_object);
+    if (b.type == body_type::dynamic) b.set_mass_properties({b.mass, vec3<T>{}, b.inertia});
+    return bodies_.insert(b);
+  }
+  /// Removes a body and every spring attached to it.
+  void remove_body(body_id id) {
+    require_body(id, "rigid_body_system::remove_body: no such body");
+    for (std::size_t i = springs_.size(); i-- > 0;) {
+      const body_spring<T>& s = springs_.values()[i];
+      if (s.body_a == id || s.body_b == id) springs_.erase(springs_.ids()[i]);
+    }
+    bodies_.erase(id);
+  }
+  [[nodiscard]] bool contains(body_id id) const noexcept { return bodies_.contains(id); }
+  [[nodiscard]] rigid_body<T>& body(body_id id) {
+    require_body(id, "rigid_body_system::body: no such body");
+    return bodies_[id];
+  }
+  [[nodiscard]] const rigid_body<T>& body(body_id id) const {
+    require_body(id, "rigid_body_system::body: no such body");
+    return bodies_[id];
+  }
+  [[nodiscard]] std::size_t body_count() const noexcept { return bodies_.size(); }
+  /// The bodies in storage order; body_ids()[i] names bodies()[i].
+  [[nodiscard]] const std::vector<rigid_body<T>>& bodies() const noexcept { return bodies_.values(); }
+  [[nodiscard]] const std::vector<body_id>& body_ids() const noexcept { return bodies_.ids(); }
+
+  // ---- springs ----
+
+  spring_id add_spring(const body_spring<T>& s) {
+    validate_spring(s, no_object);
+    return springs_.insert(s);
+  }
+  void remove_spring(spring_id id) {
+    require_spring(id, "rigid_body_system::remove_spring: no such spring");
+    springs_.erase(id);
+  }
+  [[nodiscard]] bool contains(spring_id id) const noexcept { return springs_.contains(id); }
+  [[nodiscard]] body_spring<T>& spring(spring_id id) {
+    require_spring(id, "rigid_body_system::spring: no such spring");
+    return springs_[id];
+  }
+  [[nodiscard]] const body_spring<T>& spring(spring_id id) const {
+    require_spring(id, "rigid_body_system::spring: no such spring");
+    return springs_[id];
+  }
+  [[nodiscard]] std::size_t spring_count() const noexcept { return springs_.size(); }
+  [[nodiscard]] const std::vector<body_spring<T>>& springs() const noexcept { return springs_.values(); }
+
+  // ---- stepping ----
+
+  /// Advances every body by dt seconds under gravity, loads and springs.
+  void step(T dt) { step(dt, detail::no_force_field{}); }
+
+  /// The same, with field(id, kinematics) -> wrench added on every dynamic
+  /// body at every stage.
+  template <class Field>
+    requires body_force_field<Field, T>
+  void step(T dt, Field&& field) {
+    validate_step(dt);
+    resolve_springs();
+    start_ = bodies_.values();  // the state to restore a body to if its step fails
+    if (coupled_) {
+      step_coupled(dt, field);
+    } else {
+      step_each(dt, field);
+    }
+    finish_step(dt);
+  }
+
+  /// Simulated time, s.
+  [[nodiscard]] T time() const noexcept { return time_; }
+
+  // ---- what is conserved, for tests and diagnostics ----
+
+  /// Σ ½·m·v² + ½·ω·L over dynamic bodies, J.
+  [[nodiscard]] T kinetic_energy() const noexcept {
+    T e = T(0);
+    for (const rigid_body<T>& b : bodies_.values()) e += b.kinetic_energy();
+    return e;
+  }
+  /// Gravitational (−m·g·x, zero at the origin) plus spring energy, J.
+  [[nodiscard]] T potential_energy() const {
+    T e = T(0);
+    for (const rigid_body<T>& b : bodies_.values())
+      if (b.type == body_type::dynamic) e -= b.mass * dot(gravity, b.position);
+    for (const body_spring<T>& s : springs_.values()) {
+      const rigid_body<T>& a = bodies_[s.body_a];
+      const vec3<T> pa = a.position + rotate(a.orientation, s.point_a);
+      const vec3<T> pb = s.body_b.is_none() ? s.point_b
+                                            : bodies_[s.body_b].position +
+                                                  rotate(bodies_[s.body_b].orientation, s.point_b);
+      e += spring_energy(s, pa, pb);
+    }
+    return e;
+  }
+  /// Σ P over dynamic bodies, kg·m/s.
+  [[nodiscard]] vec3<T> linear_momentum() const noexcept {
+    vec3<T> p{};
+    for (const rigid_body<T>& b : bodies_.values())
+      if (b.type == body_type::dynamic) p += b.linear_momentum;
+    return p;
+  }
+  /// Σ (x × P + L) over dynamic bodies, about the world origin, kg·m²/s.
+  [[nodiscard]] vec3<T> angular_momentum() const noexcept {
+    vec3<T> l{};
+    for (const rigid_body<T>& b : bodies_.values())
+      if (b.type == body_type::dynamic) l += cross(b.position, b.linear_momentum) + b.angular_momentum;
+    return l;
+  }
+
+ private:
+  static constexpr std::uint32_t none = no_object;
+
+  // A spring with its ends as storage positions, resolved once per step.
+  struct spring_ends {
+    std::uint32_t a, b;  // b == none: world anchor
+  };
+
+  // ---- validation ----
+
+  void require_body(body_id id, const char* message) const {
+    if (!bodies_.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+  void require_spring(spring_id id, const char* message) const {
+    if (!springs_.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+
+  static void validate_body(const rigid_body<T>& b, std::uint32_t id) {
+    if (!is_finite(b.position) || !is_finite(b.orientation) || !is_finite(b.linear_momentum) ||
+        !is_finite(b.angular_momentum) || !is_finite(b.kinematic_velocity) ||
+        !is_finite(b.kinematic_angular_velocity))
+      detail::report_error(error_code::non_finite, "rigid_body_system: a body's state is not finite", id);
+    if (!is_finite(b.force) || !is_finite(b.torque))
+      detail::report_error(error_code::non_finite, "rigid_body_system: a body's load is not finite", id);
+    if (!is_normalized(b.orientation))
+      detail::report_error(error_code::not_normalized, "rigid_body_system: a body's orientation is not a unit quaternion",
+                           id);
+    if (b.type == body_type::dynamic && !(b.mass > T(0) && std::isfinite(b.mass)))
+      detail::report_error(error_code::non_positive_mass,
+                           "rigid_body_system: a dynamic body needs a positive, finite mass", id);
+  }
+
+  void validate_spring(const body_spring<T>& s, std::uint32_t id) const {
+    if (!bodies_.contains(s.body_a) || (!s.body_b.is_none() && !bodies_.contains(s.body_b)))
+      detail::report_error(error_code::out_of_range, "rigid_body_system: a spring's end names no body", id);
+    if (s.body_a == s.body_b)
+      detail::report_error(error_code::invalid_parameter, "rigid_body_system: a spring joins a body to itself", id);
+    if (!is_finite(s.point_a) || !is_finite(s.point_b) || !std::isfinite(s.stiffness) || !std::isfinite(s.damping) ||
+        !std::isfinite(s.rest_length))
+      detail::report_error(error_code::non_finite, "rigid_body_system: a spring's points or parameters are not finite",
+                           id);
+    if (s.stiffness < T(0) || s.damping < T(0) || s.rest_length < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "rigid_body_system: a spring's stiffness, damping and rest length must be >= 0", id);
+  }
+
+  // Bodies and springs are plain data the user may edit between steps, so
+  // all of it is checked before the step touches anything.
+  void validate_step(T dt) const {
+    if (!std::isfinite(dt) || !(dt > T(0)))
+      detail::report_error(error_code::invalid_parameter, "rigid_body_system::step: dt must be positive and finite");
+    if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "rigid_body_system: gravity is not finite");
+    for (std::size_t i = 0; i < bodies_.size(); ++i) validate_body(bodies_.values()[i], bodies_.ids()[i].index);
+    for (std::size_t i = 0; i < springs_.size(); ++i) validate_spring(springs_.values()[i], springs_.ids()[i].index);
+  }
+
+  // ---- forces at a stage ----
+
+  void resolve_springs() {
+    const std::size_t n = bodies_.size();
+    ends_.resize(springs_.size());
+    coupled_ = false;
+    first_spring_.assign(n + 1, 0);
+    for (std::size_t i = 0; i < springs_.size(); ++i) {
+      const body_spring<T>& s = springs_.values()[i];
+      spring_ends& e = ends_[i];
+      e.a = static_cast<std::uint32_t>(bodies_.dense_index(s.body_a));
+      e.b = s.body_b.is_none() ? none : static_cast<std::uint32_t>(bodies_.dense_index(s.body_b));
+      const bool a_moves = bodies_.values()[e.a].type != body_type::static_body;
+      const bool b_moves = e.b != none && bodies_.values()[e.b].type != body_type::static_body;
+      coupled_ = coupled_ || (a_moves && b_moves);
+      ++first_spring_[e.a + 1];
+      if (e.b != none) ++first_spring_[e.b + 1];
+    }
+    // Springs of each body, for the independent path (counting sort).
+    for (std::size_t i = 0; i < n; ++i) first_spring_[i + 1] += first_spring_[i];
+    springs_of_.resize(first_spring_[n]);
+    fill_.assign(first_spring_.begin(), first_spring_.end() - 1);
+    for (std::uint32_t i = 0; i < ends_.size(); ++i) {
+      springs_of_[fill_[ends_[i].a]++] = i;
+      if (ends_[i].b != none) springs_of_[fill_[ends_[i].b]++] = i;
+    }
+  }
+
+  // Gravity, the held loads and the field on body i at kinematics k.
+  template <class Field>
+  wrench<T> body_wrench(std::size_t i, const body_kinematics<T>& k, Field& field) const {
+    const rigid_body<T>& b = bodies_.values()[i];
+    if (b.type != body_type::dynamic) return {};
+    wrench<T> w{b.force + gravity * b.mass, b.torque};
+    if constexpr (!std::is_same_v<std::remove_cvref_t<Field>, detail::no_force_field>)
+      w += field(bodies_.ids()[i], k);
+    return w;
+  }
+
+  static body_momentum<T> as_rate(const wrench<T>& w) noexcept { return {w.force, w.torque}; }
+
+  // One body alone, its springs' other ends fixed for the step (static
+  // bodies or world anchors).
+  template <class Field>
+  struct single_body {
+    const rigid_body_system& system;
+    std::size_t index;
+    Field& field;
+
+    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
+      return pose_rate(kinematics_of(system.bodies_.values()[index], x, p), x.orientation);
+    }
+    body_momentum<T> momentum_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
+      const rigid_body<T>& b = system.bodies_.values()[index];
+      if (b.type != body_type::dynamic) return {};
+      const body_kinematics<T> k = kinematics_of(b, x, p);
+      wrench<T> w = system.body_wrench(index, k, field);
+      for (std::uint32_t j = system.first_spring_[index]; j < system.first_spring_[index + 1]; ++j) {
+        const std::uint32_t s = system.springs_of_[j];
+        const spring_ends& e = system.ends_[s];
+        const body_spring<T>& spring = system.springs_.values()[s];
+        // This body may be either end; the other end does not move.
+        if (e.a == index) {
+          const body_kinematics<T> other = system.resting_kinematics(e.b);
+          const spring_load<T> load = spring_load_of(spring, k, e.b == none ? nullptr : &other);
+          add_at(w, k, load.force, load.point_a);
+        } else {
+          const body_kinematics<T> other = system.resting_kinematics(e.a);
+          const spring_load<T> load = spring_load_of(spring, other, &k);
+          add_at(w, k, -load.force, load.point_b);
+        }
+      }
+      return as_rate(w);
+    }
+  };
+
+  static void add_at(wrench<T>& w, const body_kinematics<T>& k, const vec3<T>& f, const vec3<T>& p) noexcept {
+    w.force += f;
+    w.torque += cross(p - k.position, f);
+  }
+
+  body_kinematics<T> resting_kinematics(std::uint32_t i) const noexcept {
+    if (i == none) return {};
+    const rigid_body<T>& b = bodies_.values()[i];
+    return kinematics_of(b, pose_of(b), momentum_of(b));
+  }
+
+  template <class Field>
+  void step_each(T dt, Field& field) {
+    std::vector<rigid_body<T>>& bodies = bodies_.values();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      rigid_body<T>& b = bodies[i];
+      if (b.type == body_type::static_body) continue;
+      body_pose<T> x = pose_of(b);
+      body_momentum<T> p = momentum_of(b);
+      integrator::advance(x, p, dt, single_body<Field>{*this, i, field});
+      store(b, x, p);
+    }
+  }
+
+  // Every body at once: the whole set is the integrator's state.
+  using poses = detail::pooled_state<body_pose<T>>;
+  using momenta = detail::pooled_state<body_momentum<T>>;
+
+  template <class Field>
+  struct whole_set {
+    rigid_body_system& system;
+    Field& field;
+
+    poses position_rate(const poses& x, const momenta& p) const {
+      const std::vector<rigid_body<T>>& bodies = system.bodies_.values();
+      poses rate(system.pose_pool_);
+      for (std::size_t i = 0; i < bodies.size(); ++i)
+        rate[i] = pose_rate(kinematics_of(bodies[i], x[i], p[i]), x[i].orientation);
+      return rate;
+    }
+    momenta momentum_rate(const poses& x, const momenta& p) const {
+      const std::vector<rigid_body<T>>& bodies = system.bodies_.values();
+      std::vector<body_kinematics<T>>& k = system.stage_kinematics_;
+      std::vector<wrench<T>>& w = system.stage_wrenches_;
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        k[i] = kinematics_of(bodies[i], x[i], p[i]);
+        w[i] = system.body_wrench(i, k[i], field);
+      }
+      for (std::size_t s = 0; s < system.ends_.size(); ++s) {
+        const spring_ends& e = system.ends_[s];
+        const spring_load<T> load = spring_load_of(system.springs_.values()[s], k[e.a], e.b == none ? nullptr : &k[e.b]);
+        if (bodies[e.a].type == body_type::dynamic) add_at(w[e.a], k[e.a], load.force, load.point_a);
+        if (e.b != none && bodies[e.b].type == body_type::dynamic) add_at(w[e.b], k[e.b], -load.force, load.point_b);
+      }
+      momenta rate(system.momentum_pool_);
+      for (std::size_t i = 0; i < bodies.size(); ++i)
+        rate[i] = bodies[i].type == body_type::dynamic ? as_rate(w[i]) : body_momentum<T>{};
+      return rate;
+    }
+  };
+
+  template <class Field>
+  void step_coupled(T dt, Field& field) {
+    std::vector<rigid_body<T>>& bodies = bodies_.values();
+    const std::size_t n = bodies.size();
+    pose_pool_.resize(1, n, n);
+    momentum_pool_.resize(1, n, n);
+    stage_kinematics_.resize(n);
+    stage_wrenches_.resize(n);
+    poses x(pose_pool_);
+    momenta p(momentum_pool_);
+    for (std::size_t i = 0; i < n; ++i) x[i] = pose_of(bodies[i]), p[i] = momentum_of(bodies[i]);
+    integrator::advance(x, p, dt, whole_set<Field>{*this, field});
+    for (std::size_t i = 0; i < n; ++i)
+      if (bodies[i].type != body_type::static_body) store(bodies[i], x[i], p[i]);
+  }
+
+  // ---- the end of a step ----
+
+  static void store(rigid_body<T>& b, const body_pose<T>& x, const body_momentum<T>& p) noexcept {
+    b.position = x.position;
+    b.orientation = x.orientation;
+    if (b.type == body_type::dynamic) b.linear_momentum = p.linear, b.angular_momentum = p.angular;
+  }
+
+  void finish_step(T dt) {
+    std::vector<rigid_body<T>>& bodies = bodies_.values();
+    std::uint32_t failed = none;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      rigid_body<T>& b = bodies[i];
+      const rigid_body<T>& start = start_[i];
+      if (b.type == body_type::kinematic) {
+        // A kinematic body's motion is prescribed: place it exactly rather
+        // than where the integrator's approximation of q' = ½ω⊗q put it.
+        b.position = start.position + start.kinematic_velocity * dt;
+        b.orientation = integrate(start.orientation, start.kinematic_angular_velocity, dt);
+      }
+      const bool finite = is_finite(b.position) && is_finite(b.orientation) && is_finite(b.linear_momentum) &&
+                          is_finite(b.angular_momentum) &&
+                          length_squared(b.orientation) > scalar_traits<T>::zero_length_squared;
+      if (finite && b.type == body_type::dynamic) b.orientation = normalize(b.orientation);
+      if (!finite) {
+        b = start;
+        if (failed == none) failed = bodies_.ids()[i].index;
+      }
+      b.clear_loads();
+    }
+    time_ += dt;
+    if (failed != none)
+      detail::report_error(error_code::non_finite,
+                           "rigid_body_system::step: a body's state became non-finite; it was put back where it was",
+                           failed);
+  }
+
+  slot_map<rigid_body<T>, body_id> bodies_;
+  slot_map<body_spring<T>, spring_id> springs_;
+  T time_ = T(0);
+
+  // Per-step scratch, kept to allocate nothing once warm.
+  std::vector<rigid_body<T>> start_;
+  std::vector<spring_ends> ends_;
+  std::vector<std::uint32_t> first_spring_, springs_of_, fill_;
+  bool coupled_ = false;
+  detail::buffer_pool<body_pose<T>> pose_pool_;
+  detail::buffer_pool<body_momentum<T>> momentum_pool_;
+  std::vector<body_kinematics<T>> stage_kinematics_;
+  std::vector<wrench<T>> stage_wrenches_;
+};
+
+}  // namespace impulse
+// ---- end impulse/dynamics/rigid_body_system.hpp ----
 // ---- end impulse/dynamics.hpp ----
 // ---- begin impulse/integrators.hpp ----
 // impulse/integrators.hpp — the integrator policies: euler, symplectic_euler,
@@ -2480,125 +3330,7 @@ struct gravity {
 
 #include <array>
 #include <tuple>
-#include <vector>
 
-// ---- begin impulse/core/detail/pooled_state.hpp ----
-// impulse/core/detail/pooled_state.hpp — a whole system's state as one
-// integrator state, with temporaries drawn from a pool.
-//
-// Some systems cannot be stepped one element at a time: springs between
-// particles or between bodies couple arbitrary elements, so every integrator
-// stage needs every element's stage state before any force can be
-// evaluated. The integrators are written once, over any ode_state
-// (integrators/ode_state.hpp), so these systems hand them a state holding
-// every element, with + and × as loops. The temporaries an integrator makes
-// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
-// the first step and reused on every later one, so a step allocates nothing
-// once warm.
-//
-// A buffer is `segments` runs of `stride` elements of which the first `used`
-// are live: the particle system keeps its x, y and z columns (3 segments of
-// scalars), the rigid body system one run of poses or momenta.
-
-
-
-namespace impulse::detail {
-
-template <class E>
-class buffer_pool {
- public:
-  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
-    if (segments != segments_ || stride != stride_) {
-      buffers_.clear();
-      free_.clear();
-      segments_ = segments;
-      stride_ = stride;
-    }
-    used_ = used;
-  }
-  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
-  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
-  [[nodiscard]] std::size_t used() const noexcept { return used_; }
-
-  std::size_t acquire() {
-    if (free_.empty()) {
-      buffers_.emplace_back(segments_ * stride_);
-      return buffers_.size() - 1;
-    }
-    const std::size_t slot = free_.back();
-    free_.pop_back();
-    return slot;
-  }
-  void release(std::size_t slot) { free_.push_back(slot); }
-  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
-
- private:
-  // aligned_array's move keeps its pointer, so growing this vector never
-  // invalidates an E* handed out before.
-  std::vector<aligned_array<E>> buffers_;
-  std::vector<std::size_t> free_;
-  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
-};
-
-/// E needs E + E and E * S for the scalar S the integrator steps with.
-template <class E>
-class pooled_state {
- public:
-  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
-  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
-    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
-  }
-  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
-  pooled_state& operator=(pooled_state other) noexcept {
-    std::swap(pool_, other.pool_);
-    std::swap(slot_, other.slot_);
-    return *this;
-  }
-  ~pooled_state() {
-    if (slot_ != none) pool_->release(slot_);
-  }
-
-  E* data() noexcept { return pool_->data(slot_); }
-  const E* data() const noexcept { return pool_->data(slot_); }
-  E& operator[](std::size_t i) noexcept { return data()[i]; }
-  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
-  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
-
-  /// Calls f(i) for the index of every live element of every segment.
-  template <class F>
-  void for_each(F&& f) const {
-    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
-    for (std::size_t s = 0; s < segments; ++s)
-      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
-  }
-
-  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
-  // one temporary, not two.
-  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
-    return std::move(a);
-  }
-  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
-  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
-  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
-  template <class S>
-  friend pooled_state operator*(pooled_state&& a, S h) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
-    return std::move(a);
-  }
-  template <class S>
-  friend pooled_state operator*(const pooled_state& a, S h) {
-    return pooled_state(a) * h;
-  }
-
- private:
-  static constexpr std::size_t none = ~std::size_t(0);
-  buffer_pool<E>* pool_;
-  std::size_t slot_;
-};
-
-}  // namespace impulse::detail
-// ---- end impulse/core/detail/pooled_state.hpp ----
 // ---- begin impulse/particles/plane_collider.hpp ----
 // impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
 //

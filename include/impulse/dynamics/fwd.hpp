@@ -4,10 +4,26 @@
 #include <cstdint>
 
 #include "../core/policy.hpp"
+#include "../core/slot_map.hpp"
 
 namespace impulse {
 
 enum class body_type : std::uint8_t;
 template <scalar_type T> struct rigid_body;
+template <scalar_type T> struct body_pose;
+template <scalar_type T> struct body_momentum;
+template <scalar_type T> struct body_kinematics;
+template <scalar_type T> struct wrench;
+template <scalar_type T> struct body_spring;
+
+struct body_tag;
+struct spring_tag;
+/// Names a body of a rigid_body_system (later, of a world).
+using body_id = object_id<body_tag>;
+/// Names a spring of a rigid_body_system.
+using spring_id = object_id<spring_tag>;
+
+struct default_config;
+template <class Config = default_config> class rigid_body_system;
 
 }  // namespace impulse

@@ -1,0 +1,93 @@
+// impulse/core/slot_map.hpp — dense storage addressed by stable, checked ids.
+//
+// Bodies and springs live in dense arrays so that a step runs over
+// contiguous memory, and are named by ids that stay valid while the objects
+// around them come and go (Box2D's b2BodyId works the same way). An id is a
+// slot index and the slot's generation: removing an object bumps its slot's
+// generation, so a stale id is recognised and refused instead of silently
+// naming whatever took the slot next. Removal moves the last element into
+// the hole, so dense positions change; ids do not.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "error.hpp"
+
+namespace impulse {
+
+/// A stable, checked handle. Tag keeps body and spring ids apart at
+/// compile time.
+template <class Tag>
+struct object_id {
+  std::uint32_t index = no_object;  ///< slot; no_object for "none"
+  std::uint32_t generation = 0;     ///< bumped each time the slot is freed
+
+  [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
+  friend constexpr bool operator==(const object_id&, const object_id&) = default;
+};
+
+template <class V, class Id>
+class slot_map {
+ public:
+  [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
+  [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
+  [[nodiscard]] bool contains(Id id) const noexcept {
+    return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
+           slots_[id.index].dense != free_slot;
+  }
+
+  Id insert(V value) {
+    std::uint32_t slot;
+    if (free_.empty()) {
+      slot = static_cast<std::uint32_t>(slots_.size());
+      slots_.push_back({free_slot, 0});
+    } else {
+      slot = free_.back();
+      free_.pop_back();
+    }
+    slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
+    values_.push_back(std::move(value));
+    ids_.push_back(Id{slot, slots_[slot].generation});
+    return ids_.back();
+  }
+
+  /// Removes the object; the caller has checked contains(id).
+  void erase(Id id) {
+    const std::uint32_t dense = slots_[id.index].dense, last = static_cast<std::uint32_t>(values_.size() - 1);
+    if (dense != last) {
+      values_[dense] = std::move(values_[last]);
+      ids_[dense] = ids_[last];
+      slots_[ids_[dense].index].dense = dense;
+    }
+    values_.pop_back();
+    ids_.pop_back();
+    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
+    free_.push_back(id.index);
+  }
+
+  /// Position of a live id in the dense arrays.
+  [[nodiscard]] std::size_t dense_index(Id id) const noexcept { return slots_[id.index].dense; }
+  [[nodiscard]] V& operator[](Id id) noexcept { return values_[dense_index(id)]; }
+  [[nodiscard]] const V& operator[](Id id) const noexcept { return values_[dense_index(id)]; }
+
+  /// The dense arrays: values()[i] is the object whose id is ids()[i].
+  [[nodiscard]] std::vector<V>& values() noexcept { return values_; }
+  [[nodiscard]] const std::vector<V>& values() const noexcept { return values_; }
+  [[nodiscard]] const std::vector<Id>& ids() const noexcept { return ids_; }
+
+ private:
+  static constexpr std::uint32_t free_slot = 0xffffffffu;
+  struct slot {
+    std::uint32_t dense;
+    std::uint32_t generation;
+  };
+  std::vector<V> values_;
+  std::vector<Id> ids_;
+  std::vector<slot> slots_;
+  std::vector<std::uint32_t> free_;
+};
+
+}  // namespace impulse
