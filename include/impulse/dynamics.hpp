@@ -2,8 +2,10 @@
 // under forces and springs. (Contacts and joints follow.)
 #pragma once
 
+#include "config.hpp"
 #include "dynamics/body_motion.hpp"
 #include "dynamics/body_spring.hpp"
 #include "dynamics/fwd.hpp"
 #include "dynamics/rigid_body.hpp"
 #include "dynamics/rigid_body_system.hpp"
+#include "integrators.hpp"

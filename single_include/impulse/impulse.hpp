@@ -2730,7 +2730,6 @@ class rigid_body_system {
 
 }  // namespace impulse
 // ---- end impulse/dynamics/rigid_body_system.hpp ----
-// ---- end impulse/dynamics.hpp ----
 // ---- begin impulse/integrators.hpp ----
 // impulse/integrators.hpp — the integrator policies: euler, symplectic_euler,
 // midpoint, rk4, over any state modelling integrators::ode_state.
@@ -2867,6 +2866,7 @@ struct rk4 {
 }  // namespace impulse::integrators
 // ---- end impulse/integrators/rk4.hpp ----
 // ---- end impulse/integrators.hpp ----
+// ---- end impulse/dynamics.hpp ----
 // ---- begin impulse/math.hpp ----
 // impulse/math.hpp — the math module: vectors, quaternions, matrices,
 // transforms and bounding boxes for float and double, and vec3_batch, the
