@@ -24,8 +24,8 @@
 // without positive finite mass, or a spring with a missing end or a negative
 // parameter is refused, naming the body or spring, and the set is left as
 // it was. A body whose state becomes non-finite during a step (valid input
-// can still overflow: a spring of stiffness 1e30) is put back where it was
-// at the start of the step, the others keep their step, and the error names
+// can still overflow: a spring of stiffness 1e300) is left where it was at
+// the start of the step, the others keep their step, and the error names
 // it.
 #pragma once
 
@@ -138,7 +138,7 @@ class rigid_body_system {
   void step(T dt, Field&& field) {
     validate_step(dt);
     resolve_springs();
-    start_ = bodies_.values();  // the state to restore a body to if its step fails
+    failed_ = none;
     if (coupled_) {
       step_coupled(dt, field);
     } else {
@@ -285,21 +285,35 @@ class rigid_body_system {
 
   static body_momentum<T> as_rate(const wrench<T>& w) noexcept { return {w.force, w.torque}; }
 
-  // One body alone, its springs' other ends fixed for the step (static
-  // bodies or world anchors).
+  // One dynamic body alone, its springs' other ends fixed for the step
+  // (static bodies or world anchors).
   template <class Field>
   struct single_body {
     const rigid_body_system& system;
     std::size_t index;
     Field& field;
+    // Most methods ask for both rates at the same stage state; the
+    // kinematics (a rotation matrix and the world inverse inertia) are
+    // worked out once for both.
+    body_pose<T> cached_x{};
+    body_momentum<T> cached_p{};
+    body_kinematics<T> cached_k{};
+    bool cached = false;
 
-    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
-      return pose_rate(kinematics_of(system.bodies_.values()[index], x, p), x.orientation);
+    const body_kinematics<T>& kinematics(const body_pose<T>& x, const body_momentum<T>& p) {
+      if (!cached || !(x.position == cached_x.position && x.orientation == cached_x.orientation &&
+                       p.linear == cached_p.linear && p.angular == cached_p.angular)) {
+        cached_k = kinematics_of(system.bodies_.values()[index], x, p);
+        cached_x = x, cached_p = p, cached = true;
+      }
+      return cached_k;
     }
-    body_momentum<T> momentum_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
-      const rigid_body<T>& b = system.bodies_.values()[index];
-      if (b.type != body_type::dynamic) return {};
-      const body_kinematics<T> k = kinematics_of(b, x, p);
+
+    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) {
+      return pose_rate(kinematics(x, p), x.orientation);
+    }
+    body_momentum<T> momentum_rate(const body_pose<T>& x, const body_momentum<T>& p) {
+      const body_kinematics<T>& k = kinematics(x, p);
       wrench<T> w = system.body_wrench(index, k, field);
       for (std::uint32_t j = system.first_spring_[index]; j < system.first_spring_[index + 1]; ++j) {
         const std::uint32_t s = system.springs_of_[j];
@@ -335,12 +349,11 @@ class rigid_body_system {
   void step_each(T dt, Field& field) {
     std::vector<rigid_body<T>>& bodies = bodies_.values();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      rigid_body<T>& b = bodies[i];
-      if (b.type == body_type::static_body) continue;
-      body_pose<T> x = pose_of(b);
-      body_momentum<T> p = momentum_of(b);
+      if (bodies[i].type != body_type::dynamic) continue;  // kinematic ones are placed exactly in finish_step
+      body_pose<T> x = pose_of(bodies[i]);
+      body_momentum<T> p = momentum_of(bodies[i]);
       integrator::advance(x, p, dt, single_body<Field>{*this, i, field});
-      store(b, x, p);
+      commit(i, x, p);
     }
   }
 
@@ -393,45 +406,45 @@ class rigid_body_system {
     momenta p(momentum_pool_);
     for (std::size_t i = 0; i < n; ++i) x[i] = pose_of(bodies[i]), p[i] = momentum_of(bodies[i]);
     integrator::advance(x, p, dt, whole_set<Field>{*this, field});
-    for (std::size_t i = 0; i < n; ++i)
-      if (bodies[i].type != body_type::static_body) store(bodies[i], x[i], p[i]);
+    for (std::size_t i = 0; i < n; ++i) commit(i, x[i], p[i]);
   }
 
   // ---- the end of a step ----
 
-  static void store(rigid_body<T>& b, const body_pose<T>& x, const body_momentum<T>& p) noexcept {
+  // Writes a dynamic body's step, or, if it came out non-finite, leaves the
+  // body as it was and remembers it. Nothing else reads a body's stored
+  // state after its step is computed, so no copy of the start is needed.
+  void commit(std::size_t i, const body_pose<T>& x, const body_momentum<T>& p) noexcept {
+    rigid_body<T>& b = bodies_.values()[i];
+    if (b.type != body_type::dynamic) return;
+    const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(p.linear) &&
+                        is_finite(p.angular) &&
+                        length_squared(x.orientation) > scalar_traits<T>::zero_length_squared;
+    if (!finite) {
+      if (failed_ == none) failed_ = bodies_.ids()[i].index;
+      return;
+    }
     b.position = x.position;
-    b.orientation = x.orientation;
-    if (b.type == body_type::dynamic) b.linear_momentum = p.linear, b.angular_momentum = p.angular;
+    b.orientation = normalize(x.orientation);
+    b.linear_momentum = p.linear;
+    b.angular_momentum = p.angular;
   }
 
   void finish_step(T dt) {
-    std::vector<rigid_body<T>>& bodies = bodies_.values();
-    std::uint32_t failed = none;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      rigid_body<T>& b = bodies[i];
-      const rigid_body<T>& start = start_[i];
+    for (rigid_body<T>& b : bodies_.values()) {
       if (b.type == body_type::kinematic) {
         // A kinematic body's motion is prescribed: place it exactly rather
-        // than where the integrator's approximation of q' = ½ω⊗q put it.
-        b.position = start.position + start.kinematic_velocity * dt;
-        b.orientation = integrate(start.orientation, start.kinematic_angular_velocity, dt);
-      }
-      const bool finite = is_finite(b.position) && is_finite(b.orientation) && is_finite(b.linear_momentum) &&
-                          is_finite(b.angular_momentum) &&
-                          length_squared(b.orientation) > scalar_traits<T>::zero_length_squared;
-      if (finite && b.type == body_type::dynamic) b.orientation = normalize(b.orientation);
-      if (!finite) {
-        b = start;
-        if (failed == none) failed = bodies_.ids()[i].index;
+        // than where an integrator's approximation of q' = ½ω⊗q would.
+        b.position += b.kinematic_velocity * dt;
+        b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
       }
       b.clear_loads();
     }
     time_ += dt;
-    if (failed != none)
+    if (failed_ != none)
       detail::report_error(error_code::non_finite,
-                           "rigid_body_system::step: a body's state became non-finite; it was put back where it was",
-                           failed);
+                           "rigid_body_system::step: a body's state became non-finite; it was left where it was",
+                           failed_);
   }
 
   slot_map<rigid_body<T>, body_id> bodies_;
@@ -439,7 +452,7 @@ class rigid_body_system {
   T time_ = T(0);
 
   // Per-step scratch, kept to allocate nothing once warm.
-  std::vector<rigid_body<T>> start_;
+  std::uint32_t failed_ = none;
   std::vector<spring_ends> ends_;
   std::vector<std::uint32_t> first_spring_, springs_of_, fill_;
   bool coupled_ = false;
