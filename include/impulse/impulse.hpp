@@ -2,6 +2,7 @@
 // umbrella header (impulse/math.hpp, ...) for users who need less.
 #pragma once
 
+#include "broadphase.hpp"
 #include "config.hpp"
 #include "core.hpp"
 #include "dynamics.hpp"

@@ -8,21 +8,101 @@
 // impulse/impulse.hpp — everything in impulse. Each module also has its own
 // umbrella header (impulse/math.hpp, ...) for users who need less.
 
-// ---- begin impulse/config.hpp ----
-// impulse/config.hpp — the default compile-time configuration.
+// ---- begin impulse/broadphase.hpp ----
+// impulse/broadphase.hpp — the broad phase module: which boxes overlap.
+// (brute_force so far; sweep_and_prune, spatial_hash, dynamic_bvh and
+// octree follow behind the same concept.)
+
+// ---- begin impulse/broadphase/broad_phase.hpp ----
+// impulse/broadphase/broad_phase.hpp — what every broad phase provides.
 //
-// A configuration is a struct of member types and constants that selects the
-// policies of a world or particle system. Inherit from default_config and
-// override what you need:
+// A broad phase keeps proxies (a box and the user's data under a stable
+// proxy_id) and answers which pairs of boxes overlap, cheaply enough to run
+// every step. The contract, checked by the concept below:
 //
-//   struct my_config : impulse::default_config {
-//     using scalar = double;
-//   };
-//   static_assert(impulse::check_config<my_config>());
+//   proxy_id create(const aabb<T>& box, std::uint64_t user_data);
+//   void move(proxy_id, const aabb<T>& box);     // the proxy's new box
+//   void destroy(proxy_id);
+//   void update();                              // brings the pairs up to date
+//   pairs(), begun(), ended()                   // spans of proxy_pair, sorted
+//   query(const aabb<T>&, callback(proxy_id))   // every proxy whose box overlaps
+//   ray_cast(const ray<T>&, T max_fraction, callback(proxy_id, T fraction) -> T)
+//   box(proxy_id), user_data(proxy_id), contains(proxy_id), size()
 //
-// Only members whose implementations exist are defaulted here; the others
-// (broadphase, solver, shapes, sleeping, ccd) are checked against their
-// concepts in core/policy.hpp when a config names them.
+// Pairs are as of the last update(): create, move and destroy take effect
+// at the next one. A ray-cast callback returns the new max_fraction: the
+// fraction it was given to clip the ray at that hit, the old maximum to go
+// on, 0 to stop. Bad input (a non-finite or inverted box, a stale id) is
+// refused with impulse::invalid_argument and changes nothing.
+
+#include <concepts>
+#include <cstdint>
+#include <span>
+
+// ---- begin impulse/math/aabb.hpp ----
+// impulse/math/aabb.hpp — axis-aligned bounding box.
+//
+// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
+// upper = -max), the identity of merge, so a box can be grown point by point
+// from it; is_valid is false for it until something is merged in.
+
+#include <limits>
+
+// ---- begin impulse/math/mat3.hpp ----
+// impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
+//
+// Stored as three columns, so m * v = v.x·c0 + v.y·c1 + v.z·c2 and the columns
+// of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
+// column c.
+
+#include <cmath>
+#include <optional>
+
+// ---- begin impulse/math/vec3.hpp ----
+// impulse/math/vec3.hpp — three-component vector of float or double.
+//
+// A plain aggregate: `vec3<float>{1, 2, 3}`. Arithmetic is constexpr; the
+// functions that need a square root (length, normalize) are not, because
+// std::sqrt is not constexpr in C++20.
+
+
+// ---- begin impulse/core/assert.hpp ----
+// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
+//
+// IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
+// to normalize, an index in range). It is on in debug builds and compiled out
+// when NDEBUG is defined, like <cassert>, so release hot loops pay nothing.
+// Bad *user input* at the API boundary is not asserted: it is reported with
+// impulse::invalid_argument (core/error.hpp) in every build.
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace impulse::detail {
+
+[[noreturn]] inline void assertion_failed(const char* expression, const char* file, int line) {
+  std::fprintf(stderr, "impulse: assertion failed: %s (%s:%d)\n", expression, file, line);
+  std::abort();
+}
+
+}  // namespace impulse::detail
+
+#if defined(NDEBUG) && !defined(IMPULSE_ENABLE_ASSERTS)
+#define IMPULSE_ASSERT(expression) static_cast<void>(0)
+#else
+#define IMPULSE_ASSERT(expression)                                                   \
+  ((expression) ? static_cast<void>(0)                                               \
+                : ::impulse::detail::assertion_failed(#expression, __FILE__, __LINE__))
+#endif
+// ---- end impulse/core/assert.hpp ----
+// ---- begin impulse/math/scalar_traits.hpp ----
+// impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
+//
+// Every tolerance the math layer uses lives here, with its unit and the reason
+// for its value, so that float and double builds differ in exactly these
+// numbers and nowhere else. Later layers (contacts, sleeping) add their own
+// struct of the same shape next to their code.
+
 
 // ---- begin impulse/core/policy.hpp ----
 // impulse/core/policy.hpp — the concepts a configuration's policies must model,
@@ -40,7 +120,6 @@
 // their operations, they require the policy to say which kind it is; the
 // operational requirements are added with the first implementation.
 
-#include <concepts>
 #include <cstddef>
 #include <type_traits>
 
@@ -191,6 +270,1147 @@ consteval bool check_config() {
 
 }  // namespace impulse
 // ---- end impulse/core/policy.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct scalar_traits;
+
+template <>
+struct scalar_traits<float> {
+  /// Machine epsilon (dimensionless): the spacing of floats at 1.
+  static constexpr float epsilon = std::numeric_limits<float>::epsilon();
+
+  /// Squared length (m², or the square of whatever unit the vector has) below
+  /// which a vector is treated as zero and refuses to be normalised. Chosen
+  /// far above the smallest normal float (1.2e-38) so that 1/sqrt of it is
+  /// finite, and far below any length a physics scene uses (1e-12 m).
+  static constexpr float zero_length_squared = 1e-24f;
+
+  /// Largest allowed | |v| - 1 | for a vector or quaternion that must be unit
+  /// (a plane normal, an orientation). Loose enough for a value written in
+  /// source with seven digits; tight enough that the rotation it describes is
+  /// off by less than 1e-5 rad.
+  static constexpr float unit_tolerance = 1e-5f;
+
+  /// Below this argument the exponential map uses the series
+  /// sin(h)/h = 1 - h²/6 instead of the quotient: the next term, h⁴/120, is
+  /// then under epsilon, and the series stays finite as |ω| -> 0 where the
+  /// quotient is 0/0. Solves h⁴/120 = epsilon: (120 · 1.19e-7)^(1/4) = 0.061.
+  static constexpr float series_threshold = 0.061f;
+
+  /// Relative tolerance for a determinant or pivot to count as singular.
+  static constexpr float singular_tolerance = 1e-6f;
+};
+
+template <>
+struct scalar_traits<double> {
+  static constexpr double epsilon = std::numeric_limits<double>::epsilon();
+  /// As for float; 1e-60 keeps 1/sqrt finite with room to spare (min 2.2e-308).
+  static constexpr double zero_length_squared = 1e-60;
+  /// 1e-10: a unit vector given with ten digits passes, rotations are off by < 1e-10 rad.
+  static constexpr double unit_tolerance = 1e-10;
+  /// (120 · 2.22e-16)^(1/4) = 4.1e-4.
+  static constexpr double series_threshold = 4.0e-4;
+  static constexpr double singular_tolerance = 1e-12;
+};
+
+}  // namespace impulse
+// ---- end impulse/math/scalar_traits.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct vec3 {
+  using scalar = T;
+
+  T x{};
+  T y{};
+  T z{};
+
+  static constexpr vec3 zero() noexcept { return {T(0), T(0), T(0)}; }
+  static constexpr vec3 unit_x() noexcept { return {T(1), T(0), T(0)}; }
+  static constexpr vec3 unit_y() noexcept { return {T(0), T(1), T(0)}; }
+  static constexpr vec3 unit_z() noexcept { return {T(0), T(0), T(1)}; }
+  static constexpr vec3 splat(T s) noexcept { return {s, s, s}; }
+
+  constexpr T& operator[](int i) noexcept {
+    IMPULSE_ASSERT(i >= 0 && i < 3);
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
+  constexpr const T& operator[](int i) const noexcept {
+    IMPULSE_ASSERT(i >= 0 && i < 3);
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
+
+  constexpr vec3& operator+=(const vec3& b) noexcept { x += b.x; y += b.y; z += b.z; return *this; }
+  constexpr vec3& operator-=(const vec3& b) noexcept { x -= b.x; y -= b.y; z -= b.z; return *this; }
+  constexpr vec3& operator*=(T s) noexcept { x *= s; y *= s; z *= s; return *this; }
+  constexpr vec3& operator/=(T s) noexcept { x /= s; y /= s; z /= s; return *this; }
+
+  friend constexpr bool operator==(const vec3&, const vec3&) = default;
+};
+
+template <scalar_type T> constexpr vec3<T> operator-(const vec3<T>& a) noexcept { return {-a.x, -a.y, -a.z}; }
+template <scalar_type T> constexpr vec3<T> operator+(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <scalar_type T> constexpr vec3<T> operator-(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <scalar_type T> constexpr vec3<T> operator*(const vec3<T>& a, T s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+template <scalar_type T> constexpr vec3<T> operator*(T s, const vec3<T>& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+template <scalar_type T> constexpr vec3<T> operator/(const vec3<T>& a, T s) noexcept { return {a.x / s, a.y / s, a.z / s}; }
+
+/// Componentwise (Hadamard) product and quotient.
+template <scalar_type T> constexpr vec3<T> mul(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+template <scalar_type T> constexpr vec3<T> div(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
+
+template <scalar_type T>
+constexpr T dot(const vec3<T>& a, const vec3<T>& b) noexcept {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+template <scalar_type T>
+constexpr vec3<T> cross(const vec3<T>& a, const vec3<T>& b) noexcept {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <scalar_type T> constexpr T length_squared(const vec3<T>& a) noexcept { return dot(a, a); }
+template <scalar_type T> T length(const vec3<T>& a) noexcept { return std::sqrt(dot(a, a)); }
+template <scalar_type T> T distance(const vec3<T>& a, const vec3<T>& b) noexcept { return length(a - b); }
+
+/// Unit vector along a. Precondition: a is not (nearly) zero; use
+/// normalize_or when it may be.
+template <scalar_type T>
+vec3<T> normalize(const vec3<T>& a) noexcept {
+  const T l2 = length_squared(a);
+  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  return a * (T(1) / std::sqrt(l2));
+}
+
+/// True when | |a| - 1 | is within scalar_traits<T>::unit_tolerance.
+template <scalar_type T>
+bool is_normalized(const vec3<T>& a) noexcept {
+  return std::abs(length_squared(a) - T(1)) <= T(2) * scalar_traits<T>::unit_tolerance;
+}
+
+template <scalar_type T>
+bool is_finite(const vec3<T>& a) noexcept {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+
+template <scalar_type T>
+constexpr vec3<T> min(const vec3<T>& a, const vec3<T>& b) noexcept {
+  return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
+}
+template <scalar_type T>
+constexpr vec3<T> max(const vec3<T>& a, const vec3<T>& b) noexcept {
+  return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
+}
+template <scalar_type T>
+constexpr vec3<T> abs(const vec3<T>& a) noexcept {
+  return {a.x < T(0) ? -a.x : a.x, a.y < T(0) ? -a.y : a.y, a.z < T(0) ? -a.z : a.z};
+}
+template <scalar_type T> constexpr T min_component(const vec3<T>& a) noexcept { return a.x < a.y ? (a.x < a.z ? a.x : a.z) : (a.y < a.z ? a.y : a.z); }
+template <scalar_type T> constexpr T max_component(const vec3<T>& a) noexcept { return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z); }
+
+/// Unit vector along a, or `fallback` when a has no direction: too short,
+/// or with a NaN or infinite component. A finite vector so long that its
+/// squared length overflows (beyond 1.8e19 in float) is scaled down first.
+template <scalar_type T>
+vec3<T> normalize_or(const vec3<T>& a, const vec3<T>& fallback) noexcept {
+  if (!is_finite(a)) return fallback;
+  const T l2 = length_squared(a);
+  if (!(l2 <= std::numeric_limits<T>::max())) return normalize_or(a / max_component(abs(a)), fallback);
+  if (!(l2 > scalar_traits<T>::zero_length_squared)) return fallback;
+  return a * (T(1) / std::sqrt(l2));
+}
+
+/// a + (b - a)·t; t = 0 gives a, t = 1 gives b exactly.
+template <scalar_type T>
+constexpr vec3<T> lerp(const vec3<T>& a, const vec3<T>& b, T t) noexcept {
+  return a * (T(1) - t) + b * t;
+}
+
+/// A unit vector perpendicular to the unit vector n (for building bases).
+/// Crossing with the axis of the smaller of |n.x| and |n.z| keeps the
+/// product's length sqrt(1 - min(n.x², n.z²)) at least 1/√2, so the
+/// normalisation never divides by a small number.
+template <scalar_type T>
+vec3<T> any_perpendicular(const vec3<T>& n) noexcept {
+  const vec3<T> other = std::abs(n.x) < std::abs(n.z) ? vec3<T>::unit_x() : vec3<T>::unit_z();
+  return normalize(cross(n, other));
+}
+
+}  // namespace impulse
+// ---- end impulse/math/vec3.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct mat3 {
+  using scalar = T;
+
+  vec3<T> col[3]{};
+
+  static constexpr mat3 zero() noexcept { return {}; }
+  static constexpr mat3 identity() noexcept { return diagonal({T(1), T(1), T(1)}); }
+  static constexpr mat3 diagonal(const vec3<T>& d) noexcept {
+    return from_columns({d.x, T(0), T(0)}, {T(0), d.y, T(0)}, {T(0), T(0), d.z});
+  }
+  static constexpr mat3 from_columns(const vec3<T>& c0, const vec3<T>& c1, const vec3<T>& c2) noexcept {
+    mat3 m;
+    m.col[0] = c0;
+    m.col[1] = c1;
+    m.col[2] = c2;
+    return m;
+  }
+  static constexpr mat3 from_rows(const vec3<T>& r0, const vec3<T>& r1, const vec3<T>& r2) noexcept {
+    return from_columns({r0.x, r1.x, r2.x}, {r0.y, r1.y, r2.y}, {r0.z, r1.z, r2.z});
+  }
+
+  constexpr T& operator()(int row, int column) noexcept { return col[column][row]; }
+  constexpr const T& operator()(int row, int column) const noexcept { return col[column][row]; }
+  constexpr vec3<T> row(int r) const noexcept { return {col[0][r], col[1][r], col[2][r]}; }
+
+  constexpr mat3& operator+=(const mat3& b) noexcept { for (int c = 0; c < 3; ++c) col[c] += b.col[c]; return *this; }
+  constexpr mat3& operator-=(const mat3& b) noexcept { for (int c = 0; c < 3; ++c) col[c] -= b.col[c]; return *this; }
+  constexpr mat3& operator*=(T s) noexcept { for (int c = 0; c < 3; ++c) col[c] *= s; return *this; }
+
+  friend constexpr bool operator==(const mat3& a, const mat3& b) noexcept {
+    return a.col[0] == b.col[0] && a.col[1] == b.col[1] && a.col[2] == b.col[2];
+  }
+};
+
+template <scalar_type T> constexpr mat3<T> operator+(mat3<T> a, const mat3<T>& b) noexcept { return a += b; }
+template <scalar_type T> constexpr mat3<T> operator-(mat3<T> a, const mat3<T>& b) noexcept { return a -= b; }
+template <scalar_type T> constexpr mat3<T> operator*(mat3<T> a, T s) noexcept { return a *= s; }
+template <scalar_type T> constexpr mat3<T> operator*(T s, mat3<T> a) noexcept { return a *= s; }
+template <scalar_type T> constexpr mat3<T> operator-(const mat3<T>& a) noexcept { return a * T(-1); }
+
+template <scalar_type T>
+constexpr vec3<T> operator*(const mat3<T>& m, const vec3<T>& v) noexcept {
+  return m.col[0] * v.x + m.col[1] * v.y + m.col[2] * v.z;
+}
+
+template <scalar_type T>
+constexpr mat3<T> operator*(const mat3<T>& a, const mat3<T>& b) noexcept {
+  return mat3<T>::from_columns(a * b.col[0], a * b.col[1], a * b.col[2]);
+}
+
+template <scalar_type T>
+constexpr mat3<T> transpose(const mat3<T>& m) noexcept {
+  return mat3<T>::from_rows(m.col[0], m.col[1], m.col[2]);
+}
+
+/// mᵀ·v without forming the transpose (world-to-body for a rotation matrix).
+template <scalar_type T>
+constexpr vec3<T> transpose_mul(const mat3<T>& m, const vec3<T>& v) noexcept {
+  return {dot(m.col[0], v), dot(m.col[1], v), dot(m.col[2], v)};
+}
+
+template <scalar_type T>
+constexpr T trace(const mat3<T>& m) noexcept {
+  return m.col[0].x + m.col[1].y + m.col[2].z;
+}
+
+template <scalar_type T>
+constexpr T determinant(const mat3<T>& m) noexcept {
+  return dot(m.col[0], cross(m.col[1], m.col[2]));
+}
+
+/// The cross-product matrix: skew(a) * b == cross(a, b).
+template <scalar_type T>
+constexpr mat3<T> skew(const vec3<T>& a) noexcept {
+  return mat3<T>::from_columns({T(0), a.z, -a.y}, {-a.z, T(0), a.x}, {a.y, -a.x, T(0)});
+}
+
+/// The outer product a·bᵀ.
+template <scalar_type T>
+constexpr mat3<T> outer(const vec3<T>& a, const vec3<T>& b) noexcept {
+  return mat3<T>::from_columns(a * b.x, a * b.y, a * b.z);
+}
+
+/// Inverse by the adjugate, or nothing when |det| is below
+/// scalar_traits<T>::singular_tolerance times the product of the column
+/// lengths (a scale-free test: a tiny but well-conditioned inertia tensor
+/// still inverts, a rank-deficient one of any size does not).
+template <scalar_type T>
+std::optional<mat3<T>> try_inverse(const mat3<T>& m) noexcept {
+  // The rows of the inverse are the cross products of pairs of columns over det.
+  const vec3<T> r0 = cross(m.col[1], m.col[2]);
+  const vec3<T> r1 = cross(m.col[2], m.col[0]);
+  const vec3<T> r2 = cross(m.col[0], m.col[1]);
+  const T det = dot(m.col[0], r0);
+  const T scale = length(m.col[0]) * length(m.col[1]) * length(m.col[2]);
+  if (!(std::abs(det) > scalar_traits<T>::singular_tolerance * scale)) return std::nullopt;
+  return mat3<T>::from_rows(r0, r1, r2) * (T(1) / det);
+}
+
+/// Inverse of a matrix known to be invertible. Precondition checked by IMPULSE_ASSERT.
+template <scalar_type T>
+mat3<T> inverse(const mat3<T>& m) noexcept {
+  const std::optional<mat3<T>> inv = try_inverse(m);
+  IMPULSE_ASSERT(inv.has_value());
+  return inv ? *inv : mat3<T>::zero();
+}
+
+template <scalar_type T>
+bool is_finite(const mat3<T>& m) noexcept {
+  return is_finite(m.col[0]) && is_finite(m.col[1]) && is_finite(m.col[2]);
+}
+
+}  // namespace impulse
+// ---- end impulse/math/mat3.hpp ----
+// ---- begin impulse/math/transform.hpp ----
+// impulse/math/transform.hpp — rigid transform: a rotation followed by a translation.
+//
+// apply(t, p) = rotate(t.rotation, p) + t.position maps body space to world
+// space. (a * b) applies b first, then a, matching quaternion composition.
+
+// ---- begin impulse/math/quat.hpp ----
+// impulse/math/quat.hpp — unit quaternions for orientation (Hamilton convention).
+//
+// q = w + xi + yj + zk, stored x, y, z, w. A unit quaternion rotates v by
+// q v q*; composition a * b applies b first, then a. Orientation is advanced
+// by the exact exponential map (Baraff 2001, "Physically Based Modeling:
+// Rigid Body Simulation", with the closed form of exp for a pure quaternion),
+// never by adding ½ω q dt, which leaves the unit sphere at first order.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct quat {
+  using scalar = T;
+
+  T x{};
+  T y{};
+  T z{};
+  T w{1};
+
+  static constexpr quat identity() noexcept { return {T(0), T(0), T(0), T(1)}; }
+
+  /// Rotation by `angle` radians about `axis`. The axis must be unit length.
+  static quat from_axis_angle(const vec3<T>& axis, T angle) noexcept {
+    IMPULSE_ASSERT(is_normalized(axis));
+    const T s = std::sin(angle * T(0.5));
+    return {axis.x * s, axis.y * s, axis.z * s, std::cos(angle * T(0.5))};
+  }
+
+  constexpr vec3<T> vector_part() const noexcept { return {x, y, z}; }
+
+  friend constexpr bool operator==(const quat&, const quat&) = default;
+};
+
+/// Hamilton product: (a * b) rotates by b, then by a.
+template <scalar_type T>
+constexpr quat<T> operator*(const quat<T>& a, const quat<T>& b) noexcept {
+  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+
+template <scalar_type T>
+constexpr quat<T> operator*(const quat<T>& q, T s) noexcept {
+  return {q.x * s, q.y * s, q.z * s, q.w * s};
+}
+template <scalar_type T>
+constexpr quat<T> operator+(const quat<T>& a, const quat<T>& b) noexcept {
+  return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w};
+}
+
+template <scalar_type T>
+constexpr quat<T> conjugate(const quat<T>& q) noexcept {
+  return {-q.x, -q.y, -q.z, q.w};
+}
+
+template <scalar_type T>
+constexpr T dot(const quat<T>& a, const quat<T>& b) noexcept {
+  return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w;
+}
+
+template <scalar_type T> constexpr T length_squared(const quat<T>& q) noexcept { return dot(q, q); }
+template <scalar_type T> T length(const quat<T>& q) noexcept { return std::sqrt(dot(q, q)); }
+
+/// q / |q|. Precondition: q is not (nearly) zero.
+template <scalar_type T>
+quat<T> normalize(const quat<T>& q) noexcept {
+  const T l2 = length_squared(q);
+  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  return q * (T(1) / std::sqrt(l2));
+}
+
+template <scalar_type T>
+bool is_normalized(const quat<T>& q) noexcept {
+  return std::abs(length_squared(q) - T(1)) <= T(2) * scalar_traits<T>::unit_tolerance;
+}
+
+template <scalar_type T>
+bool is_finite(const quat<T>& q) noexcept {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+
+/// Inverse of any non-zero quaternion; for a unit quaternion use conjugate.
+template <scalar_type T>
+quat<T> inverse(const quat<T>& q) noexcept {
+  const T l2 = length_squared(q);
+  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  return conjugate(q) * (T(1) / l2);
+}
+
+/// Rotates v by the unit quaternion q: q v q*, expanded to
+/// v + 2w(u × v) + 2u × (u × v) with u the vector part (15 multiplies
+/// instead of the 28 of two Hamilton products).
+template <scalar_type T>
+constexpr vec3<T> rotate(const quat<T>& q, const vec3<T>& v) noexcept {
+  const vec3<T> u = q.vector_part();
+  const vec3<T> t = cross(u, v) * T(2);
+  return v + t * q.w + cross(u, t);
+}
+
+/// Rotates v by the inverse of the unit quaternion q (world to body).
+template <scalar_type T>
+constexpr vec3<T> inverse_rotate(const quat<T>& q, const vec3<T>& v) noexcept {
+  return rotate(conjugate(q), v);
+}
+
+/// Rotation matrix of the unit quaternion q (columns are the rotated axes).
+template <scalar_type T>
+constexpr mat3<T> to_mat3(const quat<T>& q) noexcept {
+  const T xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+  const T xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+  const T wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+  return mat3<T>::from_columns({T(1) - T(2) * (yy + zz), T(2) * (xy + wz), T(2) * (xz - wy)},
+                               {T(2) * (xy - wz), T(1) - T(2) * (xx + zz), T(2) * (yz + wx)},
+                               {T(2) * (xz + wy), T(2) * (yz - wx), T(1) - T(2) * (xx + yy)});
+}
+
+/// Unit quaternion of a rotation matrix (Shepperd's method: take the square
+/// root of the largest of w², x², y², z² so the division is never by a small
+/// number). The result has w >= 0.
+template <scalar_type T>
+quat<T> from_mat3(const mat3<T>& m) noexcept {
+  const T m00 = m(0, 0), m11 = m(1, 1), m22 = m(2, 2);
+  const T tr = m00 + m11 + m22;
+  quat<T> q;
+  if (tr >= m00 && tr >= m11 && tr >= m22) {
+    const T s = std::sqrt(T(1) + tr) * T(2);  // 4w
+    q = {(m(2, 1) - m(1, 2)) / s, (m(0, 2) - m(2, 0)) / s, (m(1, 0) - m(0, 1)) / s, s * T(0.25)};
+  } else if (m00 >= m11 && m00 >= m22) {
+    const T s = std::sqrt(T(1) + m00 - m11 - m22) * T(2);  // 4x
+    q = {s * T(0.25), (m(0, 1) + m(1, 0)) / s, (m(0, 2) + m(2, 0)) / s, (m(2, 1) - m(1, 2)) / s};
+  } else if (m11 >= m22) {
+    const T s = std::sqrt(T(1) + m11 - m00 - m22) * T(2);  // 4y
+    q = {(m(0, 1) + m(1, 0)) / s, s * T(0.25), (m(1, 2) + m(2, 1)) / s, (m(0, 2) - m(2, 0)) / s};
+  } else {
+    const T s = std::sqrt(T(1) + m22 - m00 - m11) * T(2);  // 4z
+    q = {(m(0, 2) + m(2, 0)) / s, (m(1, 2) + m(2, 1)) / s, s * T(0.25), (m(1, 0) - m(0, 1)) / s};
+  }
+  if (q.w < T(0)) q = q * T(-1);
+  return normalize(q);
+}
+
+/// exp of the pure quaternion (0, v): (v/|v| · sin|v|, cos|v|). A unit
+/// quaternion for every v; the series branch keeps it exact and finite as
+/// |v| -> 0 (see scalar_traits::series_threshold).
+template <scalar_type T>
+quat<T> exp_pure(const vec3<T>& v) noexcept {
+  const T h = length(v);
+  const T sin_h_over_h = h < scalar_traits<T>::series_threshold ? T(1) - h * h / T(6)
+                                                                : std::sin(h) / h;
+  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, std::cos(h)};
+}
+
+/// Orientation after turning at constant world-space angular velocity
+/// `omega` (rad/s) for `dt` seconds: exp(ω dt / 2) * q. Exact for constant ω,
+/// so a body spinning about a fixed axis accumulates only rounding error.
+/// The exponential is unit in exact arithmetic; the final normalisation
+/// removes the rounding that would otherwise random-walk |q| away from 1
+/// (about √N · epsilon after N steps: 1e-4 in float after 10^6 steps).
+template <scalar_type T>
+quat<T> integrate(const quat<T>& q, const vec3<T>& omega, T dt) noexcept {
+  return normalize(exp_pure(omega * (dt * T(0.5))) * q);
+}
+
+/// Angle (radians, in [0, π]) of the rotation taking unit a to unit b.
+/// Uses atan2 of the relative rotation's vector and scalar parts rather than
+/// acos(|a·b|): acos is flat at 1 and cannot resolve angles below
+/// √(2·epsilon) (2e-8 rad in double), exactly the errors a test wants to see.
+template <scalar_type T>
+T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
+  const quat<T> d = conjugate(a) * b;
+  return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
+}
+
+}  // namespace impulse
+// ---- end impulse/math/quat.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct transform {
+  using scalar = T;
+
+  vec3<T> position{};
+  quat<T> rotation{};
+
+  static constexpr transform identity() noexcept { return {vec3<T>::zero(), quat<T>::identity()}; }
+
+  friend constexpr bool operator==(const transform&, const transform&) = default;
+};
+
+/// Body-space point to world space.
+template <scalar_type T>
+constexpr vec3<T> apply(const transform<T>& t, const vec3<T>& p) noexcept {
+  return rotate(t.rotation, p) + t.position;
+}
+
+/// Body-space direction to world space (no translation).
+template <scalar_type T>
+constexpr vec3<T> apply_direction(const transform<T>& t, const vec3<T>& d) noexcept {
+  return rotate(t.rotation, d);
+}
+
+/// World-space point to body space: the inverse of apply.
+template <scalar_type T>
+constexpr vec3<T> inverse_apply(const transform<T>& t, const vec3<T>& p) noexcept {
+  return inverse_rotate(t.rotation, p - t.position);
+}
+
+/// World-space direction to body space.
+template <scalar_type T>
+constexpr vec3<T> inverse_apply_direction(const transform<T>& t, const vec3<T>& d) noexcept {
+  return inverse_rotate(t.rotation, d);
+}
+
+template <scalar_type T>
+constexpr transform<T> inverse(const transform<T>& t) noexcept {
+  const quat<T> r = conjugate(t.rotation);
+  return {-rotate(r, t.position), r};
+}
+
+/// Composition: apply(a * b, p) == apply(a, apply(b, p)).
+template <scalar_type T>
+constexpr transform<T> operator*(const transform<T>& a, const transform<T>& b) noexcept {
+  return {rotate(a.rotation, b.position) + a.position, a.rotation * b.rotation};
+}
+
+/// The relative transform that maps b's body space into a's: inverse(a) * b,
+/// computed without forming the inverse.
+template <scalar_type T>
+constexpr transform<T> inverse_mul(const transform<T>& a, const transform<T>& b) noexcept {
+  const quat<T> ra = conjugate(a.rotation);
+  return {rotate(ra, b.position - a.position), ra * b.rotation};
+}
+
+}  // namespace impulse
+// ---- end impulse/math/transform.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+struct aabb {
+  using scalar = T;
+
+  vec3<T> lower{};
+  vec3<T> upper{};
+
+  static constexpr aabb empty() noexcept {
+    constexpr T big = std::numeric_limits<T>::max();
+    return {vec3<T>::splat(big), vec3<T>::splat(-big)};
+  }
+  static constexpr aabb from_center_half_extents(const vec3<T>& center, const vec3<T>& half) noexcept {
+    return {center - half, center + half};
+  }
+
+  friend constexpr bool operator==(const aabb&, const aabb&) = default;
+};
+
+template <scalar_type T> constexpr vec3<T> center(const aabb<T>& b) noexcept { return (b.lower + b.upper) * T(0.5); }
+template <scalar_type T> constexpr vec3<T> half_extents(const aabb<T>& b) noexcept { return (b.upper - b.lower) * T(0.5); }
+
+template <scalar_type T>
+constexpr bool is_valid(const aabb<T>& b) noexcept {
+  return b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.z <= b.upper.z;
+}
+
+template <scalar_type T>
+constexpr bool contains(const aabb<T>& b, const vec3<T>& p) noexcept {
+  return b.lower.x <= p.x && p.x <= b.upper.x && b.lower.y <= p.y && p.y <= b.upper.y &&
+         b.lower.z <= p.z && p.z <= b.upper.z;
+}
+
+/// True when `inner` lies entirely inside `outer` (touching faces count).
+template <scalar_type T>
+constexpr bool contains(const aabb<T>& outer, const aabb<T>& inner) noexcept {
+  return contains(outer, inner.lower) && contains(outer, inner.upper);
+}
+
+/// True when the boxes share at least one point (touching faces overlap).
+template <scalar_type T>
+constexpr bool overlaps(const aabb<T>& a, const aabb<T>& b) noexcept {
+  return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
+         b.lower.y <= a.upper.y && a.lower.z <= b.upper.z && b.lower.z <= a.upper.z;
+}
+
+template <scalar_type T>
+constexpr aabb<T> merge(const aabb<T>& a, const aabb<T>& b) noexcept {
+  return {min(a.lower, b.lower), max(a.upper, b.upper)};
+}
+
+template <scalar_type T>
+constexpr aabb<T> merge(const aabb<T>& a, const vec3<T>& p) noexcept {
+  return {min(a.lower, p), max(a.upper, p)};
+}
+
+/// The box grown by `margin` on every side (fat AABBs for the broad phase).
+template <scalar_type T>
+constexpr aabb<T> expand(const aabb<T>& b, T margin) noexcept {
+  const vec3<T> m = vec3<T>::splat(margin);
+  return {b.lower - m, b.upper + m};
+}
+
+/// Surface area: the cost metric of the surface-area heuristic in a BVH.
+template <scalar_type T>
+constexpr T surface_area(const aabb<T>& b) noexcept {
+  const vec3<T> d = b.upper - b.lower;
+  return T(2) * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+template <scalar_type T>
+constexpr T volume(const aabb<T>& b) noexcept {
+  const vec3<T> d = b.upper - b.lower;
+  return d.x * d.y * d.z;
+}
+
+/// World box of a body-space box under a rigid transform: the tightest
+/// axis-aligned box around the rotated box (Arvo, Graphics Gems 1990). The
+/// rotated half extents are |R|·h, with |R| the elementwise absolute value.
+template <scalar_type T>
+constexpr aabb<T> transform_aabb(const aabb<T>& b, const transform<T>& t) noexcept {
+  const mat3<T> r = to_mat3(t.rotation);
+  const vec3<T> h = half_extents(b);
+  const mat3<T> abs_r = mat3<T>::from_columns(abs(r.col[0]), abs(r.col[1]), abs(r.col[2]));
+  return aabb<T>::from_center_half_extents(apply(t, center(b)), abs_r * h);
+}
+
+}  // namespace impulse
+// ---- end impulse/math/aabb.hpp ----
+// ---- begin impulse/broadphase/proxy.hpp ----
+// impulse/broadphase/proxy.hpp — what every broad phase stores and reports.
+//
+// A proxy is an axis-aligned box with the user's data, named by a stable
+// proxy_id. A pair is two proxies whose boxes overlap (closed boxes:
+// touching faces count), reported once, lower slot first. A ray is a
+// segment origin + t·translation, t ∈ [0, max_fraction], as in Box2D's
+// b2RayCastInput: a fraction rather than a distance, so that the caller can
+// clip the segment as hits come in.
+
+
+// ---- begin impulse/core/error.hpp ----
+// impulse/core/error.hpp — how bad input is reported at the API boundary.
+//
+// Invalid input never silently corrupts a world (DESIGN.md, "Errors and bad
+// input"): a function that receives a NaN position, a zero mass or a
+// degenerate shape reports it before changing any state. With exceptions
+// enabled the report is an impulse::invalid_argument carrying an error code,
+// a message and, where one exists, the id of the object concerned. Built with
+// -fno-exceptions the same report goes to the handler installed with
+// set_error_handler (the default prints and aborts), and callers that need to
+// recover use the functions that return an error_code instead.
+
+#include <stdexcept>
+
+namespace impulse {
+
+/// What was wrong with an argument. Stable values: they appear in logs.
+enum class error_code : std::uint8_t {
+  none = 0,
+  non_finite,          ///< NaN or infinity in a position, velocity, force or parameter
+  non_positive_mass,   ///< zero or negative mass or density
+  degenerate_shape,    ///< zero or negative extent, coplanar hull, zero-length normal
+  not_normalized,      ///< a direction or plane normal that must have unit length
+  capacity_exceeded,   ///< more elements than the container was created for
+  out_of_range,        ///< an index or handle that does not name a live object
+  invalid_parameter,   ///< any other value outside its documented range
+};
+
+/// A short, stable name for an error code ("non_finite", ...).
+constexpr const char* to_string(error_code code) noexcept {
+  switch (code) {
+    case error_code::none: return "none";
+    case error_code::non_finite: return "non_finite";
+    case error_code::non_positive_mass: return "non_positive_mass";
+    case error_code::degenerate_shape: return "degenerate_shape";
+    case error_code::not_normalized: return "not_normalized";
+    case error_code::capacity_exceeded: return "capacity_exceeded";
+    case error_code::out_of_range: return "out_of_range";
+    case error_code::invalid_parameter: return "invalid_parameter";
+  }
+  return "unknown";
+}
+
+/// Sentinel for "no particular object": the error concerns the call as a whole.
+inline constexpr std::uint32_t no_object = 0xffffffffu;
+
+/// Thrown for invalid input. what() is a full sentence naming the argument;
+/// code() and object() let a program react without parsing it.
+class invalid_argument : public std::invalid_argument {
+ public:
+  invalid_argument(error_code code, const char* message, std::uint32_t object = no_object)
+      : std::invalid_argument(message), code_(code), object_(object) {}
+
+  [[nodiscard]] error_code code() const noexcept { return code_; }
+  /// Index or id of the body/particle/shape concerned, or impulse::no_object.
+  [[nodiscard]] std::uint32_t object() const noexcept { return object_; }
+
+ private:
+  error_code code_;
+  std::uint32_t object_;
+};
+
+/// Called instead of throwing when exceptions are disabled.
+using error_handler = void (*)(error_code code, const char* message, std::uint32_t object);
+
+namespace detail {
+
+inline void default_error_handler(error_code code, const char* message, std::uint32_t object) {
+  std::fprintf(stderr, "impulse: %s (%s, object %u)\n", message, to_string(code),
+               static_cast<unsigned>(object));
+  std::abort();
+}
+
+inline error_handler& current_error_handler() noexcept {
+  static error_handler handler = &default_error_handler;
+  return handler;
+}
+
+}  // namespace detail
+
+/// Installs the handler used in builds without exceptions; returns the old one.
+inline error_handler set_error_handler(error_handler handler) noexcept {
+  error_handler old = detail::current_error_handler();
+  detail::current_error_handler() = handler ? handler : &detail::default_error_handler;
+  return old;
+}
+
+namespace detail {
+
+/// Reports invalid input: throws impulse::invalid_argument, or calls the
+/// installed handler when built with -fno-exceptions.
+[[noreturn]] inline void report_error(error_code code, const char* message,
+                                      std::uint32_t object = no_object) {
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS)
+  throw invalid_argument(code, message, object);
+#else
+  current_error_handler()(code, message, object);
+  std::abort();  // a handler that returns cannot resume the operation
+#endif
+}
+
+}  // namespace detail
+}  // namespace impulse
+// ---- end impulse/core/error.hpp ----
+// ---- begin impulse/broadphase/fwd.hpp ----
+// impulse/broadphase/fwd.hpp — the broad phase module's names.
+
+// ---- begin impulse/core/slot_map.hpp ----
+// impulse/core/slot_map.hpp — dense storage addressed by stable, checked ids.
+//
+// Bodies and springs live in dense arrays so that a step runs over
+// contiguous memory, and are named by ids that stay valid while the objects
+// around them come and go (Box2D's b2BodyId works the same way). An id is a
+// slot index and the slot's generation: removing an object bumps its slot's
+// generation, so a stale id is recognised and refused instead of silently
+// naming whatever took the slot next. Removal moves the last element into
+// the hole, so dense positions change; ids do not.
+
+#include <utility>
+#include <vector>
+
+
+namespace impulse {
+
+/// A stable, checked handle. Tag keeps body and spring ids apart at
+/// compile time.
+template <class Tag>
+struct object_id {
+  std::uint32_t index = no_object;  ///< slot; no_object for "none"
+  std::uint32_t generation = 0;     ///< bumped each time the slot is freed
+
+  [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
+  friend constexpr bool operator==(const object_id&, const object_id&) = default;
+};
+
+template <class V, class Id>
+class slot_map {
+ public:
+  [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
+  [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
+  [[nodiscard]] bool contains(Id id) const noexcept {
+    return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
+           slots_[id.index].dense != free_slot;
+  }
+
+  Id insert(V value) {
+    std::uint32_t slot;
+    if (free_.empty()) {
+      slot = static_cast<std::uint32_t>(slots_.size());
+      slots_.push_back({free_slot, 0});
+    } else {
+      slot = free_.back();
+      free_.pop_back();
+    }
+    slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
+    values_.push_back(std::move(value));
+    ids_.push_back(Id{slot, slots_[slot].generation});
+    return ids_.back();
+  }
+
+  /// Removes the object; the caller has checked contains(id).
+  void erase(Id id) {
+    const std::uint32_t dense = slots_[id.index].dense, last = static_cast<std::uint32_t>(values_.size() - 1);
+    if (dense != last) {
+      values_[dense] = std::move(values_[last]);
+      ids_[dense] = ids_[last];
+      slots_[ids_[dense].index].dense = dense;
+    }
+    values_.pop_back();
+    ids_.pop_back();
+    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
+    free_.push_back(id.index);
+  }
+
+  /// Position of a live id in the dense arrays.
+  [[nodiscard]] std::size_t dense_index(Id id) const noexcept { return slots_[id.index].dense; }
+  [[nodiscard]] V& operator[](Id id) noexcept { return values_[dense_index(id)]; }
+  [[nodiscard]] const V& operator[](Id id) const noexcept { return values_[dense_index(id)]; }
+
+  /// The dense arrays: values()[i] is the object whose id is ids()[i].
+  [[nodiscard]] std::vector<V>& values() noexcept { return values_; }
+  [[nodiscard]] const std::vector<V>& values() const noexcept { return values_; }
+  [[nodiscard]] const std::vector<Id>& ids() const noexcept { return ids_; }
+
+ private:
+  static constexpr std::uint32_t free_slot = 0xffffffffu;
+  struct slot {
+    std::uint32_t dense;
+    std::uint32_t generation;
+  };
+  std::vector<V> values_;
+  std::vector<Id> ids_;
+  std::vector<slot> slots_;
+  std::vector<std::uint32_t> free_;
+};
+
+}  // namespace impulse
+// ---- end impulse/core/slot_map.hpp ----
+
+namespace impulse {
+
+struct proxy_tag;
+/// Names a proxy (a box and its user data) in a broad phase.
+using proxy_id = object_id<proxy_tag>;
+struct proxy_pair;
+template <scalar_type T> struct ray;
+
+namespace broadphase {
+template <scalar_type T> class basic_brute_force;
+struct brute_force;
+}  // namespace broadphase
+
+}  // namespace impulse
+// ---- end impulse/broadphase/fwd.hpp ----
+
+namespace impulse {
+
+struct proxy_pair {
+  proxy_id a;  ///< the proxy with the lower slot index
+  proxy_id b;
+
+  friend constexpr bool operator==(const proxy_pair&, const proxy_pair&) = default;
+  /// Slot order first, so that pairs sort the same way in every broad phase.
+  friend constexpr bool operator<(const proxy_pair& x, const proxy_pair& y) noexcept {
+    if (x.a.index != y.a.index) return x.a.index < y.a.index;
+    if (x.b.index != y.b.index) return x.b.index < y.b.index;
+    if (x.a.generation != y.a.generation) return x.a.generation < y.a.generation;
+    return x.b.generation < y.b.generation;
+  }
+};
+
+/// The pair of two distinct proxies, in canonical order.
+constexpr proxy_pair pair_of(proxy_id x, proxy_id y) noexcept {
+  return x.index < y.index ? proxy_pair{x, y} : proxy_pair{y, x};
+}
+
+template <scalar_type T>
+struct ray {
+  vec3<T> origin{};
+  vec3<T> translation{};  ///< the segment's end at fraction 1 is origin + translation
+};
+
+/// The fraction t ∈ [0, max_fraction] at which the ray enters the box (0
+/// when it starts inside), or nothing. Slab test; an axis along which the
+/// ray does not move is a test of the origin alone, so a zero component
+/// never divides.
+template <scalar_type T>
+[[nodiscard]] std::optional<T> ray_enters(const ray<T>& r, T max_fraction, const aabb<T>& box) noexcept {
+  T enter = T(0), leave = max_fraction;
+  for (int axis = 0; axis < 3; ++axis) {
+    const T o = r.origin[axis], d = r.translation[axis], lo = box.lower[axis], hi = box.upper[axis];
+    if (d == T(0)) {
+      if (o < lo || o > hi) return std::nullopt;
+      continue;
+    }
+    const T inverse = T(1) / d;
+    T t0 = (lo - o) * inverse, t1 = (hi - o) * inverse;
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::fmax(enter, t0);
+    leave = std::fmin(leave, t1);
+    if (enter > leave) return std::nullopt;
+  }
+  return enter;
+}
+
+namespace broadphase::detail {
+
+/// Refuses a ray that is not finite or a negative or non-finite maximum.
+template <scalar_type T>
+void require_ray(const ray<T>& r, T max_fraction) {
+  if (!is_finite(r.origin) || !is_finite(r.translation) || !std::isfinite(max_fraction))
+    impulse::detail::report_error(error_code::non_finite, "broad phase: the ray is not finite");
+  if (max_fraction < T(0))
+    impulse::detail::report_error(error_code::invalid_parameter, "broad phase: max_fraction must be >= 0");
+}
+
+}  // namespace broadphase::detail
+}  // namespace impulse
+// ---- end impulse/broadphase/proxy.hpp ----
+
+namespace impulse::broadphase {
+
+template <class B, class T>
+concept broad_phase = requires(B& b, const B& cb, const aabb<T>& box, proxy_id id, const ray<T>& r) {
+  { b.create(box, std::uint64_t{}) } -> std::same_as<proxy_id>;
+  b.move(id, box);
+  b.destroy(id);
+  b.update();
+  { cb.pairs() } -> std::convertible_to<std::span<const proxy_pair>>;
+  { cb.begun() } -> std::convertible_to<std::span<const proxy_pair>>;
+  { cb.ended() } -> std::convertible_to<std::span<const proxy_pair>>;
+  cb.query(box, [](proxy_id) {});
+  cb.ray_cast(r, T(1), [](proxy_id, T fraction) { return fraction; });
+  { cb.box(id) } -> std::convertible_to<aabb<T>>;
+  { cb.user_data(id) } -> std::convertible_to<std::uint64_t>;
+  { cb.contains(id) } -> std::same_as<bool>;
+  { cb.size() } -> std::convertible_to<std::size_t>;
+};
+
+}  // namespace impulse::broadphase
+// ---- end impulse/broadphase/broad_phase.hpp ----
+// ---- begin impulse/broadphase/brute_force.hpp ----
+// impulse/broadphase/brute_force.hpp — every pair tested, every step.
+//
+// The O(n²) baseline: correct by inspection, so every other broad phase is
+// tested against it, and fast enough for a few dozen bodies, where the
+// bookkeeping of the others costs more than the tests it saves.
+
+
+// ---- begin impulse/broadphase/pair_tracker.hpp ----
+// impulse/broadphase/pair_tracker.hpp — the overlapping pairs after an
+// update, and what changed since the one before.
+//
+// Every broad phase reports the whole current set of pairs, sorted, plus
+// the pairs that began and ended since the previous update. The whole set
+// because the narrow phase needs every touching pair every step anyway; the
+// differences because contact begin and end events need them, and every
+// broad phase can afford them this way: a sort and one merge over sets the
+// step already touches. (An incremental sweep and prune knows the
+// differences first-hand; it still reports through here, so that all broad
+// phases agree by construction on what a "began" pair is.) A destroyed
+// proxy's pairs are reported as ended at the next update; pairs compare
+// with their ids' generations, so a new proxy in a freed slot starts new
+// pairs rather than continuing the old proxy's.
+
+#include <algorithm>
+
+
+namespace impulse::broadphase::detail {
+
+class pair_tracker {
+ public:
+  /// Takes this update's pairs (any order, each once) and works out what
+  /// began and ended against the previous update's.
+  void publish(std::vector<proxy_pair>& found) {
+    std::sort(found.begin(), found.end());
+    begun_.clear();
+    ended_.clear();
+    std::size_t i = 0, j = 0;
+    while (i < current_.size() || j < found.size()) {
+      if (j == found.size() || (i < current_.size() && current_[i] < found[j])) {
+        ended_.push_back(current_[i++]);
+      } else if (i == current_.size() || found[j] < current_[i]) {
+        begun_.push_back(found[j++]);
+      } else {
+        ++i, ++j;
+      }
+    }
+    current_.swap(found);
+  }
+
+  [[nodiscard]] std::span<const proxy_pair> pairs() const noexcept { return current_; }
+  [[nodiscard]] std::span<const proxy_pair> begun() const noexcept { return begun_; }
+  [[nodiscard]] std::span<const proxy_pair> ended() const noexcept { return ended_; }
+
+ private:
+  std::vector<proxy_pair> current_, begun_, ended_;
+};
+
+}  // namespace impulse::broadphase::detail
+// ---- end impulse/broadphase/pair_tracker.hpp ----
+// ---- begin impulse/broadphase/proxy_store.hpp ----
+// impulse/broadphase/proxy_store.hpp — the proxies themselves, checked.
+//
+// Every broad phase keeps its proxies' boxes and user data here, in dense
+// arrays under stable ids (core/slot_map.hpp), and refuses bad input at the
+// door: a box that is not finite or whose lower corner is above its upper
+// one (zero size is fine: a point is a box), or an id that names no proxy.
+
+
+
+namespace impulse::broadphase::detail {
+
+template <scalar_type T>
+struct proxy {
+  aabb<T> box;
+  std::uint64_t user_data;
+};
+
+template <scalar_type T>
+class proxy_store {
+ public:
+  proxy_id insert(const aabb<T>& box, std::uint64_t user_data) {
+    require_box(box);
+    return proxies_.insert({box, user_data});
+  }
+  void set_box(proxy_id id, const aabb<T>& box) {
+    require(id);
+    require_box(box);
+    proxies_[id].box = box;
+  }
+  void erase(proxy_id id) {
+    require(id);
+    proxies_.erase(id);
+  }
+
+  void require(proxy_id id) const {
+    if (!proxies_.contains(id))
+      impulse::detail::report_error(error_code::out_of_range, "broad phase: the id names no proxy", id.index);
+  }
+  static void require_box(const aabb<T>& box) {
+    if (!is_finite(box.lower) || !is_finite(box.upper))
+      impulse::detail::report_error(error_code::non_finite, "broad phase: the box is not finite");
+    if (!is_valid(box))
+      impulse::detail::report_error(error_code::invalid_parameter,
+                                    "broad phase: the box's lower corner is above its upper corner");
+  }
+
+  [[nodiscard]] bool contains(proxy_id id) const noexcept { return proxies_.contains(id); }
+  [[nodiscard]] const aabb<T>& box(proxy_id id) const {
+    require(id);
+    return proxies_[id].box;
+  }
+  [[nodiscard]] std::uint64_t user_data(proxy_id id) const {
+    require(id);
+    return proxies_[id].user_data;
+  }
+  [[nodiscard]] std::size_t size() const noexcept { return proxies_.size(); }
+  [[nodiscard]] std::size_t dense_index(proxy_id id) const noexcept { return proxies_.dense_index(id); }
+  [[nodiscard]] const std::vector<proxy<T>>& values() const noexcept { return proxies_.values(); }
+  [[nodiscard]] const std::vector<proxy_id>& ids() const noexcept { return proxies_.ids(); }
+
+ private:
+  slot_map<proxy<T>, proxy_id> proxies_;
+};
+
+}  // namespace impulse::broadphase::detail
+// ---- end impulse/broadphase/proxy_store.hpp ----
+
+namespace impulse::broadphase {
+
+template <scalar_type T>
+class basic_brute_force {
+ public:
+  proxy_id create(const aabb<T>& box, std::uint64_t user_data) { return store_.insert(box, user_data); }
+  void move(proxy_id id, const aabb<T>& box) { store_.set_box(id, box); }
+  void destroy(proxy_id id) { store_.erase(id); }
+
+  void update() {
+    found_.clear();
+    const auto& proxies = store_.values();
+    const auto& ids = store_.ids();
+    for (std::size_t i = 0; i < proxies.size(); ++i)
+      for (std::size_t j = i + 1; j < proxies.size(); ++j)
+        if (overlaps(proxies[i].box, proxies[j].box)) found_.push_back(pair_of(ids[i], ids[j]));
+    pairs_.publish(found_);
+  }
+
+  [[nodiscard]] std::span<const proxy_pair> pairs() const noexcept { return pairs_.pairs(); }
+  [[nodiscard]] std::span<const proxy_pair> begun() const noexcept { return pairs_.begun(); }
+  [[nodiscard]] std::span<const proxy_pair> ended() const noexcept { return pairs_.ended(); }
+
+  template <class Callback>
+  void query(const aabb<T>& box, Callback&& callback) const {
+    detail::proxy_store<T>::require_box(box);
+    for (std::size_t i = 0; i < store_.size(); ++i)
+      if (overlaps(store_.values()[i].box, box)) callback(store_.ids()[i]);
+  }
+
+  template <class Callback>
+  void ray_cast(const ray<T>& r, T max_fraction, Callback&& callback) const {
+    detail::require_ray(r, max_fraction);
+    for (std::size_t i = 0; i < store_.size() && max_fraction > T(0); ++i)
+      if (const auto t = ray_enters(r, max_fraction, store_.values()[i].box))
+        max_fraction = callback(store_.ids()[i], *t);
+  }
+
+  [[nodiscard]] const aabb<T>& box(proxy_id id) const { return store_.box(id); }
+  [[nodiscard]] std::uint64_t user_data(proxy_id id) const { return store_.user_data(id); }
+  [[nodiscard]] bool contains(proxy_id id) const noexcept { return store_.contains(id); }
+  [[nodiscard]] std::size_t size() const noexcept { return store_.size(); }
+
+ private:
+  detail::proxy_store<T> store_;
+  detail::pair_tracker pairs_;
+  std::vector<proxy_pair> found_;
+};
+
+/// The brute-force policy, for a config's `broadphase`.
+struct brute_force {
+  static constexpr policy_kind kind = policy_kind::broadphase;
+  template <scalar_type T>
+  using type = basic_brute_force<T>;
+};
+
+}  // namespace impulse::broadphase
+// ---- end impulse/broadphase/brute_force.hpp ----
+// ---- end impulse/broadphase.hpp ----
+// ---- begin impulse/config.hpp ----
+// impulse/config.hpp — the default compile-time configuration.
+//
+// A configuration is a struct of member types and constants that selects the
+// policies of a world or particle system. Inherit from default_config and
+// override what you need:
+//
+//   struct my_config : impulse::default_config {
+//     using scalar = double;
+//   };
+//   static_assert(impulse::check_config<my_config>());
+//
+// Only members whose implementations exist are defaulted here; the others
+// (broadphase, solver, shapes, sleeping, ccd) are checked against their
+// concepts in core/policy.hpp when a config names them.
+
 // ---- begin impulse/integrators/symplectic_euler.hpp ----
 // impulse/integrators/symplectic_euler.hpp — semi-implicit (symplectic) Euler.
 //
@@ -327,8 +1547,6 @@ static_assert(check_config<default_config>());
 // valid after it. Elements are value-initialised (zero for scalars).
 
 #include <new>
-#include <span>
-#include <utility>
 
 namespace impulse {
 
@@ -375,35 +1593,6 @@ class aligned_array {
 
 }  // namespace impulse
 // ---- end impulse/core/aligned_array.hpp ----
-// ---- begin impulse/core/assert.hpp ----
-// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
-//
-// IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
-// to normalize, an index in range). It is on in debug builds and compiled out
-// when NDEBUG is defined, like <cassert>, so release hot loops pay nothing.
-// Bad *user input* at the API boundary is not asserted: it is reported with
-// impulse::invalid_argument (core/error.hpp) in every build.
-
-#include <cstdio>
-#include <cstdlib>
-
-namespace impulse::detail {
-
-[[noreturn]] inline void assertion_failed(const char* expression, const char* file, int line) {
-  std::fprintf(stderr, "impulse: assertion failed: %s (%s:%d)\n", expression, file, line);
-  std::abort();
-}
-
-}  // namespace impulse::detail
-
-#if defined(NDEBUG) && !defined(IMPULSE_ENABLE_ASSERTS)
-#define IMPULSE_ASSERT(expression) static_cast<void>(0)
-#else
-#define IMPULSE_ASSERT(expression)                                                   \
-  ((expression) ? static_cast<void>(0)                                               \
-                : ::impulse::detail::assertion_failed(#expression, __FILE__, __LINE__))
-#endif
-// ---- end impulse/core/assert.hpp ----
 // ---- begin impulse/core/batch.hpp ----
 // impulse/core/batch.hpp — batch<T, W>: W lanes of float or double as one value.
 //
@@ -424,8 +1613,6 @@ namespace impulse::detail {
 // target's own instruction through the compiler builtin behind
 // _mm*_sqrt_p[sd], with a lane-by-lane std::sqrt fallback on other targets.
 
-#include <cmath>
-#include <cstdint>
 
 
 // Vectors wider than the target's registers are legal and split by the
@@ -776,110 +1963,6 @@ batch<T, W> rsqrt(batch<T, W> a) noexcept {
 #pragma GCC diagnostic pop
 #endif
 // ---- end impulse/core/batch.hpp ----
-// ---- begin impulse/core/error.hpp ----
-// impulse/core/error.hpp — how bad input is reported at the API boundary.
-//
-// Invalid input never silently corrupts a world (DESIGN.md, "Errors and bad
-// input"): a function that receives a NaN position, a zero mass or a
-// degenerate shape reports it before changing any state. With exceptions
-// enabled the report is an impulse::invalid_argument carrying an error code,
-// a message and, where one exists, the id of the object concerned. Built with
-// -fno-exceptions the same report goes to the handler installed with
-// set_error_handler (the default prints and aborts), and callers that need to
-// recover use the functions that return an error_code instead.
-
-#include <stdexcept>
-
-namespace impulse {
-
-/// What was wrong with an argument. Stable values: they appear in logs.
-enum class error_code : std::uint8_t {
-  none = 0,
-  non_finite,          ///< NaN or infinity in a position, velocity, force or parameter
-  non_positive_mass,   ///< zero or negative mass or density
-  degenerate_shape,    ///< zero or negative extent, coplanar hull, zero-length normal
-  not_normalized,      ///< a direction or plane normal that must have unit length
-  capacity_exceeded,   ///< more elements than the container was created for
-  out_of_range,        ///< an index or handle that does not name a live object
-  invalid_parameter,   ///< any other value outside its documented range
-};
-
-/// A short, stable name for an error code ("non_finite", ...).
-constexpr const char* to_string(error_code code) noexcept {
-  switch (code) {
-    case error_code::none: return "none";
-    case error_code::non_finite: return "non_finite";
-    case error_code::non_positive_mass: return "non_positive_mass";
-    case error_code::degenerate_shape: return "degenerate_shape";
-    case error_code::not_normalized: return "not_normalized";
-    case error_code::capacity_exceeded: return "capacity_exceeded";
-    case error_code::out_of_range: return "out_of_range";
-    case error_code::invalid_parameter: return "invalid_parameter";
-  }
-  return "unknown";
-}
-
-/// Sentinel for "no particular object": the error concerns the call as a whole.
-inline constexpr std::uint32_t no_object = 0xffffffffu;
-
-/// Thrown for invalid input. what() is a full sentence naming the argument;
-/// code() and object() let a program react without parsing it.
-class invalid_argument : public std::invalid_argument {
- public:
-  invalid_argument(error_code code, const char* message, std::uint32_t object = no_object)
-      : std::invalid_argument(message), code_(code), object_(object) {}
-
-  [[nodiscard]] error_code code() const noexcept { return code_; }
-  /// Index or id of the body/particle/shape concerned, or impulse::no_object.
-  [[nodiscard]] std::uint32_t object() const noexcept { return object_; }
-
- private:
-  error_code code_;
-  std::uint32_t object_;
-};
-
-/// Called instead of throwing when exceptions are disabled.
-using error_handler = void (*)(error_code code, const char* message, std::uint32_t object);
-
-namespace detail {
-
-inline void default_error_handler(error_code code, const char* message, std::uint32_t object) {
-  std::fprintf(stderr, "impulse: %s (%s, object %u)\n", message, to_string(code),
-               static_cast<unsigned>(object));
-  std::abort();
-}
-
-inline error_handler& current_error_handler() noexcept {
-  static error_handler handler = &default_error_handler;
-  return handler;
-}
-
-}  // namespace detail
-
-/// Installs the handler used in builds without exceptions; returns the old one.
-inline error_handler set_error_handler(error_handler handler) noexcept {
-  error_handler old = detail::current_error_handler();
-  detail::current_error_handler() = handler ? handler : &detail::default_error_handler;
-  return old;
-}
-
-namespace detail {
-
-/// Reports invalid input: throws impulse::invalid_argument, or calls the
-/// installed handler when built with -fno-exceptions.
-[[noreturn]] inline void report_error(error_code code, const char* message,
-                                      std::uint32_t object = no_object) {
-#if defined(__cpp_exceptions) || defined(__EXCEPTIONS)
-  throw invalid_argument(code, message, object);
-#else
-  current_error_handler()(code, message, object);
-  std::abort();  // a handler that returns cannot resume the operation
-#endif
-}
-
-}  // namespace detail
-}  // namespace impulse
-// ---- end impulse/core/error.hpp ----
 // ---- begin impulse/core/fwd.hpp ----
 // impulse/core/fwd.hpp — forward declarations of the core module.
 
@@ -946,96 +2029,6 @@ constexpr T hash_signed_unit(std::uint32_t x) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/core/random.hpp ----
-// ---- begin impulse/core/slot_map.hpp ----
-// impulse/core/slot_map.hpp — dense storage addressed by stable, checked ids.
-//
-// Bodies and springs live in dense arrays so that a step runs over
-// contiguous memory, and are named by ids that stay valid while the objects
-// around them come and go (Box2D's b2BodyId works the same way). An id is a
-// slot index and the slot's generation: removing an object bumps its slot's
-// generation, so a stale id is recognised and refused instead of silently
-// naming whatever took the slot next. Removal moves the last element into
-// the hole, so dense positions change; ids do not.
-
-#include <vector>
-
-
-namespace impulse {
-
-/// A stable, checked handle. Tag keeps body and spring ids apart at
-/// compile time.
-template <class Tag>
-struct object_id {
-  std::uint32_t index = no_object;  ///< slot; no_object for "none"
-  std::uint32_t generation = 0;     ///< bumped each time the slot is freed
-
-  [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
-  friend constexpr bool operator==(const object_id&, const object_id&) = default;
-};
-
-template <class V, class Id>
-class slot_map {
- public:
-  [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
-  [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
-  [[nodiscard]] bool contains(Id id) const noexcept {
-    return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
-           slots_[id.index].dense != free_slot;
-  }
-
-  Id insert(V value) {
-    std::uint32_t slot;
-    if (free_.empty()) {
-      slot = static_cast<std::uint32_t>(slots_.size());
-      slots_.push_back({free_slot, 0});
-    } else {
-      slot = free_.back();
-      free_.pop_back();
-    }
-    slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
-    values_.push_back(std::move(value));
-    ids_.push_back(Id{slot, slots_[slot].generation});
-    return ids_.back();
-  }
-
-  /// Removes the object; the caller has checked contains(id).
-  void erase(Id id) {
-    const std::uint32_t dense = slots_[id.index].dense, last = static_cast<std::uint32_t>(values_.size() - 1);
-    if (dense != last) {
-      values_[dense] = std::move(values_[last]);
-      ids_[dense] = ids_[last];
-      slots_[ids_[dense].index].dense = dense;
-    }
-    values_.pop_back();
-    ids_.pop_back();
-    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
-    free_.push_back(id.index);
-  }
-
-  /// Position of a live id in the dense arrays.
-  [[nodiscard]] std::size_t dense_index(Id id) const noexcept { return slots_[id.index].dense; }
-  [[nodiscard]] V& operator[](Id id) noexcept { return values_[dense_index(id)]; }
-  [[nodiscard]] const V& operator[](Id id) const noexcept { return values_[dense_index(id)]; }
-
-  /// The dense arrays: values()[i] is the object whose id is ids()[i].
-  [[nodiscard]] std::vector<V>& values() noexcept { return values_; }
-  [[nodiscard]] const std::vector<V>& values() const noexcept { return values_; }
-  [[nodiscard]] const std::vector<Id>& ids() const noexcept { return ids_; }
-
- private:
-  static constexpr std::uint32_t free_slot = 0xffffffffu;
-  struct slot {
-    std::uint32_t dense;
-    std::uint32_t generation;
-  };
-  std::vector<V> values_;
-  std::vector<Id> ids_;
-  std::vector<slot> slots_;
-  std::vector<std::uint32_t> free_;
-};
-
-}  // namespace impulse
-// ---- end impulse/core/slot_map.hpp ----
 // ---- begin impulse/core/version.hpp ----
 // impulse/core/version.hpp — the library version, one place for it.
 //
@@ -1082,501 +2075,6 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 // comes from the turning of R.
 
 
-// ---- begin impulse/math/mat3.hpp ----
-// impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
-//
-// Stored as three columns, so m * v = v.x·c0 + v.y·c1 + v.z·c2 and the columns
-// of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
-// column c.
-
-#include <optional>
-
-// ---- begin impulse/math/vec3.hpp ----
-// impulse/math/vec3.hpp — three-component vector of float or double.
-//
-// A plain aggregate: `vec3<float>{1, 2, 3}`. Arithmetic is constexpr; the
-// functions that need a square root (length, normalize) are not, because
-// std::sqrt is not constexpr in C++20.
-
-#include <limits>
-
-// ---- begin impulse/math/scalar_traits.hpp ----
-// impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
-//
-// Every tolerance the math layer uses lives here, with its unit and the reason
-// for its value, so that float and double builds differ in exactly these
-// numbers and nowhere else. Later layers (contacts, sleeping) add their own
-// struct of the same shape next to their code.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct scalar_traits;
-
-template <>
-struct scalar_traits<float> {
-  /// Machine epsilon (dimensionless): the spacing of floats at 1.
-  static constexpr float epsilon = std::numeric_limits<float>::epsilon();
-
-  /// Squared length (m², or the square of whatever unit the vector has) below
-  /// which a vector is treated as zero and refuses to be normalised. Chosen
-  /// far above the smallest normal float (1.2e-38) so that 1/sqrt of it is
-  /// finite, and far below any length a physics scene uses (1e-12 m).
-  static constexpr float zero_length_squared = 1e-24f;
-
-  /// Largest allowed | |v| - 1 | for a vector or quaternion that must be unit
-  /// (a plane normal, an orientation). Loose enough for a value written in
-  /// source with seven digits; tight enough that the rotation it describes is
-  /// off by less than 1e-5 rad.
-  static constexpr float unit_tolerance = 1e-5f;
-
-  /// Below this argument the exponential map uses the series
-  /// sin(h)/h = 1 - h²/6 instead of the quotient: the next term, h⁴/120, is
-  /// then under epsilon, and the series stays finite as |ω| -> 0 where the
-  /// quotient is 0/0. Solves h⁴/120 = epsilon: (120 · 1.19e-7)^(1/4) = 0.061.
-  static constexpr float series_threshold = 0.061f;
-
-  /// Relative tolerance for a determinant or pivot to count as singular.
-  static constexpr float singular_tolerance = 1e-6f;
-};
-
-template <>
-struct scalar_traits<double> {
-  static constexpr double epsilon = std::numeric_limits<double>::epsilon();
-  /// As for float; 1e-60 keeps 1/sqrt finite with room to spare (min 2.2e-308).
-  static constexpr double zero_length_squared = 1e-60;
-  /// 1e-10: a unit vector given with ten digits passes, rotations are off by < 1e-10 rad.
-  static constexpr double unit_tolerance = 1e-10;
-  /// (120 · 2.22e-16)^(1/4) = 4.1e-4.
-  static constexpr double series_threshold = 4.0e-4;
-  static constexpr double singular_tolerance = 1e-12;
-};
-
-}  // namespace impulse
-// ---- end impulse/math/scalar_traits.hpp ----
-
-namespace impulse {
-
-template <scalar_type T>
-struct vec3 {
-  using scalar = T;
-
-  T x{};
-  T y{};
-  T z{};
-
-  static constexpr vec3 zero() noexcept { return {T(0), T(0), T(0)}; }
-  static constexpr vec3 unit_x() noexcept { return {T(1), T(0), T(0)}; }
-  static constexpr vec3 unit_y() noexcept { return {T(0), T(1), T(0)}; }
-  static constexpr vec3 unit_z() noexcept { return {T(0), T(0), T(1)}; }
-  static constexpr vec3 splat(T s) noexcept { return {s, s, s}; }
-
-  constexpr T& operator[](int i) noexcept {
-    IMPULSE_ASSERT(i >= 0 && i < 3);
-    return i == 0 ? x : (i == 1 ? y : z);
-  }
-  constexpr const T& operator[](int i) const noexcept {
-    IMPULSE_ASSERT(i >= 0 && i < 3);
-    return i == 0 ? x : (i == 1 ? y : z);
-  }
-
-  constexpr vec3& operator+=(const vec3& b) noexcept { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr vec3& operator-=(const vec3& b) noexcept { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr vec3& operator*=(T s) noexcept { x *= s; y *= s; z *= s; return *this; }
-  constexpr vec3& operator/=(T s) noexcept { x /= s; y /= s; z /= s; return *this; }
-
-  friend constexpr bool operator==(const vec3&, const vec3&) = default;
-};
-
-template <scalar_type T> constexpr vec3<T> operator-(const vec3<T>& a) noexcept { return {-a.x, -a.y, -a.z}; }
-template <scalar_type T> constexpr vec3<T> operator+(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <scalar_type T> constexpr vec3<T> operator-(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <scalar_type T> constexpr vec3<T> operator*(const vec3<T>& a, T s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-template <scalar_type T> constexpr vec3<T> operator*(T s, const vec3<T>& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-template <scalar_type T> constexpr vec3<T> operator/(const vec3<T>& a, T s) noexcept { return {a.x / s, a.y / s, a.z / s}; }
-
-/// Componentwise (Hadamard) product and quotient.
-template <scalar_type T> constexpr vec3<T> mul(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-template <scalar_type T> constexpr vec3<T> div(const vec3<T>& a, const vec3<T>& b) noexcept { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
-
-template <scalar_type T>
-constexpr T dot(const vec3<T>& a, const vec3<T>& b) noexcept {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-template <scalar_type T>
-constexpr vec3<T> cross(const vec3<T>& a, const vec3<T>& b) noexcept {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-template <scalar_type T> constexpr T length_squared(const vec3<T>& a) noexcept { return dot(a, a); }
-template <scalar_type T> T length(const vec3<T>& a) noexcept { return std::sqrt(dot(a, a)); }
-template <scalar_type T> T distance(const vec3<T>& a, const vec3<T>& b) noexcept { return length(a - b); }
-
-/// Unit vector along a. Precondition: a is not (nearly) zero; use
-/// normalize_or when it may be.
-template <scalar_type T>
-vec3<T> normalize(const vec3<T>& a) noexcept {
-  const T l2 = length_squared(a);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
-  return a * (T(1) / std::sqrt(l2));
-}
-
-/// True when | |a| - 1 | is within scalar_traits<T>::unit_tolerance.
-template <scalar_type T>
-bool is_normalized(const vec3<T>& a) noexcept {
-  return std::abs(length_squared(a) - T(1)) <= T(2) * scalar_traits<T>::unit_tolerance;
-}
-
-template <scalar_type T>
-bool is_finite(const vec3<T>& a) noexcept {
-  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
-
-template <scalar_type T>
-constexpr vec3<T> min(const vec3<T>& a, const vec3<T>& b) noexcept {
-  return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
-}
-template <scalar_type T>
-constexpr vec3<T> max(const vec3<T>& a, const vec3<T>& b) noexcept {
-  return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
-}
-template <scalar_type T>
-constexpr vec3<T> abs(const vec3<T>& a) noexcept {
-  return {a.x < T(0) ? -a.x : a.x, a.y < T(0) ? -a.y : a.y, a.z < T(0) ? -a.z : a.z};
-}
-template <scalar_type T> constexpr T min_component(const vec3<T>& a) noexcept { return a.x < a.y ? (a.x < a.z ? a.x : a.z) : (a.y < a.z ? a.y : a.z); }
-template <scalar_type T> constexpr T max_component(const vec3<T>& a) noexcept { return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z); }
-
-/// Unit vector along a, or `fallback` when a has no direction: too short,
-/// or with a NaN or infinite component. A finite vector so long that its
-/// squared length overflows (beyond 1.8e19 in float) is scaled down first.
-template <scalar_type T>
-vec3<T> normalize_or(const vec3<T>& a, const vec3<T>& fallback) noexcept {
-  if (!is_finite(a)) return fallback;
-  const T l2 = length_squared(a);
-  if (!(l2 <= std::numeric_limits<T>::max())) return normalize_or(a / max_component(abs(a)), fallback);
-  if (!(l2 > scalar_traits<T>::zero_length_squared)) return fallback;
-  return a * (T(1) / std::sqrt(l2));
-}
-
-/// a + (b - a)·t; t = 0 gives a, t = 1 gives b exactly.
-template <scalar_type T>
-constexpr vec3<T> lerp(const vec3<T>& a, const vec3<T>& b, T t) noexcept {
-  return a * (T(1) - t) + b * t;
-}
-
-/// A unit vector perpendicular to the unit vector n (for building bases).
-/// Crossing with the axis of the smaller of |n.x| and |n.z| keeps the
-/// product's length sqrt(1 - min(n.x², n.z²)) at least 1/√2, so the
-/// normalisation never divides by a small number.
-template <scalar_type T>
-vec3<T> any_perpendicular(const vec3<T>& n) noexcept {
-  const vec3<T> other = std::abs(n.x) < std::abs(n.z) ? vec3<T>::unit_x() : vec3<T>::unit_z();
-  return normalize(cross(n, other));
-}
-
-}  // namespace impulse
-// ---- end impulse/math/vec3.hpp ----
-
-namespace impulse {
-
-template <scalar_type T>
-struct mat3 {
-  using scalar = T;
-
-  vec3<T> col[3]{};
-
-  static constexpr mat3 zero() noexcept { return {}; }
-  static constexpr mat3 identity() noexcept { return diagonal({T(1), T(1), T(1)}); }
-  static constexpr mat3 diagonal(const vec3<T>& d) noexcept {
-    return from_columns({d.x, T(0), T(0)}, {T(0), d.y, T(0)}, {T(0), T(0), d.z});
-  }
-  static constexpr mat3 from_columns(const vec3<T>& c0, const vec3<T>& c1, const vec3<T>& c2) noexcept {
-    mat3 m;
-    m.col[0] = c0;
-    m.col[1] = c1;
-    m.col[2] = c2;
-    return m;
-  }
-  static constexpr mat3 from_rows(const vec3<T>& r0, const vec3<T>& r1, const vec3<T>& r2) noexcept {
-    return from_columns({r0.x, r1.x, r2.x}, {r0.y, r1.y, r2.y}, {r0.z, r1.z, r2.z});
-  }
-
-  constexpr T& operator()(int row, int column) noexcept { return col[column][row]; }
-  constexpr const T& operator()(int row, int column) const noexcept { return col[column][row]; }
-  constexpr vec3<T> row(int r) const noexcept { return {col[0][r], col[1][r], col[2][r]}; }
-
-  constexpr mat3& operator+=(const mat3& b) noexcept { for (int c = 0; c < 3; ++c) col[c] += b.col[c]; return *this; }
-  constexpr mat3& operator-=(const mat3& b) noexcept { for (int c = 0; c < 3; ++c) col[c] -= b.col[c]; return *this; }
-  constexpr mat3& operator*=(T s) noexcept { for (int c = 0; c < 3; ++c) col[c] *= s; return *this; }
-
-  friend constexpr bool operator==(const mat3& a, const mat3& b) noexcept {
-    return a.col[0] == b.col[0] && a.col[1] == b.col[1] && a.col[2] == b.col[2];
-  }
-};
-
-template <scalar_type T> constexpr mat3<T> operator+(mat3<T> a, const mat3<T>& b) noexcept { return a += b; }
-template <scalar_type T> constexpr mat3<T> operator-(mat3<T> a, const mat3<T>& b) noexcept { return a -= b; }
-template <scalar_type T> constexpr mat3<T> operator*(mat3<T> a, T s) noexcept { return a *= s; }
-template <scalar_type T> constexpr mat3<T> operator*(T s, mat3<T> a) noexcept { return a *= s; }
-template <scalar_type T> constexpr mat3<T> operator-(const mat3<T>& a) noexcept { return a * T(-1); }
-
-template <scalar_type T>
-constexpr vec3<T> operator*(const mat3<T>& m, const vec3<T>& v) noexcept {
-  return m.col[0] * v.x + m.col[1] * v.y + m.col[2] * v.z;
-}
-
-template <scalar_type T>
-constexpr mat3<T> operator*(const mat3<T>& a, const mat3<T>& b) noexcept {
-  return mat3<T>::from_columns(a * b.col[0], a * b.col[1], a * b.col[2]);
-}
-
-template <scalar_type T>
-constexpr mat3<T> transpose(const mat3<T>& m) noexcept {
-  return mat3<T>::from_rows(m.col[0], m.col[1], m.col[2]);
-}
-
-/// mᵀ·v without forming the transpose (world-to-body for a rotation matrix).
-template <scalar_type T>
-constexpr vec3<T> transpose_mul(const mat3<T>& m, const vec3<T>& v) noexcept {
-  return {dot(m.col[0], v), dot(m.col[1], v), dot(m.col[2], v)};
-}
-
-template <scalar_type T>
-constexpr T trace(const mat3<T>& m) noexcept {
-  return m.col[0].x + m.col[1].y + m.col[2].z;
-}
-
-template <scalar_type T>
-constexpr T determinant(const mat3<T>& m) noexcept {
-  return dot(m.col[0], cross(m.col[1], m.col[2]));
-}
-
-/// The cross-product matrix: skew(a) * b == cross(a, b).
-template <scalar_type T>
-constexpr mat3<T> skew(const vec3<T>& a) noexcept {
-  return mat3<T>::from_columns({T(0), a.z, -a.y}, {-a.z, T(0), a.x}, {a.y, -a.x, T(0)});
-}
-
-/// The outer product a·bᵀ.
-template <scalar_type T>
-constexpr mat3<T> outer(const vec3<T>& a, const vec3<T>& b) noexcept {
-  return mat3<T>::from_columns(a * b.x, a * b.y, a * b.z);
-}
-
-/// Inverse by the adjugate, or nothing when |det| is below
-/// scalar_traits<T>::singular_tolerance times the product of the column
-/// lengths (a scale-free test: a tiny but well-conditioned inertia tensor
-/// still inverts, a rank-deficient one of any size does not).
-template <scalar_type T>
-std::optional<mat3<T>> try_inverse(const mat3<T>& m) noexcept {
-  // The rows of the inverse are the cross products of pairs of columns over det.
-  const vec3<T> r0 = cross(m.col[1], m.col[2]);
-  const vec3<T> r1 = cross(m.col[2], m.col[0]);
-  const vec3<T> r2 = cross(m.col[0], m.col[1]);
-  const T det = dot(m.col[0], r0);
-  const T scale = length(m.col[0]) * length(m.col[1]) * length(m.col[2]);
-  if (!(std::abs(det) > scalar_traits<T>::singular_tolerance * scale)) return std::nullopt;
-  return mat3<T>::from_rows(r0, r1, r2) * (T(1) / det);
-}
-
-/// Inverse of a matrix known to be invertible. Precondition checked by IMPULSE_ASSERT.
-template <scalar_type T>
-mat3<T> inverse(const mat3<T>& m) noexcept {
-  const std::optional<mat3<T>> inv = try_inverse(m);
-  IMPULSE_ASSERT(inv.has_value());
-  return inv ? *inv : mat3<T>::zero();
-}
-
-template <scalar_type T>
-bool is_finite(const mat3<T>& m) noexcept {
-  return is_finite(m.col[0]) && is_finite(m.col[1]) && is_finite(m.col[2]);
-}
-
-}  // namespace impulse
-// ---- end impulse/math/mat3.hpp ----
-// ---- begin impulse/math/quat.hpp ----
-// impulse/math/quat.hpp — unit quaternions for orientation (Hamilton convention).
-//
-// q = w + xi + yj + zk, stored x, y, z, w. A unit quaternion rotates v by
-// q v q*; composition a * b applies b first, then a. Orientation is advanced
-// by the exact exponential map (Baraff 2001, "Physically Based Modeling:
-// Rigid Body Simulation", with the closed form of exp for a pure quaternion),
-// never by adding ½ω q dt, which leaves the unit sphere at first order.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct quat {
-  using scalar = T;
-
-  T x{};
-  T y{};
-  T z{};
-  T w{1};
-
-  static constexpr quat identity() noexcept { return {T(0), T(0), T(0), T(1)}; }
-
-  /// Rotation by `angle` radians about `axis`. The axis must be unit length.
-  static quat from_axis_angle(const vec3<T>& axis, T angle) noexcept {
-    IMPULSE_ASSERT(is_normalized(axis));
-    const T s = std::sin(angle * T(0.5));
-    return {axis.x * s, axis.y * s, axis.z * s, std::cos(angle * T(0.5))};
-  }
-
-  constexpr vec3<T> vector_part() const noexcept { return {x, y, z}; }
-
-  friend constexpr bool operator==(const quat&, const quat&) = default;
-};
-
-/// Hamilton product: (a * b) rotates by b, then by a.
-template <scalar_type T>
-constexpr quat<T> operator*(const quat<T>& a, const quat<T>& b) noexcept {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
-}
-
-template <scalar_type T>
-constexpr quat<T> operator*(const quat<T>& q, T s) noexcept {
-  return {q.x * s, q.y * s, q.z * s, q.w * s};
-}
-template <scalar_type T>
-constexpr quat<T> operator+(const quat<T>& a, const quat<T>& b) noexcept {
-  return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w};
-}
-
-template <scalar_type T>
-constexpr quat<T> conjugate(const quat<T>& q) noexcept {
-  return {-q.x, -q.y, -q.z, q.w};
-}
-
-template <scalar_type T>
-constexpr T dot(const quat<T>& a, const quat<T>& b) noexcept {
-  return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w;
-}
-
-template <scalar_type T> constexpr T length_squared(const quat<T>& q) noexcept { return dot(q, q); }
-template <scalar_type T> T length(const quat<T>& q) noexcept { return std::sqrt(dot(q, q)); }
-
-/// q / |q|. Precondition: q is not (nearly) zero.
-template <scalar_type T>
-quat<T> normalize(const quat<T>& q) noexcept {
-  const T l2 = length_squared(q);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
-  return q * (T(1) / std::sqrt(l2));
-}
-
-template <scalar_type T>
-bool is_normalized(const quat<T>& q) noexcept {
-  return std::abs(length_squared(q) - T(1)) <= T(2) * scalar_traits<T>::unit_tolerance;
-}
-
-template <scalar_type T>
-bool is_finite(const quat<T>& q) noexcept {
-  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
-}
-
-/// Inverse of any non-zero quaternion; for a unit quaternion use conjugate.
-template <scalar_type T>
-quat<T> inverse(const quat<T>& q) noexcept {
-  const T l2 = length_squared(q);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
-  return conjugate(q) * (T(1) / l2);
-}
-
-/// Rotates v by the unit quaternion q: q v q*, expanded to
-/// v + 2w(u × v) + 2u × (u × v) with u the vector part (15 multiplies
-/// instead of the 28 of two Hamilton products).
-template <scalar_type T>
-constexpr vec3<T> rotate(const quat<T>& q, const vec3<T>& v) noexcept {
-  const vec3<T> u = q.vector_part();
-  const vec3<T> t = cross(u, v) * T(2);
-  return v + t * q.w + cross(u, t);
-}
-
-/// Rotates v by the inverse of the unit quaternion q (world to body).
-template <scalar_type T>
-constexpr vec3<T> inverse_rotate(const quat<T>& q, const vec3<T>& v) noexcept {
-  return rotate(conjugate(q), v);
-}
-
-/// Rotation matrix of the unit quaternion q (columns are the rotated axes).
-template <scalar_type T>
-constexpr mat3<T> to_mat3(const quat<T>& q) noexcept {
-  const T xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
-  const T xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
-  const T wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
-  return mat3<T>::from_columns({T(1) - T(2) * (yy + zz), T(2) * (xy + wz), T(2) * (xz - wy)},
-                               {T(2) * (xy - wz), T(1) - T(2) * (xx + zz), T(2) * (yz + wx)},
-                               {T(2) * (xz + wy), T(2) * (yz - wx), T(1) - T(2) * (xx + yy)});
-}
-
-/// Unit quaternion of a rotation matrix (Shepperd's method: take the square
-/// root of the largest of w², x², y², z² so the division is never by a small
-/// number). The result has w >= 0.
-template <scalar_type T>
-quat<T> from_mat3(const mat3<T>& m) noexcept {
-  const T m00 = m(0, 0), m11 = m(1, 1), m22 = m(2, 2);
-  const T tr = m00 + m11 + m22;
-  quat<T> q;
-  if (tr >= m00 && tr >= m11 && tr >= m22) {
-    const T s = std::sqrt(T(1) + tr) * T(2);  // 4w
-    q = {(m(2, 1) - m(1, 2)) / s, (m(0, 2) - m(2, 0)) / s, (m(1, 0) - m(0, 1)) / s, s * T(0.25)};
-  } else if (m00 >= m11 && m00 >= m22) {
-    const T s = std::sqrt(T(1) + m00 - m11 - m22) * T(2);  // 4x
-    q = {s * T(0.25), (m(0, 1) + m(1, 0)) / s, (m(0, 2) + m(2, 0)) / s, (m(2, 1) - m(1, 2)) / s};
-  } else if (m11 >= m22) {
-    const T s = std::sqrt(T(1) + m11 - m00 - m22) * T(2);  // 4y
-    q = {(m(0, 1) + m(1, 0)) / s, s * T(0.25), (m(1, 2) + m(2, 1)) / s, (m(0, 2) - m(2, 0)) / s};
-  } else {
-    const T s = std::sqrt(T(1) + m22 - m00 - m11) * T(2);  // 4z
-    q = {(m(0, 2) + m(2, 0)) / s, (m(1, 2) + m(2, 1)) / s, s * T(0.25), (m(1, 0) - m(0, 1)) / s};
-  }
-  if (q.w < T(0)) q = q * T(-1);
-  return normalize(q);
-}
-
-/// exp of the pure quaternion (0, v): (v/|v| · sin|v|, cos|v|). A unit
-/// quaternion for every v; the series branch keeps it exact and finite as
-/// |v| -> 0 (see scalar_traits::series_threshold).
-template <scalar_type T>
-quat<T> exp_pure(const vec3<T>& v) noexcept {
-  const T h = length(v);
-  const T sin_h_over_h = h < scalar_traits<T>::series_threshold ? T(1) - h * h / T(6)
-                                                                : std::sin(h) / h;
-  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, std::cos(h)};
-}
-
-/// Orientation after turning at constant world-space angular velocity
-/// `omega` (rad/s) for `dt` seconds: exp(ω dt / 2) * q. Exact for constant ω,
-/// so a body spinning about a fixed axis accumulates only rounding error.
-/// The exponential is unit in exact arithmetic; the final normalisation
-/// removes the rounding that would otherwise random-walk |q| away from 1
-/// (about √N · epsilon after N steps: 1e-4 in float after 10^6 steps).
-template <scalar_type T>
-quat<T> integrate(const quat<T>& q, const vec3<T>& omega, T dt) noexcept {
-  return normalize(exp_pure(omega * (dt * T(0.5))) * q);
-}
-
-/// Angle (radians, in [0, π]) of the rotation taking unit a to unit b.
-/// Uses atan2 of the relative rotation's vector and scalar parts rather than
-/// acos(|a·b|): acos is flat at 1 and cannot resolve angles below
-/// √(2·epsilon) (2e-8 rad in double), exactly the errors a test wants to see.
-template <scalar_type T>
-T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
-  const quat<T> d = conjugate(a) * b;
-  return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
-}
-
-}  // namespace impulse
-// ---- end impulse/math/quat.hpp ----
 // ---- begin impulse/dynamics/rigid_body.hpp ----
 // impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
 //
@@ -1594,73 +2092,6 @@ T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
 // them; impulses change the momenta at once.
 
 
-// ---- begin impulse/math/transform.hpp ----
-// impulse/math/transform.hpp — rigid transform: a rotation followed by a translation.
-//
-// apply(t, p) = rotate(t.rotation, p) + t.position maps body space to world
-// space. (a * b) applies b first, then a, matching quaternion composition.
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct transform {
-  using scalar = T;
-
-  vec3<T> position{};
-  quat<T> rotation{};
-
-  static constexpr transform identity() noexcept { return {vec3<T>::zero(), quat<T>::identity()}; }
-
-  friend constexpr bool operator==(const transform&, const transform&) = default;
-};
-
-/// Body-space point to world space.
-template <scalar_type T>
-constexpr vec3<T> apply(const transform<T>& t, const vec3<T>& p) noexcept {
-  return rotate(t.rotation, p) + t.position;
-}
-
-/// Body-space direction to world space (no translation).
-template <scalar_type T>
-constexpr vec3<T> apply_direction(const transform<T>& t, const vec3<T>& d) noexcept {
-  return rotate(t.rotation, d);
-}
-
-/// World-space point to body space: the inverse of apply.
-template <scalar_type T>
-constexpr vec3<T> inverse_apply(const transform<T>& t, const vec3<T>& p) noexcept {
-  return inverse_rotate(t.rotation, p - t.position);
-}
-
-/// World-space direction to body space.
-template <scalar_type T>
-constexpr vec3<T> inverse_apply_direction(const transform<T>& t, const vec3<T>& d) noexcept {
-  return inverse_rotate(t.rotation, d);
-}
-
-template <scalar_type T>
-constexpr transform<T> inverse(const transform<T>& t) noexcept {
-  const quat<T> r = conjugate(t.rotation);
-  return {-rotate(r, t.position), r};
-}
-
-/// Composition: apply(a * b, p) == apply(a, apply(b, p)).
-template <scalar_type T>
-constexpr transform<T> operator*(const transform<T>& a, const transform<T>& b) noexcept {
-  return {rotate(a.rotation, b.position) + a.position, a.rotation * b.rotation};
-}
-
-/// The relative transform that maps b's body space into a's: inverse(a) * b,
-/// computed without forming the inverse.
-template <scalar_type T>
-constexpr transform<T> inverse_mul(const transform<T>& a, const transform<T>& b) noexcept {
-  const quat<T> ra = conjugate(a.rotation);
-  return {rotate(ra, b.position - a.position), ra * b.rotation};
-}
-
-}  // namespace impulse
-// ---- end impulse/math/transform.hpp ----
 // ---- begin impulse/shapes/mass_properties.hpp ----
 // impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
 //
@@ -2885,105 +3316,6 @@ struct rk4 {
 // transforms and bounding boxes for float and double, and vec3_batch, the
 // structure-of-arrays form of vec3 the particle kernels integrate.
 
-// ---- begin impulse/math/aabb.hpp ----
-// impulse/math/aabb.hpp — axis-aligned bounding box.
-//
-// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
-// upper = -max), the identity of merge, so a box can be grown point by point
-// from it; is_valid is false for it until something is merged in.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct aabb {
-  using scalar = T;
-
-  vec3<T> lower{};
-  vec3<T> upper{};
-
-  static constexpr aabb empty() noexcept {
-    constexpr T big = std::numeric_limits<T>::max();
-    return {vec3<T>::splat(big), vec3<T>::splat(-big)};
-  }
-  static constexpr aabb from_center_half_extents(const vec3<T>& center, const vec3<T>& half) noexcept {
-    return {center - half, center + half};
-  }
-
-  friend constexpr bool operator==(const aabb&, const aabb&) = default;
-};
-
-template <scalar_type T> constexpr vec3<T> center(const aabb<T>& b) noexcept { return (b.lower + b.upper) * T(0.5); }
-template <scalar_type T> constexpr vec3<T> half_extents(const aabb<T>& b) noexcept { return (b.upper - b.lower) * T(0.5); }
-
-template <scalar_type T>
-constexpr bool is_valid(const aabb<T>& b) noexcept {
-  return b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.z <= b.upper.z;
-}
-
-template <scalar_type T>
-constexpr bool contains(const aabb<T>& b, const vec3<T>& p) noexcept {
-  return b.lower.x <= p.x && p.x <= b.upper.x && b.lower.y <= p.y && p.y <= b.upper.y &&
-         b.lower.z <= p.z && p.z <= b.upper.z;
-}
-
-/// True when `inner` lies entirely inside `outer` (touching faces count).
-template <scalar_type T>
-constexpr bool contains(const aabb<T>& outer, const aabb<T>& inner) noexcept {
-  return contains(outer, inner.lower) && contains(outer, inner.upper);
-}
-
-/// True when the boxes share at least one point (touching faces overlap).
-template <scalar_type T>
-constexpr bool overlaps(const aabb<T>& a, const aabb<T>& b) noexcept {
-  return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
-         b.lower.y <= a.upper.y && a.lower.z <= b.upper.z && b.lower.z <= a.upper.z;
-}
-
-template <scalar_type T>
-constexpr aabb<T> merge(const aabb<T>& a, const aabb<T>& b) noexcept {
-  return {min(a.lower, b.lower), max(a.upper, b.upper)};
-}
-
-template <scalar_type T>
-constexpr aabb<T> merge(const aabb<T>& a, const vec3<T>& p) noexcept {
-  return {min(a.lower, p), max(a.upper, p)};
-}
-
-/// The box grown by `margin` on every side (fat AABBs for the broad phase).
-template <scalar_type T>
-constexpr aabb<T> expand(const aabb<T>& b, T margin) noexcept {
-  const vec3<T> m = vec3<T>::splat(margin);
-  return {b.lower - m, b.upper + m};
-}
-
-/// Surface area: the cost metric of the surface-area heuristic in a BVH.
-template <scalar_type T>
-constexpr T surface_area(const aabb<T>& b) noexcept {
-  const vec3<T> d = b.upper - b.lower;
-  return T(2) * (d.x * d.y + d.y * d.z + d.z * d.x);
-}
-
-template <scalar_type T>
-constexpr T volume(const aabb<T>& b) noexcept {
-  const vec3<T> d = b.upper - b.lower;
-  return d.x * d.y * d.z;
-}
-
-/// World box of a body-space box under a rigid transform: the tightest
-/// axis-aligned box around the rotated box (Arvo, Graphics Gems 1990). The
-/// rotated half extents are |R|·h, with |R| the elementwise absolute value.
-template <scalar_type T>
-constexpr aabb<T> transform_aabb(const aabb<T>& b, const transform<T>& t) noexcept {
-  const mat3<T> r = to_mat3(t.rotation);
-  const vec3<T> h = half_extents(b);
-  const mat3<T> abs_r = mat3<T>::from_columns(abs(r.col[0]), abs(r.col[1]), abs(r.col[2]));
-  return aabb<T>::from_center_half_extents(apply(t, center(b)), abs_r * h);
-}
-
-}  // namespace impulse
-// ---- end impulse/math/aabb.hpp ----
 // ---- begin impulse/math/fwd.hpp ----
 // impulse/math/fwd.hpp — forward declarations and user-facing aliases of the math module.
 
