@@ -3030,9 +3030,12 @@ class rigid_body_system {
         const spring_ends& e = system.ends_[s];
         const body_spring<T>& spring = system.springs_.values()[s];
         // This body may be either end; the other end does not move.
-        if (e.a == index) {
+        if (e.a == index && e.b == none) {  // a world anchor
+          const spring_load<T> load = spring_load_of<T>(spring, k, nullptr);
+          add_at(w, k, load.force, load.point_a);
+        } else if (e.a == index) {
           const body_kinematics<T> other = system.resting_kinematics(e.b);
-          const spring_load<T> load = spring_load_of(spring, k, e.b == none ? nullptr : &other);
+          const spring_load<T> load = spring_load_of(spring, k, &other);
           add_at(w, k, load.force, load.point_a);
         } else {
           const body_kinematics<T> other = system.resting_kinematics(e.a);
@@ -3049,8 +3052,8 @@ class rigid_body_system {
     w.torque += cross(p - k.position, f);
   }
 
+  // A static body at the other end of a spring: it does not move in the step.
   body_kinematics<T> resting_kinematics(std::uint32_t i) const noexcept {
-    if (i == none) return {};
     const rigid_body<T>& b = bodies_.values()[i];
     return kinematics_of(b, pose_of(b), momentum_of(b));
   }
@@ -5738,14 +5741,7 @@ class basic_quickhull {
             slot = h;
             continue;
           }
-          std::uint32_t e = h;
-          do {
-            if (faces_[edges_[e].face].visible != stamp_) {
-              mark_visible(edges_[e].face);
-              grew = true;
-            }
-            e = edges_[edges_[e].prev].twin;
-          } while (e != h);
+          grew = mark_faces_around(h) || grew;
         }
         for (const std::uint32_t h : boundary_) horizon_from_[edges_[h].origin] = none;
       }
@@ -5784,15 +5780,23 @@ class basic_quickhull {
         e = edges_[edges_[e].prev].twin;
       } while (e != h && nearly_visible);
       if (!nearly_visible) continue;
-      e = h;
-      do {
-        if (faces_[edges_[e].face].visible != stamp_) {
-          mark_visible(edges_[e].face);
-          grew = true;
-        }
-        e = edges_[edges_[e].prev].twin;
-      } while (e != h);
+      grew = mark_faces_around(h) || grew;
     }
+    return grew;
+  }
+
+  /// Marks every face around the origin of edge h visible; true if any was
+  /// not already.
+  bool mark_faces_around(std::uint32_t h) {
+    bool grew = false;
+    std::uint32_t e = h;
+    do {
+      if (faces_[edges_[e].face].visible != stamp_) {
+        mark_visible(edges_[e].face);
+        grew = true;
+      }
+      e = edges_[edges_[e].prev].twin;
+    } while (e != h);
     return grew;
   }
 

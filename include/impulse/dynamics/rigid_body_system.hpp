@@ -320,9 +320,12 @@ class rigid_body_system {
         const spring_ends& e = system.ends_[s];
         const body_spring<T>& spring = system.springs_.values()[s];
         // This body may be either end; the other end does not move.
-        if (e.a == index) {
+        if (e.a == index && e.b == none) {  // a world anchor
+          const spring_load<T> load = spring_load_of<T>(spring, k, nullptr);
+          add_at(w, k, load.force, load.point_a);
+        } else if (e.a == index) {
           const body_kinematics<T> other = system.resting_kinematics(e.b);
-          const spring_load<T> load = spring_load_of(spring, k, e.b == none ? nullptr : &other);
+          const spring_load<T> load = spring_load_of(spring, k, &other);
           add_at(w, k, load.force, load.point_a);
         } else {
           const body_kinematics<T> other = system.resting_kinematics(e.a);
@@ -339,8 +342,8 @@ class rigid_body_system {
     w.torque += cross(p - k.position, f);
   }
 
+  // A static body at the other end of a spring: it does not move in the step.
   body_kinematics<T> resting_kinematics(std::uint32_t i) const noexcept {
-    if (i == none) return {};
     const rigid_body<T>& b = bodies_.values()[i];
     return kinematics_of(b, pose_of(b), momentum_of(b));
   }

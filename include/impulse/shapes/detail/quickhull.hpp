@@ -985,14 +985,7 @@ class basic_quickhull {
             slot = h;
             continue;
           }
-          std::uint32_t e = h;
-          do {
-            if (faces_[edges_[e].face].visible != stamp_) {
-              mark_visible(edges_[e].face);
-              grew = true;
-            }
-            e = edges_[edges_[e].prev].twin;
-          } while (e != h);
+          grew = mark_faces_around(h) || grew;
         }
         for (const std::uint32_t h : boundary_) horizon_from_[edges_[h].origin] = none;
       }
@@ -1031,15 +1024,23 @@ class basic_quickhull {
         e = edges_[edges_[e].prev].twin;
       } while (e != h && nearly_visible);
       if (!nearly_visible) continue;
-      e = h;
-      do {
-        if (faces_[edges_[e].face].visible != stamp_) {
-          mark_visible(edges_[e].face);
-          grew = true;
-        }
-        e = edges_[edges_[e].prev].twin;
-      } while (e != h);
+      grew = mark_faces_around(h) || grew;
     }
+    return grew;
+  }
+
+  /// Marks every face around the origin of edge h visible; true if any was
+  /// not already.
+  bool mark_faces_around(std::uint32_t h) {
+    bool grew = false;
+    std::uint32_t e = h;
+    do {
+      if (faces_[edges_[e].face].visible != stamp_) {
+        mark_visible(edges_[e].face);
+        grew = true;
+      }
+      e = edges_[edges_[e].prev].twin;
+    } while (e != h);
     return grew;
   }
 
