@@ -5,6 +5,7 @@
 
 #include "broadphase/broad_phase.hpp"
 #include "broadphase/brute_force.hpp"
+#include "broadphase/sweep_and_prune.hpp"
 #include "broadphase/fwd.hpp"
 #include "broadphase/pair_tracker.hpp"
 #include "broadphase/proxy.hpp"

@@ -36,73 +36,9 @@
 // refused with impulse::invalid_argument and changes nothing.
 
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <span>
-
-// ---- begin impulse/math/aabb.hpp ----
-// impulse/math/aabb.hpp — axis-aligned bounding box.
-//
-// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
-// upper = -max), the identity of merge, so a box can be grown point by point
-// from it; is_valid is false for it until something is merged in.
-
-#include <limits>
-
-// ---- begin impulse/math/mat3.hpp ----
-// impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
-//
-// Stored as three columns, so m * v = v.x·c0 + v.y·c1 + v.z·c2 and the columns
-// of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
-// column c.
-
-#include <cmath>
-#include <optional>
-
-// ---- begin impulse/math/vec3.hpp ----
-// impulse/math/vec3.hpp — three-component vector of float or double.
-//
-// A plain aggregate: `vec3<float>{1, 2, 3}`. Arithmetic is constexpr; the
-// functions that need a square root (length, normalize) are not, because
-// std::sqrt is not constexpr in C++20.
-
-
-// ---- begin impulse/core/assert.hpp ----
-// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
-//
-// IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
-// to normalize, an index in range). It is on in debug builds and compiled out
-// when NDEBUG is defined, like <cassert>, so release hot loops pay nothing.
-// Bad *user input* at the API boundary is not asserted: it is reported with
-// impulse::invalid_argument (core/error.hpp) in every build.
-
-#include <cstdio>
-#include <cstdlib>
-
-namespace impulse::detail {
-
-[[noreturn]] inline void assertion_failed(const char* expression, const char* file, int line) {
-  std::fprintf(stderr, "impulse: assertion failed: %s (%s:%d)\n", expression, file, line);
-  std::abort();
-}
-
-}  // namespace impulse::detail
-
-#if defined(NDEBUG) && !defined(IMPULSE_ENABLE_ASSERTS)
-#define IMPULSE_ASSERT(expression) static_cast<void>(0)
-#else
-#define IMPULSE_ASSERT(expression)                                                   \
-  ((expression) ? static_cast<void>(0)                                               \
-                : ::impulse::detail::assertion_failed(#expression, __FILE__, __LINE__))
-#endif
-// ---- end impulse/core/assert.hpp ----
-// ---- begin impulse/math/scalar_traits.hpp ----
-// impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
-//
-// Every tolerance the math layer uses lives here, with its unit and the reason
-// for its value, so that float and double builds differ in exactly these
-// numbers and nowhere else. Later layers (contacts, sleeping) add their own
-// struct of the same shape next to their code.
-
 
 // ---- begin impulse/core/policy.hpp ----
 // impulse/core/policy.hpp — the concepts a configuration's policies must model,
@@ -120,7 +56,6 @@ namespace impulse::detail {
 // their operations, they require the policy to say which kind it is; the
 // operational requirements are added with the first implementation.
 
-#include <cstddef>
 #include <type_traits>
 
 namespace impulse {
@@ -270,6 +205,71 @@ consteval bool check_config() {
 
 }  // namespace impulse
 // ---- end impulse/core/policy.hpp ----
+// ---- begin impulse/math/aabb.hpp ----
+// impulse/math/aabb.hpp — axis-aligned bounding box.
+//
+// Closed box [lower, upper]. aabb::empty() is inverted (lower = +max,
+// upper = -max), the identity of merge, so a box can be grown point by point
+// from it; is_valid is false for it until something is merged in.
+
+#include <limits>
+
+// ---- begin impulse/math/mat3.hpp ----
+// impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
+//
+// Stored as three columns, so m * v = v.x·c0 + v.y·c1 + v.z·c2 and the columns
+// of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
+// column c.
+
+#include <cmath>
+#include <optional>
+
+// ---- begin impulse/math/vec3.hpp ----
+// impulse/math/vec3.hpp — three-component vector of float or double.
+//
+// A plain aggregate: `vec3<float>{1, 2, 3}`. Arithmetic is constexpr; the
+// functions that need a square root (length, normalize) are not, because
+// std::sqrt is not constexpr in C++20.
+
+
+// ---- begin impulse/core/assert.hpp ----
+// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
+//
+// IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
+// to normalize, an index in range). It is on in debug builds and compiled out
+// when NDEBUG is defined, like <cassert>, so release hot loops pay nothing.
+// Bad *user input* at the API boundary is not asserted: it is reported with
+// impulse::invalid_argument (core/error.hpp) in every build.
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace impulse::detail {
+
+[[noreturn]] inline void assertion_failed(const char* expression, const char* file, int line) {
+  std::fprintf(stderr, "impulse: assertion failed: %s (%s:%d)\n", expression, file, line);
+  std::abort();
+}
+
+}  // namespace impulse::detail
+
+#if defined(NDEBUG) && !defined(IMPULSE_ENABLE_ASSERTS)
+#define IMPULSE_ASSERT(expression) static_cast<void>(0)
+#else
+#define IMPULSE_ASSERT(expression)                                                   \
+  ((expression) ? static_cast<void>(0)                                               \
+                : ::impulse::detail::assertion_failed(#expression, __FILE__, __LINE__))
+#endif
+// ---- end impulse/core/assert.hpp ----
+// ---- begin impulse/math/scalar_traits.hpp ----
+// impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
+//
+// Every tolerance the math layer uses lives here, with its unit and the reason
+// for its value, so that float and double builds differ in exactly these
+// numbers and nowhere else. Later layers (contacts, sleeping) add their own
+// struct of the same shape next to their code.
+
+
 
 namespace impulse {
 
@@ -1189,22 +1189,70 @@ void require_ray(const ray<T>& r, T max_fraction) {
 
 namespace impulse::broadphase {
 
+// One requirement per member, so that the loud check below can name the
+// one that is missing.
+namespace detail {
 template <class B, class T>
-concept broad_phase = requires(B& b, const B& cb, const aabb<T>& box, proxy_id id, const ray<T>& r) {
+concept has_create = requires(B& b, const aabb<T>& box) {
   { b.create(box, std::uint64_t{}) } -> std::same_as<proxy_id>;
+};
+template <class B, class T>
+concept has_move_destroy_update = requires(B& b, const aabb<T>& box, proxy_id id) {
   b.move(id, box);
   b.destroy(id);
   b.update();
-  { cb.pairs() } -> std::convertible_to<std::span<const proxy_pair>>;
-  { cb.begun() } -> std::convertible_to<std::span<const proxy_pair>>;
-  { cb.ended() } -> std::convertible_to<std::span<const proxy_pair>>;
-  cb.query(box, [](proxy_id) {});
-  cb.ray_cast(r, T(1), [](proxy_id, T fraction) { return fraction; });
-  { cb.box(id) } -> std::convertible_to<aabb<T>>;
-  { cb.user_data(id) } -> std::convertible_to<std::uint64_t>;
-  { cb.contains(id) } -> std::same_as<bool>;
-  { cb.size() } -> std::convertible_to<std::size_t>;
 };
+template <class B>
+concept has_pair_lists = requires(const B& b) {
+  { b.pairs() } -> std::convertible_to<std::span<const proxy_pair>>;
+  { b.begun() } -> std::convertible_to<std::span<const proxy_pair>>;
+  { b.ended() } -> std::convertible_to<std::span<const proxy_pair>>;
+};
+template <class B, class T>
+concept has_query = requires(const B& b, const aabb<T>& box) { b.query(box, [](proxy_id) {}); };
+template <class B, class T>
+concept has_ray_cast = requires(const B& b, const ray<T>& r) {
+  b.ray_cast(r, T(1), [](proxy_id, T fraction) { return fraction; });
+};
+template <class B, class T>
+concept has_accessors = requires(const B& b, proxy_id id) {
+  { b.box(id) } -> std::convertible_to<aabb<T>>;
+  { b.user_data(id) } -> std::convertible_to<std::uint64_t>;
+  { b.contains(id) } -> std::same_as<bool>;
+  { b.size() } -> std::convertible_to<std::size_t>;
+};
+}  // namespace detail
+
+/// Quiet form: true when B is a broad phase over boxes of scalar T.
+template <class B, class T>
+concept broad_phase = std::default_initializable<B> && detail::has_create<B, T> &&
+                      detail::has_move_destroy_update<B, T> && detail::has_pair_lists<B> &&
+                      detail::has_query<B, T> && detail::has_ray_cast<B, T> && detail::has_accessors<B, T>;
+
+/// Loud form: `static_assert(check_broad_phase<B, T>());` fails with one
+/// message per missing member, naming it.
+template <class B, class T>
+consteval bool check_broad_phase() {
+  static_assert(std::default_initializable<B>, "impulse broad phase: must be default constructible");
+  static_assert(detail::has_create<B, T>,
+                "impulse broad phase: missing `proxy_id create(const aabb<T>&, std::uint64_t user_data)`");
+  static_assert(detail::has_move_destroy_update<B, T>,
+                "impulse broad phase: missing `move(proxy_id, const aabb<T>&)`, `destroy(proxy_id)` or `update()`");
+  static_assert(detail::has_pair_lists<B>,
+                "impulse broad phase: missing `pairs()`, `begun()` or `ended()` (spans of proxy_pair)");
+  static_assert(detail::has_query<B, T>, "impulse broad phase: missing `query(const aabb<T>&, callback(proxy_id))`");
+  static_assert(detail::has_ray_cast<B, T>,
+                "impulse broad phase: missing `ray_cast(const ray<T>&, T max_fraction, callback(proxy_id, T) -> T)`");
+  static_assert(detail::has_accessors<B, T>,
+                "impulse broad phase: missing `box(id)`, `user_data(id)`, `contains(id)` or `size()`");
+  return broad_phase<B, T>;
+}
+
+/// A broad-phase policy for a config: it declares its kind and its
+/// `type<T>` is a broad phase for both scalars.
+template <class P>
+concept broad_phase_policy = broadphase_policy<P> && broad_phase<typename P::template type<float>, float> &&
+                             broad_phase<typename P::template type<double>, double>;
 
 }  // namespace impulse::broadphase
 // ---- end impulse/broadphase/broad_phase.hpp ----
@@ -1394,6 +1442,529 @@ struct brute_force {
 
 }  // namespace impulse::broadphase
 // ---- end impulse/broadphase/brute_force.hpp ----
+// ---- begin impulse/broadphase/sweep_and_prune.hpp ----
+// impulse/broadphase/sweep_and_prune.hpp — sorted endpoints on three axes,
+// kept sorted between steps, with the pair set updated from the swaps.
+//
+// Incremental sweep and prune (Baraff 1992; Cohen et al., I-COLLIDE 1995;
+// Terdiman, "Sweep-and-prune", 2007). Each axis holds the boxes' lower and
+// upper ends in one sorted array. When a box moves, each of its ends is
+// sifted to its new place, as one step of insertion sort; every end it
+// passes is an event:
+//
+//   a lower end passing an upper end of another box towards it: the two
+//     intervals begin to overlap on this axis; if the boxes now overlap on
+//     all three, the pair begins;
+//   an upper end passing a lower end away from it: the intervals separate
+//     on this axis, and the pair, if there was one, ends.
+//
+// Two ends of the same kind passing each other change nothing. Ends that
+// compare equal are ordered lower before upper, so touching boxes overlap as
+// in `overlaps`. Coherent motion moves few ends past few others, so a step
+// costs O(n + swaps) and the pair set is never rebuilt: it lives in a hash
+// set (detail/pair_set.hpp) that the swaps edit.
+//
+// Why this is correct, one axis at a time: a box's ends on an axis are
+// sifted after its stored interval on that axis is updated, and insertion
+// sort swaps exactly the pairs of ends whose order changes. A pair can only
+// begin by a lower end passing an upper end and only end by the reverse, so
+// testing the stored boxes at each "begin" swap and removing at each "end"
+// swap leaves the set equal to the overlaps of the stored boxes after each
+// axis of each box. When a box moves up, its upper end goes first (and when
+// down, its lower end), so that its lower end never passes its own upper end.
+//
+// Worst case: everything moving far along an axis on which the boxes are
+// densely packed. Every end passes every end it overtakes, so a step costs
+// O(n · ends overtaken) and a scene shaken at random (or all boxes jumping
+// across the world) costs O(n²) per step; bench/broadphase measures it. The
+// same holds for adding boxes one at a time (each sifts in from the top), so
+// when more are added in one update than about log₂ n, the arrays are
+// sorted afresh and the pairs found by one sweep along x instead.
+//
+// Queries and ray casts read the x axis: a box overlaps a query only if its
+// lower x end lies in [query.lower.x − widest, query.upper.x], where widest
+// is the widest box along x, a binary search away.
+
+#include <bit>
+
+// ---- begin impulse/broadphase/detail/pair_set.hpp ----
+// impulse/broadphase/detail/pair_set.hpp — a set of pairs of 32-bit handles
+// that an incremental broad phase adds to and removes from as boxes move.
+//
+// Open addressing with linear probing over one power-of-two array of 64-bit
+// keys (the two handles, lower first), and deletion by backward shift
+// (Knuth, TAOCP vol. 3, §6.4, algorithm R), so that no tombstones pile up
+// in a set that sees a remove for every add over a long run. Kept below half
+// full, where linear probing averages under 1.5 probes for a hit and 2.5 for
+// a miss. std::unordered_set would allocate a node per pair and costs far
+// more to include.
+
+
+namespace impulse::broadphase::detail {
+
+class pair_set {
+ public:
+  static constexpr std::uint64_t key_of(std::uint32_t x, std::uint32_t y) noexcept {
+    return x < y ? (std::uint64_t(x) << 32) | y : (std::uint64_t(y) << 32) | x;
+  }
+  static constexpr std::uint32_t first(std::uint64_t key) noexcept { return std::uint32_t(key >> 32); }
+  static constexpr std::uint32_t second(std::uint64_t key) noexcept { return std::uint32_t(key); }
+
+  /// Adds the key; false when it was already there.
+  bool insert(std::uint64_t key) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    std::size_t i = home(key);
+    while (keys_[i] != empty) {
+      if (keys_[i] == key) return false;
+      i = (i + 1) & mask_;
+    }
+    keys_[i] = key;
+    ++size_;
+    return true;
+  }
+
+  /// Removes the key; false when it was not there.
+  bool erase(std::uint64_t key) noexcept {
+    if (size_ == 0) return false;
+    std::size_t i = home(key);
+    while (keys_[i] != key) {
+      if (keys_[i] == empty) return false;
+      i = (i + 1) & mask_;
+    }
+    // Backward shift: pull later keys of the same probe run into the hole
+    // when the hole lies on their way from their home slot.
+    for (std::size_t j = (i + 1) & mask_;; j = (j + 1) & mask_) {
+      if (keys_[j] == empty) break;
+      const std::size_t h = home(keys_[j]);
+      const bool hole_between = i <= j ? (h <= i || h > j) : (h <= i && h > j);
+      if (hole_between) {
+        keys_[i] = keys_[j];
+        i = j;
+      }
+    }
+    keys_[i] = empty;
+    --size_;
+    return true;
+  }
+
+  void clear() noexcept {
+    for (std::uint64_t& k : keys_) k = empty;
+    size_ = 0;
+  }
+
+  /// Calls f(key) for every key, in table order.
+  template <class F>
+  void for_each(F&& f) const {
+    for (const std::uint64_t k : keys_)
+      if (k != empty) f(k);
+  }
+
+  /// Removes every key for which drop(key) is true (one pass and a rehash).
+  template <class Predicate>
+  void erase_if(Predicate&& drop) {
+    scratch_.clear();
+    for (const std::uint64_t k : keys_)
+      if (k != empty && !drop(k)) scratch_.push_back(k);
+    clear();
+    for (const std::uint64_t k : scratch_) insert(k);
+  }
+
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+
+ private:
+  // No real key is all ones: handles are below 2^32 - 1.
+  static constexpr std::uint64_t empty = ~std::uint64_t(0);
+
+  std::size_t home(std::uint64_t key) const noexcept {
+    // The splitmix64 finaliser: handles are small consecutive integers,
+    // which a plain mask would pile into a few runs.
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ull;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebull;
+    key ^= key >> 31;
+    return std::size_t(key) & mask_;
+  }
+
+  void grow() {
+    std::vector<std::uint64_t> old;
+    old.swap(keys_);
+    keys_.assign(old.empty() ? 64 : old.size() * 2, empty);
+    mask_ = keys_.size() - 1;
+    size_ = 0;
+    for (const std::uint64_t k : old)
+      if (k != empty) insert(k);
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint64_t> scratch_;
+  std::size_t mask_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace impulse::broadphase::detail
+// ---- end impulse/broadphase/detail/pair_set.hpp ----
+
+namespace impulse::broadphase {
+
+template <scalar_type T>
+class basic_sweep_and_prune {
+ public:
+  basic_sweep_and_prune() {
+    for (auto& ends : axes_) {
+      ends.push_back({-std::numeric_limits<T>::infinity(), sentinel_data});  // a lower end: nothing sorts before it
+      ends.push_back({std::numeric_limits<T>::infinity(), sentinel_data | 1u});  // an upper end: nothing after
+    }
+  }
+
+  proxy_id create(const aabb<T>& box, std::uint64_t user_data) {
+    const proxy_id id = store_.insert(box, user_data);
+    std::uint32_t h;
+    if (free_handles_.empty()) {
+      h = std::uint32_t(handles_.size());
+      handles_.emplace_back();
+    } else {
+      h = free_handles_.back();
+      free_handles_.pop_back();
+    }
+    handles_[h] = {box, {}, id, proxy_state::added};
+    if (handle_of_slot_.size() <= id.index) handle_of_slot_.resize(id.index + 1, no_handle);
+    handle_of_slot_[id.index] = h;
+    added_.push_back(h);
+    return id;
+  }
+
+  void move(proxy_id id, const aabb<T>& box) {
+    store_.set_box(id, box);
+    const std::uint32_t h = handle_of_slot_[id.index];
+    if (handles_[h].state == proxy_state::resting) {
+      handles_[h].state = proxy_state::moved;
+      moved_.push_back(h);
+    }
+  }
+
+  void destroy(proxy_id id) {
+    store_.erase(id);
+    const std::uint32_t h = handle_of_slot_[id.index];
+    handle_of_slot_[id.index] = no_handle;
+    // A box added since the last update has no ends yet: it just goes.
+    // One already sorted keeps its ends until the next update removes
+    // them all in one pass.
+    handles_[h].state = handles_[h].state == proxy_state::added ? proxy_state::dropped : proxy_state::removed;
+    ++removed_count_;
+  }
+
+  void update() {
+    swaps_ = 0;
+    if (removed_count_ > 0) remove_destroyed();
+    for (const std::uint32_t h : moved_) {
+      if (handles_[h].state != proxy_state::moved) continue;  // destroyed since it moved
+      handles_[h].state = proxy_state::resting;
+      move_ends(h, store_.box(handles_[h].id));
+    }
+    moved_.clear();
+    add_created();
+
+    found_.clear();
+    pair_set_.for_each([&](std::uint64_t key) {
+      found_.push_back(pair_of(handles_[detail::pair_set::first(key)].id, handles_[detail::pair_set::second(key)].id));
+    });
+    pairs_.publish(found_);
+  }
+
+  [[nodiscard]] std::span<const proxy_pair> pairs() const noexcept { return pairs_.pairs(); }
+  [[nodiscard]] std::span<const proxy_pair> begun() const noexcept { return pairs_.begun(); }
+  [[nodiscard]] std::span<const proxy_pair> ended() const noexcept { return pairs_.ended(); }
+
+  /// Every proxy whose box, as of the last update, overlaps `region`.
+  template <class Callback>
+  void query(const aabb<T>& region, Callback&& callback) const {
+    detail::proxy_store<T>::require_box(region);
+    const auto& x = axes_[0];
+    for (std::size_t i = first_lower_end_from(region.lower.x - widest_x_); i < x.size(); ++i) {
+      if (x[i].value > region.upper.x) break;
+      if (is_upper(x[i])) continue;
+      const handle& p = handles_[handle_of(x[i])];
+      if (p.state != proxy_state::removed && overlaps(p.box, region)) callback(p.id);
+    }
+  }
+
+  /// Every proxy whose box, as of the last update, the segment enters, in
+  /// order of lower x end along the ray's direction, so that a clipping
+  /// callback ends the walk early.
+  template <class Callback>
+  void ray_cast(const ray<T>& r, T max_fraction, Callback&& callback) const {
+    detail::require_ray(r, max_fraction);
+    const auto& x = axes_[0];
+    const auto visit = [&](std::size_t i) {
+      const handle& p = handles_[handle_of(x[i])];
+      if (p.state == proxy_state::removed) return;
+      if (const auto t = ray_enters(r, max_fraction, p.box)) max_fraction = callback(p.id, *t);
+    };
+    // The walk stops past the clipped end of the ray along x, with a few
+    // ulps to spare: ray_enters divides where this multiplies, and a box
+    // it would accept must not be cut off by rounding.
+    const T x0 = r.origin.x, dx = r.translation.x;
+    const auto end_x = [&] {
+      const T end = x0 + max_fraction * dx;
+      return end + (dx >= T(0) ? T(1) : T(-1)) * T(8) * std::numeric_limits<T>::epsilon() * (std::abs(x0) + std::abs(end));
+    };
+    if (dx >= T(0)) {
+      // Boxes whose lower x end lies between the ray's start (less the
+      // widest box) and its clipped end.
+      for (std::size_t i = first_lower_end_from(x0 - widest_x_); i + 1 < x.size() && max_fraction > T(0); ++i) {
+        if (x[i].value > end_x()) break;
+        if (!is_upper(x[i])) visit(i);
+      }
+    } else {
+      // Downwards from the ray's start: stop once even the widest box
+      // starting here would end before the clipped end of the ray.
+      std::size_t i = std::size_t(std::upper_bound(x.begin(), x.end(), x0,
+                                                   [](T v, const end_point& e) { return v < e.value; }) -
+                                  x.begin());
+      while (i-- > 1 && max_fraction > T(0)) {
+        if (x[i].value + widest_x_ < end_x()) break;
+        if (!is_upper(x[i])) visit(i);
+      }
+    }
+  }
+
+  [[nodiscard]] const aabb<T>& box(proxy_id id) const { return store_.box(id); }
+  [[nodiscard]] std::uint64_t user_data(proxy_id id) const { return store_.user_data(id); }
+  [[nodiscard]] bool contains(proxy_id id) const noexcept { return store_.contains(id); }
+  [[nodiscard]] std::size_t size() const noexcept { return store_.size(); }
+
+  /// Ends moved past others in the last update, over all three axes: the
+  /// work of the incremental sort, for tests and the benchmark.
+  [[nodiscard]] std::size_t swaps() const noexcept { return swaps_; }
+
+ private:
+  static constexpr std::uint32_t no_handle = 0xffffffffu;
+  static constexpr std::uint32_t sentinel_data = 0xfffffffeu;  // handle 0x7fffffff, never a real one
+
+  struct end_point {
+    T value;
+    std::uint32_t data;  ///< handle << 1 | 1 for an upper end
+  };
+  static std::uint32_t handle_of(const end_point& e) noexcept { return e.data >> 1; }
+  static bool is_upper(const end_point& e) noexcept { return (e.data & 1u) != 0; }
+  /// The sort order: by value, lower ends before upper ends at equal values.
+  static bool before(const end_point& a, const end_point& b) noexcept {
+    return a.value < b.value || (a.value == b.value && !is_upper(a) && is_upper(b));
+  }
+
+  enum class proxy_state : std::uint8_t {
+    resting,  ///< sorted, not moved since the last update
+    moved,    ///< sorted, on the moved list
+    added,    ///< created since the last update: no ends yet
+    removed,  ///< destroyed since the last update: ends still in the arrays
+    dropped,  ///< created and destroyed between two updates: nothing to undo
+    free,
+  };
+  struct handle {
+    aabb<T> box{};                        ///< as sorted: what the ends hold
+    std::uint32_t position[3][2]{};       ///< where its ends are, per axis, lower then upper
+    proxy_id id{};
+    proxy_state state = proxy_state::free;
+  };
+
+  void move_ends(std::uint32_t h, const aabb<T>& box) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const T lower = box.lower[axis], upper = box.upper[axis];
+      handle& p = handles_[h];
+      const bool up = lower > p.box.lower[axis] || upper > p.box.upper[axis];
+      p.box.lower[axis] = lower;
+      p.box.upper[axis] = upper;
+      if (axis == 0) widest_x_ = std::max(widest_x_, upper - lower);
+      auto& ends = axes_[axis];
+      ends[p.position[axis][0]].value = lower;
+      ends[p.position[axis][1]].value = upper;
+      // Moving up, the upper end leads; moving down, the lower end.
+      if (up) {
+        sift(axis, p.position[axis][1]);
+        sift(axis, handles_[h].position[axis][0]);
+      } else {
+        sift(axis, p.position[axis][0]);
+        sift(axis, handles_[h].position[axis][1]);
+      }
+    }
+  }
+
+  /// Moves the end at i to its sorted place, down or up, editing the pair
+  /// set at each lower–upper crossing.
+  void sift(int axis, std::uint32_t i) {
+    auto& ends = axes_[axis];
+    const end_point e = ends[i];
+    const std::uint32_t h = handle_of(e);
+    const bool upper = is_upper(e);
+    while (before(e, ends[i - 1])) {  // the lower sentinel stops the walk
+      const end_point& f = ends[i - 1];
+      if (upper != is_upper(f)) cross(h, handle_of(f), !upper);
+      ends[i] = f;
+      handles_[handle_of(f)].position[axis][is_upper(f)] = i;
+      --i, ++swaps_;
+    }
+    while (before(ends[i + 1], e)) {  // the upper sentinel stops the walk
+      const end_point& f = ends[i + 1];
+      if (upper != is_upper(f)) cross(h, handle_of(f), upper);
+      ends[i] = f;
+      handles_[handle_of(f)].position[axis][is_upper(f)] = i;
+      ++i, ++swaps_;
+    }
+    ends[i] = e;
+    handles_[h].position[axis][upper] = i;
+  }
+
+  /// h's end passed one of g's ends of the other kind: the intervals began
+  /// to overlap on this axis (begin) or separated.
+  void cross(std::uint32_t h, std::uint32_t g, bool begin) {
+    if (begin) {
+      if (overlaps(handles_[h].box, handles_[g].box)) pair_set_.insert(detail::pair_set::key_of(h, g));
+    } else {
+      pair_set_.erase(detail::pair_set::key_of(h, g));
+    }
+  }
+
+  /// Takes destroyed boxes' ends out of the arrays and their pairs out of
+  /// the set, in one pass each.
+  void remove_destroyed() {
+    const auto gone = [&](std::uint32_t h) { return handles_[h].state == proxy_state::removed; };
+    pair_set_.erase_if([&](std::uint64_t key) {
+      return gone(detail::pair_set::first(key)) || gone(detail::pair_set::second(key));
+    });
+    for (int axis = 0; axis < 3; ++axis) {
+      auto& ends = axes_[axis];
+      std::size_t kept = 1;
+      for (std::size_t i = 1; i + 1 < ends.size(); ++i) {
+        const std::uint32_t h = handle_of(ends[i]);
+        if (gone(h)) continue;
+        ends[kept] = ends[i];
+        handles_[h].position[axis][is_upper(ends[i])] = std::uint32_t(kept);
+        ++kept;
+      }
+      ends[kept++] = ends.back();
+      ends.resize(kept);
+    }
+    for (std::uint32_t h = 0; h < handles_.size(); ++h) {
+      if (handles_[h].state == proxy_state::removed || handles_[h].state == proxy_state::dropped) {
+        handles_[h].state = proxy_state::free;
+        free_handles_.push_back(h);
+      }
+    }
+    removed_count_ = 0;
+    widest_x_ = T(0);
+    for (const handle& p : handles_)
+      if (p.state == proxy_state::resting || p.state == proxy_state::moved) widest_x_ = std::max(widest_x_, p.box.upper.x - p.box.lower.x);
+  }
+
+  void add_created() {
+    std::size_t count = 0;
+    for (const std::uint32_t h : added_)
+      if (handles_[h].state == proxy_state::added) ++count;
+    if (count == 0) {
+      added_.clear();
+      return;
+    }
+    // One box sifted in from the top costs O(n); sorting afresh costs
+    // O(n log n). Past about log₂ n new boxes, sort.
+    const std::size_t total = axes_[0].size() / 2 - 1 + count;
+    if (count > std::size_t(std::bit_width(total))) {
+      for (const std::uint32_t h : added_) {
+        if (handles_[h].state != proxy_state::added) continue;
+        handles_[h].state = proxy_state::resting;
+        handles_[h].box = store_.box(handles_[h].id);
+      }
+      added_.clear();
+      rebuild();
+      return;
+    }
+    for (const std::uint32_t h : added_) {
+      if (handles_[h].state != proxy_state::added) continue;
+      handles_[h].state = proxy_state::resting;
+      // Enter at the top with the ends at +infinity on every axis (a box
+      // that overlaps nothing), then move to the real box.
+      const T far = std::numeric_limits<T>::infinity();
+      for (int axis = 0; axis < 3; ++axis) {
+        auto& ends = axes_[axis];
+        const std::uint32_t top = std::uint32_t(ends.size() - 1);
+        ends.insert(ends.end() - 1, {{far, h << 1}, {far, (h << 1) | 1u}});
+        handles_[h].position[axis][0] = top;
+        handles_[h].position[axis][1] = top + 1;
+      }
+      handles_[h].box = {vec3<T>::splat(far), vec3<T>::splat(far)};
+      move_ends(h, store_.box(handles_[h].id));
+    }
+    added_.clear();
+  }
+
+  /// Every live box's ends sorted afresh, and the pairs found by one sweep
+  /// along x with a list of the boxes whose x interval is open.
+  void rebuild() {
+    for (auto& ends : axes_) ends.resize(1);  // keep the lower sentinel
+    widest_x_ = T(0);
+    for (std::uint32_t h = 0; h < handles_.size(); ++h) {
+      const handle& p = handles_[h];
+      if (p.state != proxy_state::resting && p.state != proxy_state::moved) continue;
+      for (int axis = 0; axis < 3; ++axis) {
+        axes_[axis].push_back({p.box.lower[axis], h << 1});
+        axes_[axis].push_back({p.box.upper[axis], (h << 1) | 1u});
+      }
+      widest_x_ = std::max(widest_x_, p.box.upper.x - p.box.lower.x);
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      auto& ends = axes_[axis];
+      std::sort(ends.begin() + 1, ends.end(), before);
+      ends.push_back({std::numeric_limits<T>::infinity(), sentinel_data | 1u});
+      for (std::uint32_t i = 1; i + 1 < ends.size(); ++i)
+        handles_[handle_of(ends[i])].position[axis][is_upper(ends[i])] = i;
+    }
+    pair_set_.clear();
+    open_.clear();
+    const auto& x = axes_[0];
+    for (std::size_t i = 1; i + 1 < x.size(); ++i) {
+      const std::uint32_t h = handle_of(x[i]);
+      if (is_upper(x[i])) {
+        open_.erase(std::find(open_.begin(), open_.end(), h));
+        continue;
+      }
+      for (const std::uint32_t g : open_)
+        if (overlaps(handles_[h].box, handles_[g].box)) pair_set_.insert(detail::pair_set::key_of(h, g));
+      open_.push_back(h);
+    }
+  }
+
+  /// The first end on the x axis at or above `value` (skipping the sentinel).
+  std::size_t first_lower_end_from(T value) const {
+    const auto& x = axes_[0];
+    const auto it = std::lower_bound(x.begin() + 1, x.end() - 1, value,
+                                     [](const end_point& e, T v) { return e.value < v; });
+    return std::size_t(it - x.begin());
+  }
+
+  detail::proxy_store<T> store_;
+  detail::pair_tracker pairs_;
+  std::vector<proxy_pair> found_;
+
+  std::vector<end_point> axes_[3];
+  std::vector<handle> handles_;
+  std::vector<std::uint32_t> handle_of_slot_;
+  std::vector<std::uint32_t> free_handles_;
+  std::vector<std::uint32_t> moved_, added_, open_;
+  detail::pair_set pair_set_;
+  std::size_t removed_count_ = 0;
+  std::size_t swaps_ = 0;
+  T widest_x_ = T(0);
+};
+
+/// The sweep-and-prune policy, for a config's `broadphase`.
+struct sweep_and_prune {
+  static constexpr policy_kind kind = policy_kind::broadphase;
+  template <scalar_type T>
+  using type = basic_sweep_and_prune<T>;
+};
+
+}  // namespace impulse::broadphase
+// ---- end impulse/broadphase/sweep_and_prune.hpp ----
 // ---- end impulse/broadphase.hpp ----
 // ---- begin impulse/config.hpp ----
 // impulse/config.hpp — the default compile-time configuration.

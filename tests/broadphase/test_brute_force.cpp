@@ -24,7 +24,7 @@ using impulse::test::error_code_of;
 
 static_assert(broadphase::broad_phase<basic_brute_force<float>, float>);
 static_assert(broadphase::broad_phase<basic_brute_force<double>, double>);
-static_assert(broadphase_policy<broadphase::brute_force>);
+static_assert(broadphase::broad_phase_policy<broadphase::brute_force>);
 
 template <class T>
 aabb<T> cube(T x, T y, T z, T half) {

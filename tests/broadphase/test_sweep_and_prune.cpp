@@ -1,0 +1,127 @@
+// Sweep and prune: exactly brute force's pairs, queries and rays on every
+// hard scene, and the incremental sort doing little work under coherent
+// motion and a lot under its documented worst case.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "impulse/broadphase.hpp"
+#include "impulse/core/random.hpp"
+
+#include "../error_code_of.hpp"
+#include "against_brute_force.hpp"
+
+namespace {
+
+using namespace impulse;
+using impulse::broadphase::basic_sweep_and_prune;
+using impulse::test::error_code_of;
+
+static_assert(broadphase::broad_phase<basic_sweep_and_prune<float>, float>);
+static_assert(broadphase::broad_phase<basic_sweep_and_prune<double>, double>);
+static_assert(broadphase::broad_phase_policy<broadphase::sweep_and_prune>);
+static_assert(broadphase::check_broad_phase<basic_sweep_and_prune<float>, float>());
+
+template <class T>
+aabb<T> cube(T x, T y, T z, T half) {
+  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("sweep and prune reports exactly the brute-force pairs on every hard scene", T, float, double) {
+  for (const test::scene_kind kind : test::all_scene_kinds) {
+    INFO(test::name_of(kind));
+    basic_sweep_and_prune<T> bp;
+    const int count = kind == test::scene_kind::one_spot ? 120 : 300;
+    const auto seen = test::run_against_brute_force<basic_sweep_and_prune<T>, T>(bp, kind, count, 40, 2024);
+    CHECK(seen.pairs > 0);
+    CHECK(seen.queries > 0);
+    CHECK(seen.ray_hits > 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("coherent motion costs no swaps and reversing a row costs one per crossing of ends", T, float,
+                   double) {
+  // n unit cubes in a row along x, 2 m apart: 1 m gaps.
+  constexpr int n = 64;
+  basic_sweep_and_prune<T> bp;
+  std::vector<proxy_id> row;
+  for (int i = 0; i < n; ++i) row.push_back(bp.create(cube<T>(T(2 * i), 0, 0, T(0.5)), std::uint64_t(i)));
+  bp.update();
+  CHECK(bp.pairs().empty());
+
+  // The whole row slides 0.4 m: no end overtakes another (the gaps are 1 m).
+  for (int i = 0; i < n; ++i) bp.move(row[std::size_t(i)], cube<T>(T(2 * i) + T(0.4), 0, 0, T(0.5)));
+  bp.update();
+  CHECK(bp.swaps() == 0);
+  CHECK(bp.pairs().empty());
+
+  // The worst case: the row mirrored about x = 0. Every box overtakes every
+  // other, and each box pair's four ends all cross: insertion sort performs
+  // exactly 4·n(n−1)/2 swaps, all on the x axis.
+  for (int i = 0; i < n; ++i) bp.move(row[std::size_t(i)], cube<T>(-T(2 * i), 0, 0, T(0.5)));
+  bp.update();
+  CHECK(bp.swaps() == std::size_t(2 * n * (n - 1)));
+  CHECK(bp.pairs().empty());  // passing through each other, they end apart
+
+  // Half a metre closer together: neighbours touch at their faces.
+  for (int i = 0; i < n; ++i) bp.move(row[std::size_t(i)], cube<T>(-T(i), 0, 0, T(0.5)));
+  bp.update();
+  CHECK(bp.pairs().size() == std::size_t(n - 1));
+}
+
+TEST_CASE_TEMPLATE("boxes added one at a time and many at once give the same pairs", T, float, double) {
+  // Two ways in: a few new boxes are sifted in from the top of each axis, a
+  // crowd of them triggers a fresh sort and one sweep.
+  basic_sweep_and_prune<T> one_by_one, crowd;
+  broadphase::basic_brute_force<T> reference;
+  lcg32 random{99};
+  for (int round = 0; round < 20; ++round) {
+    for (int k = 0; k < 3; ++k) {  // 3 < log2(size): sifted in
+      const aabb<T> box = cube<T>(random.uniform<T>(0, 8), random.uniform<T>(0, 8), random.uniform<T>(0, 8), T(0.7));
+      one_by_one.create(box, 0);
+      crowd.create(box, 0);
+      reference.create(box, 0);
+    }
+    one_by_one.update();
+    if (round % 5 == 4) crowd.update();  // 15 at a time: sorted afresh
+    reference.update();
+    if (round % 5 == 4) CHECK(std::equal(crowd.pairs().begin(), crowd.pairs().end(), reference.pairs().begin(),
+                                         reference.pairs().end()));
+    CHECK(std::equal(one_by_one.pairs().begin(), one_by_one.pairs().end(), reference.pairs().begin(),
+                     reference.pairs().end()));
+  }
+  CHECK(reference.pairs().size() > 50);
+}
+
+TEST_CASE_TEMPLATE("sweep and prune refuses bad boxes rays and ids and changes nothing", T, float, double) {
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  const T inf = std::numeric_limits<T>::infinity();
+  basic_sweep_and_prune<T> bp;
+  const proxy_id a = bp.create(cube<T>(0, 0, 0, 1), 7);
+  const proxy_id b = bp.create(cube<T>(1, 0, 0, 1), 8);
+  const proxy_id gone = bp.create(cube<T>(9, 0, 0, 1), 9);
+  bp.destroy(gone);
+  bp.update();
+  REQUIRE(bp.pairs().size() == 1);
+  CHECK(error_code_of([&] { bp.create(cube<T>(nan, 0, 0, 1), 0); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { bp.create(aabb<T>{{0, 0, 0}, {inf, 1, 1}}, 0); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { bp.create(aabb<T>{{1, 0, 0}, {0, 1, 1}}, 0); }) == error_code::invalid_parameter);
+  CHECK(error_code_of([&] { bp.move(a, cube<T>(0, nan, 0, 1)); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { bp.move(gone, cube<T>(0, 0, 0, 1)); }) == error_code::out_of_range);
+  CHECK(error_code_of([&] { bp.destroy(gone); }) == error_code::out_of_range);
+  CHECK(error_code_of([&] { bp.query(aabb<T>{{0, 0, 0}, {nan, 1, 1}}, [](proxy_id) {}); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { bp.ray_cast(ray<T>{{0, 0, 0}, {inf, 0, 0}}, T(1), [](proxy_id, T f) { return f; }); }) ==
+        error_code::non_finite);
+  bp.update();
+  CHECK(bp.size() == 2);
+  REQUIRE(bp.pairs().size() == 1);
+  CHECK(bp.pairs()[0] == proxy_pair{a, b});
+  CHECK(bp.begun().empty());
+  CHECK(bp.ended().empty());
+  CHECK(bp.box(a) == cube<T>(0, 0, 0, 1));
+}
