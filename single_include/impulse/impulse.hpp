@@ -30,10 +30,17 @@
 //   box(proxy_id), user_data(proxy_id), contains(proxy_id), size()
 //
 // Pairs are as of the last update(): create, move and destroy take effect
-// at the next one. A ray-cast callback returns the new max_fraction: the
-// fraction it was given to clip the ray at that hit, the old maximum to go
-// on, 0 to stop. Bad input (a non-finite or inverted box, a stale id) is
-// refused with impulse::invalid_argument and changes nothing.
+// at the next one. Queries and ray casts are for after an update too: a box
+// moved or created since may be seen at its old place or not at all (brute
+// force sees the new one, the structures their last update's), but a
+// destroyed proxy is never reported. Pairs are exact (the boxes themselves
+// overlap, not fattened copies), and both the whole set and the changes are
+// reported: the narrow phase needs every touching pair each step, contact
+// events need the changes (pair_tracker.hpp). A ray-cast callback returns
+// the new max_fraction: the fraction it was given to clip the ray at that
+// hit, the old maximum to go on, 0 to stop. Bad input (a non-finite or
+// inverted box, a stale id) is refused with impulse::invalid_argument and
+// changes nothing.
 
 #include <concepts>
 #include <cstddef>
