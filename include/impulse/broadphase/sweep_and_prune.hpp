@@ -74,11 +74,14 @@ class basic_sweep_and_prune {
     if (free_handles_.empty()) {
       h = std::uint32_t(handles_.size());
       handles_.emplace_back();
+      boxes_.emplace_back();
+      positions_.emplace_back();
     } else {
       h = free_handles_.back();
       free_handles_.pop_back();
     }
-    handles_[h] = {box, {}, id, proxy_state::added};
+    handles_[h] = {id, proxy_state::added};
+    boxes_[h] = box;
     if (handle_of_slot_.size() <= id.index) handle_of_slot_.resize(id.index + 1, no_handle);
     handle_of_slot_[id.index] = h;
     added_.push_back(h);
@@ -135,8 +138,8 @@ class basic_sweep_and_prune {
     for (std::size_t i = first_lower_end_from(region.lower.x - widest_x_); i < x.size(); ++i) {
       if (x[i].value > region.upper.x) break;
       if (is_upper(x[i])) continue;
-      const handle& p = handles_[handle_of(x[i])];
-      if (p.state != proxy_state::removed && overlaps(p.box, region)) callback(p.id);
+      const std::uint32_t h = handle_of(x[i]);
+      if (handles_[h].state != proxy_state::removed && overlaps(boxes_[h], region)) callback(handles_[h].id);
     }
   }
 
@@ -148,9 +151,9 @@ class basic_sweep_and_prune {
     detail::require_ray(r, max_fraction);
     const auto& x = axes_[0];
     const auto visit = [&](std::size_t i) {
-      const handle& p = handles_[handle_of(x[i])];
-      if (p.state == proxy_state::removed) return;
-      if (const auto t = ray_enters(r, max_fraction, p.box)) max_fraction = callback(p.id, *t);
+      const std::uint32_t h = handle_of(x[i]);
+      if (handles_[h].state == proxy_state::removed) return;
+      if (const auto t = ray_enters(r, max_fraction, boxes_[h])) max_fraction = callback(handles_[h].id, *t);
     };
     // The walk stops past the clipped end of the ray along x, with a few
     // ulps to spare: ray_enters divides where this multiplies, and a box
@@ -213,30 +216,33 @@ class basic_sweep_and_prune {
     free,
   };
   struct handle {
-    aabb<T> box{};                        ///< as sorted: what the ends hold
-    std::uint32_t position[3][2]{};       ///< where its ends are, per axis, lower then upper
     proxy_id id{};
     proxy_state state = proxy_state::free;
+  };
+  /// Where a box's ends are in each axis's array, lower then upper.
+  struct end_positions {
+    std::uint32_t at[3][2]{};
   };
 
   void move_ends(std::uint32_t h, const aabb<T>& box) {
     for (int axis = 0; axis < 3; ++axis) {
       const T lower = box.lower[axis], upper = box.upper[axis];
-      handle& p = handles_[h];
-      const bool up = lower > p.box.lower[axis] || upper > p.box.upper[axis];
-      p.box.lower[axis] = lower;
-      p.box.upper[axis] = upper;
+      aabb<T>& stored = boxes_[h];
+      const bool up = lower > stored.lower[axis] || upper > stored.upper[axis];
+      stored.lower[axis] = lower;
+      stored.upper[axis] = upper;
       if (axis == 0) widest_x_ = std::max(widest_x_, upper - lower);
       auto& ends = axes_[axis];
-      ends[p.position[axis][0]].value = lower;
-      ends[p.position[axis][1]].value = upper;
+      const std::uint32_t* at = positions_[h].at[axis];
+      ends[at[0]].value = lower;
+      ends[at[1]].value = upper;
       // Moving up, the upper end leads; moving down, the lower end.
       if (up) {
-        sift(axis, p.position[axis][1]);
-        sift(axis, handles_[h].position[axis][0]);
+        sift(axis, at[1]);
+        sift(axis, at[0]);
       } else {
-        sift(axis, p.position[axis][0]);
-        sift(axis, handles_[h].position[axis][1]);
+        sift(axis, at[0]);
+        sift(axis, at[1]);
       }
     }
   }
@@ -248,32 +254,40 @@ class basic_sweep_and_prune {
     const end_point e = ends[i];
     const std::uint32_t h = handle_of(e);
     const bool upper = is_upper(e);
+    const std::uint32_t start = i;
     while (before(e, ends[i - 1])) {  // the lower sentinel stops the walk
-      const end_point& f = ends[i - 1];
-      if (upper != is_upper(f)) cross(h, handle_of(f), !upper);
+      const end_point f = ends[i - 1];
+      if (upper != is_upper(f)) cross(axis, h, handle_of(f), !upper);
       ends[i] = f;
-      handles_[handle_of(f)].position[axis][is_upper(f)] = i;
-      --i, ++swaps_;
+      positions_[handle_of(f)].at[axis][is_upper(f)] = i;
+      --i;
     }
     while (before(ends[i + 1], e)) {  // the upper sentinel stops the walk
-      const end_point& f = ends[i + 1];
-      if (upper != is_upper(f)) cross(h, handle_of(f), upper);
+      const end_point f = ends[i + 1];
+      if (upper != is_upper(f)) cross(axis, h, handle_of(f), upper);
       ends[i] = f;
-      handles_[handle_of(f)].position[axis][is_upper(f)] = i;
-      ++i, ++swaps_;
+      positions_[handle_of(f)].at[axis][is_upper(f)] = i;
+      ++i;
     }
     ends[i] = e;
-    handles_[h].position[axis][upper] = i;
+    positions_[h].at[axis][upper] = i;
+    swaps_ += i > start ? i - start : start - i;
   }
 
-  /// h's end passed one of g's ends of the other kind: the intervals began
-  /// to overlap on this axis (begin) or separated.
-  void cross(std::uint32_t h, std::uint32_t g, bool begin) {
+  /// h's end passed one of g's ends of the other kind on `axis`: their
+  /// intervals there began to overlap (begin) or separated. A separation
+  /// can only end a pair that overlaps on the two other axes, and most do
+  /// not: testing that first spares the pair set most lookups.
+  void cross(int axis, std::uint32_t h, std::uint32_t g, bool begin) {
+    const aabb<T>& a = boxes_[h];
+    const aabb<T>& b = boxes_[g];
     if (begin) {
-      if (overlaps(handles_[h].box, handles_[g].box)) pair_set_.insert(detail::pair_set::key_of(h, g));
-    } else {
-      pair_set_.erase(detail::pair_set::key_of(h, g));
+      if (overlaps(a, b)) pair_set_.insert(detail::pair_set::key_of(h, g));
+      return;
     }
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (a.lower[u] <= b.upper[u] && b.lower[u] <= a.upper[u] && a.lower[v] <= b.upper[v] && b.lower[v] <= a.upper[v])
+      pair_set_.erase(detail::pair_set::key_of(h, g));
   }
 
   /// Takes destroyed boxes' ends out of the arrays and their pairs out of
@@ -290,7 +304,7 @@ class basic_sweep_and_prune {
         const std::uint32_t h = handle_of(ends[i]);
         if (gone(h)) continue;
         ends[kept] = ends[i];
-        handles_[h].position[axis][is_upper(ends[i])] = std::uint32_t(kept);
+        positions_[h].at[axis][is_upper(ends[i])] = std::uint32_t(kept);
         ++kept;
       }
       ends[kept++] = ends.back();
@@ -304,8 +318,9 @@ class basic_sweep_and_prune {
     }
     removed_count_ = 0;
     widest_x_ = T(0);
-    for (const handle& p : handles_)
-      if (p.state == proxy_state::resting || p.state == proxy_state::moved) widest_x_ = std::max(widest_x_, p.box.upper.x - p.box.lower.x);
+    for (std::uint32_t h = 0; h < handles_.size(); ++h)
+      if (handles_[h].state == proxy_state::resting || handles_[h].state == proxy_state::moved)
+        widest_x_ = std::max(widest_x_, boxes_[h].upper.x - boxes_[h].lower.x);
   }
 
   void add_created() {
@@ -323,7 +338,7 @@ class basic_sweep_and_prune {
       for (const std::uint32_t h : added_) {
         if (handles_[h].state != proxy_state::added) continue;
         handles_[h].state = proxy_state::resting;
-        handles_[h].box = store_.box(handles_[h].id);
+        boxes_[h] = store_.box(handles_[h].id);
       }
       added_.clear();
       rebuild();
@@ -339,10 +354,10 @@ class basic_sweep_and_prune {
         auto& ends = axes_[axis];
         const std::uint32_t top = std::uint32_t(ends.size() - 1);
         ends.insert(ends.end() - 1, {{far, h << 1}, {far, (h << 1) | 1u}});
-        handles_[h].position[axis][0] = top;
-        handles_[h].position[axis][1] = top + 1;
+        positions_[h].at[axis][0] = top;
+        positions_[h].at[axis][1] = top + 1;
       }
-      handles_[h].box = {vec3<T>::splat(far), vec3<T>::splat(far)};
+      boxes_[h] = {vec3<T>::splat(far), vec3<T>::splat(far)};
       move_ends(h, store_.box(handles_[h].id));
     }
     added_.clear();
@@ -354,20 +369,20 @@ class basic_sweep_and_prune {
     for (auto& ends : axes_) ends.resize(1);  // keep the lower sentinel
     widest_x_ = T(0);
     for (std::uint32_t h = 0; h < handles_.size(); ++h) {
-      const handle& p = handles_[h];
-      if (p.state != proxy_state::resting && p.state != proxy_state::moved) continue;
+      if (handles_[h].state != proxy_state::resting && handles_[h].state != proxy_state::moved) continue;
+      const aabb<T>& box = boxes_[h];
       for (int axis = 0; axis < 3; ++axis) {
-        axes_[axis].push_back({p.box.lower[axis], h << 1});
-        axes_[axis].push_back({p.box.upper[axis], (h << 1) | 1u});
+        axes_[axis].push_back({box.lower[axis], h << 1});
+        axes_[axis].push_back({box.upper[axis], (h << 1) | 1u});
       }
-      widest_x_ = std::max(widest_x_, p.box.upper.x - p.box.lower.x);
+      widest_x_ = std::max(widest_x_, box.upper.x - box.lower.x);
     }
     for (int axis = 0; axis < 3; ++axis) {
       auto& ends = axes_[axis];
       std::sort(ends.begin() + 1, ends.end(), before);
       ends.push_back({std::numeric_limits<T>::infinity(), sentinel_data | 1u});
       for (std::uint32_t i = 1; i + 1 < ends.size(); ++i)
-        handles_[handle_of(ends[i])].position[axis][is_upper(ends[i])] = i;
+        positions_[handle_of(ends[i])].at[axis][is_upper(ends[i])] = i;
     }
     pair_set_.clear();
     open_.clear();
@@ -379,7 +394,7 @@ class basic_sweep_and_prune {
         continue;
       }
       for (const std::uint32_t g : open_)
-        if (overlaps(handles_[h].box, handles_[g].box)) pair_set_.insert(detail::pair_set::key_of(h, g));
+        if (overlaps(boxes_[h], boxes_[g])) pair_set_.insert(detail::pair_set::key_of(h, g));
       open_.push_back(h);
     }
   }
@@ -398,6 +413,8 @@ class basic_sweep_and_prune {
 
   std::vector<end_point> axes_[3];
   std::vector<handle> handles_;
+  std::vector<aabb<T>> boxes_;  ///< per handle, as sorted: what its ends hold
+  std::vector<end_positions> positions_;
   std::vector<std::uint32_t> handle_of_slot_;
   std::vector<std::uint32_t> free_handles_;
   std::vector<std::uint32_t> moved_, added_, open_;
