@@ -1,12 +1,14 @@
 // impulse/broadphase.hpp — the broad phase module: which boxes overlap.
-// (brute_force so far; sweep_and_prune, spatial_hash, dynamic_bvh and
-// octree follow behind the same concept.)
+// Five broad phases behind one concept (broadphase/broad_phase.hpp), chosen
+// by a config's `broadphase`: brute_force (the reference), sweep_and_prune,
+// spatial_hash, dynamic_bvh and octree. docs/broadphase.md compares them.
 #pragma once
 
 #include "broadphase/broad_phase.hpp"
 #include "broadphase/brute_force.hpp"
-#include "broadphase/sweep_and_prune.hpp"
+#include "broadphase/dynamic_bvh.hpp"
 #include "broadphase/fwd.hpp"
 #include "broadphase/pair_tracker.hpp"
 #include "broadphase/proxy.hpp"
 #include "broadphase/proxy_store.hpp"
+#include "broadphase/sweep_and_prune.hpp"

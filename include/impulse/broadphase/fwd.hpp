@@ -14,7 +14,15 @@ template <scalar_type T> struct ray;
 
 namespace broadphase {
 template <scalar_type T> class basic_brute_force;
+template <scalar_type T> class basic_sweep_and_prune;
+template <scalar_type T> class basic_spatial_hash;
+template <scalar_type T> class basic_dynamic_bvh;
+template <scalar_type T> class basic_octree;
 struct brute_force;
+struct sweep_and_prune;
+struct spatial_hash;
+struct dynamic_bvh;
+struct octree;
 }  // namespace broadphase
 
 }  // namespace impulse
