@@ -53,7 +53,7 @@ TEST_CASE_TEMPLATE("touching boxes overlap and each pair is reported once in slo
   CHECK(bp.ended()[0] == proxy_pair{a, b});
 }
 
-TEST_CASE_TEMPLATE("pairs, begins, ends, queries and rays match a direct computation over a moving scene", T, float,
+TEST_CASE_TEMPLATE("pairs begins ends queries and rays match a direct computation over a moving scene", T, float,
                    double) {
   // 200 boxes of sizes from 0 (points) to 2 m, moving at random for 50
   // steps, some destroyed and created on the way.
