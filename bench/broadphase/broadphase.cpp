@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
         ours_report("brute_force", median_run(d, n, steps, 1, make_ours<basic_brute_force<float>>()));
       ours_report("sweep_and_prune", median_run(d, n, steps, repeats, make_ours<basic_sweep_and_prune<float>>()));
       ours_report("dynamic_bvh", median_run(d, n, steps, repeats, make_ours<basic_dynamic_bvh<float>>()));
+      ours_report("octree", median_run(d, n, steps, repeats, make_ours<basic_octree<float>>()));
 #ifdef IMPULSE_BENCH_HAVE_BULLET
       const auto make_bullet = [n](bench::bullet_broad_phase::kind k) {
         return [k, n](const bench::moving_boxes& scene) {

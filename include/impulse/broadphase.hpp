@@ -8,6 +8,7 @@
 #include "broadphase/brute_force.hpp"
 #include "broadphase/dynamic_bvh.hpp"
 #include "broadphase/fwd.hpp"
+#include "broadphase/octree.hpp"
 #include "broadphase/pair_tracker.hpp"
 #include "broadphase/proxy.hpp"
 #include "broadphase/proxy_store.hpp"
