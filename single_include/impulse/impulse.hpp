@@ -3161,10 +3161,21 @@ class basic_sweep_and_prune {
   void update() {
     swaps_ = 0;
     if (removed_count_ > 0) remove_destroyed();
-    for (const std::uint32_t h : moved_) {
-      if (handles_[h].state != proxy_state::moved) continue;  // destroyed since it moved
-      handles_[h].state = proxy_state::resting;
-      move_ends(h, store_.box(handles_[h].id));
+    std::erase_if(moved_, [&](std::uint32_t h) { return handles_[h].state != proxy_state::moved; });
+    for (const std::uint32_t h : moved_) handles_[h].state = proxy_state::resting;
+    // A few boxes moved: each sifts to its place. Many: every box takes its
+    // new interval and one insertion sort pass per axis puts them in order,
+    // which swaps each pair of ends once if their order changed, where box
+    // by box two neighbours moving the same way pass each other twice (and
+    // the pass walks memory in order). Past one in eight, the pass's O(n)
+    // walk costs less than the swaps it saves.
+    if (8 * moved_.size() >= handles_.size()) {
+      for (int axis = 0; axis < 3; ++axis) {
+        for (const std::uint32_t h : moved_) set_interval(axis, h, store_.box(handles_[h].id));
+        sort_axis(axis);
+      }
+    } else {
+      for (const std::uint32_t h : moved_) move_ends(h, store_.box(handles_[h].id));
     }
     moved_.clear();
     add_created();
@@ -3274,20 +3285,26 @@ class basic_sweep_and_prune {
     std::uint32_t at[3][2]{};
   };
 
+  /// Gives box h its new interval on one axis, in its stored box and its
+  /// ends' values, without moving the ends. Returns whether it moved up.
+  bool set_interval(int axis, std::uint32_t h, const aabb<T>& box) {
+    const T lower = box.lower[axis], upper = box.upper[axis];
+    aabb<T>& stored = boxes_[h];
+    const bool up = lower > stored.lower[axis] || upper > stored.upper[axis];
+    stored.lower[axis] = lower;
+    stored.upper[axis] = upper;
+    if (axis == 0) widest_x_ = std::max(widest_x_, upper - lower);
+    const std::uint32_t* at = positions_[h].at[axis];
+    axes_[axis][at[0]].value = lower;
+    axes_[axis][at[1]].value = upper;
+    return up;
+  }
+
   void move_ends(std::uint32_t h, const aabb<T>& box) {
     for (int axis = 0; axis < 3; ++axis) {
-      const T lower = box.lower[axis], upper = box.upper[axis];
-      aabb<T>& stored = boxes_[h];
-      const bool up = lower > stored.lower[axis] || upper > stored.upper[axis];
-      stored.lower[axis] = lower;
-      stored.upper[axis] = upper;
-      if (axis == 0) widest_x_ = std::max(widest_x_, upper - lower);
-      auto& ends = axes_[axis];
       const std::uint32_t* at = positions_[h].at[axis];
-      ends[at[0]].value = lower;
-      ends[at[1]].value = upper;
       // Moving up, the upper end leads; moving down, the lower end.
-      if (up) {
+      if (set_interval(axis, h, box)) {
         sift(axis, at[1]);
         sift(axis, at[0]);
       } else {
@@ -3297,9 +3314,24 @@ class basic_sweep_and_prune {
     }
   }
 
+  /// Insertion sort of a whole axis whose boxes all hold their new
+  /// intervals: each end sifts down into the sorted part before it.
+  void sort_axis(int axis) {
+    const std::uint32_t last = std::uint32_t(axes_[axis].size() - 1);
+    for (std::uint32_t i = 1; i < last; ++i)
+      if (before(axes_[axis][i], axes_[axis][i - 1])) sift_down(axis, i);
+  }
+
   /// Moves the end at i to its sorted place, down or up, editing the pair
   /// set at each lower–upper crossing.
   void sift(int axis, std::uint32_t i) {
+    if (before(axes_[axis][i], axes_[axis][i - 1]))
+      sift_down(axis, i);
+    else
+      sift_up(axis, i);
+  }
+
+  void sift_down(int axis, std::uint32_t i) {
     auto& ends = axes_[axis];
     const end_point e = ends[i];
     const std::uint32_t h = handle_of(e);
@@ -3312,6 +3344,17 @@ class basic_sweep_and_prune {
       positions_[handle_of(f)].at[axis][is_upper(f)] = i;
       --i;
     }
+    ends[i] = e;
+    positions_[h].at[axis][upper] = i;
+    swaps_ += start - i;
+  }
+
+  void sift_up(int axis, std::uint32_t i) {
+    auto& ends = axes_[axis];
+    const end_point e = ends[i];
+    const std::uint32_t h = handle_of(e);
+    const bool upper = is_upper(e);
+    const std::uint32_t start = i;
     while (before(ends[i + 1], e)) {  // the upper sentinel stops the walk
       const end_point f = ends[i + 1];
       if (upper != is_upper(f)) cross(axis, h, handle_of(f), upper);
@@ -3321,7 +3364,7 @@ class basic_sweep_and_prune {
     }
     ends[i] = e;
     positions_[h].at[axis][upper] = i;
-    swaps_ += i > start ? i - start : start - i;
+    swaps_ += i - start;
   }
 
   /// h's end passed one of g's ends of the other kind on `axis`: their
