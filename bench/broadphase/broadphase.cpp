@@ -12,7 +12,7 @@
 //
 // --quick stops at N = 10 000 and runs one repeat (a smoke test). Brute
 // force runs once up to N = 10 000 and not at 100 000, where one update
-// would take seconds.
+// would take seconds; Bullet's axis sweep not at 100 000 either (below).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
       if (n <= 10000)  // one run: at N = 10 000 each update tests 5·10⁷ pairs
         ours_report("brute_force", median_run(d, n, steps, 1, make_ours<basic_brute_force<float>>()));
       ours_report("sweep_and_prune", median_run(d, n, steps, repeats, make_ours<basic_sweep_and_prune<float>>()));
+      ours_report("spatial_hash", median_run(d, n, steps, repeats, make_ours<basic_spatial_hash<float>>()));
       ours_report("dynamic_bvh", median_run(d, n, steps, repeats, make_ours<basic_dynamic_bvh<float>>()));
       ours_report("octree", median_run(d, n, steps, repeats, make_ours<basic_octree<float>>()));
 #ifdef IMPULSE_BENCH_HAVE_BULLET
@@ -120,8 +121,12 @@ int main(int argc, char** argv) {
         };
       };
       report("bullet_dbvt", median_run(d, n, steps, repeats, make_bullet(bench::bullet_broad_phase::kind::dbvt)));
-      report("bullet_axis_sweep",
-             median_run(d, n, steps, repeats, make_bullet(bench::bullet_broad_phase::kind::axis_sweep)));
+      // At 100 000, bt32BitAxisSweep3 takes minutes just to create the
+      // proxies (each sifts in from the top of all three axes, O(n²)): it
+      // is left out there.
+      if (n <= 10000)
+        report("bullet_axis_sweep",
+               median_run(d, n, steps, repeats, make_bullet(bench::bullet_broad_phase::kind::axis_sweep)));
 #endif
     }
   }

@@ -12,4 +12,5 @@
 #include "broadphase/pair_tracker.hpp"
 #include "broadphase/proxy.hpp"
 #include "broadphase/proxy_store.hpp"
+#include "broadphase/spatial_hash.hpp"
 #include "broadphase/sweep_and_prune.hpp"

@@ -29,12 +29,14 @@ using scalar_of = std::remove_cvref_t<decltype(std::declval<BroadPhase>().box(pr
 
 #define IMPULSE_ALL_BROAD_PHASES                                                                             \
   basic_brute_force<float>, basic_brute_force<double>, basic_sweep_and_prune<float>, basic_sweep_and_prune<double>, \
-      basic_dynamic_bvh<float>, basic_dynamic_bvh<double>, basic_octree<float>, basic_octree<double>
+      basic_dynamic_bvh<float>, basic_dynamic_bvh<double>, basic_octree<float>, basic_octree<double>, \
+      basic_spatial_hash<float>, basic_spatial_hash<double>
 
 static_assert(broad_phase_policy<brute_force>);
 static_assert(broad_phase_policy<sweep_and_prune>);
 static_assert(broad_phase_policy<dynamic_bvh>);
 static_assert(broad_phase_policy<octree>);
+static_assert(broad_phase_policy<spatial_hash>);
 
 TEST_CASE_TEMPLATE("a destroyed proxy is never reported even before the next update", BP, IMPULSE_ALL_BROAD_PHASES) {
   using T = scalar_of<BP>;
