@@ -35,7 +35,6 @@ class bullet_broad_phase {
     } else {
       broad_phase_ = std::make_unique<bt32BitAxisSweep3>(lo, hi, static_cast<unsigned int>(capacity + 1));
     }
-    // Neither keeps a copy of the boxes it is given; nothing else to set.
   }
   ~bullet_broad_phase() {
     for (btBroadphaseProxy* p : proxies_) broad_phase_->destroyProxy(p, &dispatcher_);
