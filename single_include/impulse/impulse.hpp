@@ -3891,20 +3891,20 @@ class basic_sweep_and_prune {
   /// intervals: each end sifts down into the sorted part before it.
   void sort_axis(int axis) {
     const std::uint32_t last = std::uint32_t(axes_[axis].size() - 1);
+    std::size_t swaps = 0;
     for (std::uint32_t i = 1; i < last; ++i)
-      if (before(axes_[axis][i], axes_[axis][i - 1])) sift_down(axis, i);
+      if (before(axes_[axis][i], axes_[axis][i - 1])) swaps += sift_down(axis, i);
+    swaps_ += swaps;
   }
 
   /// Moves the end at i to its sorted place, down or up, editing the pair
   /// set at each lower–upper crossing.
   void sift(int axis, std::uint32_t i) {
-    if (before(axes_[axis][i], axes_[axis][i - 1]))
-      sift_down(axis, i);
-    else
-      sift_up(axis, i);
+    swaps_ += before(axes_[axis][i], axes_[axis][i - 1]) ? sift_down(axis, i) : sift_up(axis, i);
   }
 
-  void sift_down(int axis, std::uint32_t i) {
+  /// Returns the number of ends passed.
+  std::uint32_t sift_down(int axis, std::uint32_t i) {
     auto& ends = axes_[axis];
     const end_point e = ends[i];
     const std::uint32_t h = handle_of(e);
@@ -3919,10 +3919,10 @@ class basic_sweep_and_prune {
     }
     ends[i] = e;
     positions_[h].at[axis][upper] = i;
-    swaps_ += start - i;
+    return start - i;
   }
 
-  void sift_up(int axis, std::uint32_t i) {
+  std::uint32_t sift_up(int axis, std::uint32_t i) {
     auto& ends = axes_[axis];
     const end_point e = ends[i];
     const std::uint32_t h = handle_of(e);
@@ -3937,7 +3937,7 @@ class basic_sweep_and_prune {
     }
     ends[i] = e;
     positions_[h].at[axis][upper] = i;
-    swaps_ += i - start;
+    return i - start;
   }
 
   /// h's end passed one of g's ends of the other kind on `axis`: their
