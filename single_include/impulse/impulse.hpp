@@ -2877,11 +2877,20 @@ class basic_octree {
     };
     entered order[small_range > 8 ? small_range : 8];
     int count = 0;
-    const auto by_entry = [](const entered& a, const entered& b) { return a.t < b.t; };
+    // Insertion sort by entry fraction: at most eight entries (std::sort
+    // here also trips g++ 12's -Warray-bounds at -O3).
+    const auto sort_by_entry = [&order](int n) {
+      for (int a = 1; a < n; ++a) {
+        const entered x = order[a];
+        int b = a;
+        for (; b > 0 && x.t < order[b - 1].t; --b) order[b] = order[b - 1];
+        order[b] = x;
+      }
+    };
     if (end - begin <= small_range) {
       for (std::uint32_t i = begin; i < end; ++i)
         if (const auto t = ray_enters(r, max_fraction, loose_box(cell_of(node_keys_[i])))) order[count++] = {*t, i};
-      std::sort(order, order + count, by_entry);
+      sort_by_entry(count);
       for (int k = 0; k < count; ++k)
         if (order[k].t <= max_fraction && !ray_node(nodes_[order[k].index], r, max_fraction, callback)) return false;
       return true;
@@ -2892,7 +2901,7 @@ class basic_octree {
     for (int j = 0; j < 8; ++j)
       if (bounds[j] < bounds[j + 1])
         if (const auto t = ray_enters(r, max_fraction, loose_box(child_of(c, j)))) order[count++] = {*t, std::uint32_t(j)};
-    std::sort(order, order + count, by_entry);
+    sort_by_entry(count);
     for (int k = 0; k < count; ++k) {
       const int j = int(order[k].index);
       if (order[k].t > max_fraction) continue;  // clipped since

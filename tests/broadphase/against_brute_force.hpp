@@ -173,9 +173,19 @@ class moving_boxes {
   vec3<T> clusters_[8]{};
 };
 
+// Messages are built with += only: g++ 12 at -O3 warns falsely
+// (-Wrestrict, its bug 105329) on std::string's operator+ chains.
 inline std::string describe(const proxy_pair& p) {
-  return "(" + std::to_string(p.a.index) + "." + std::to_string(p.a.generation) + ", " + std::to_string(p.b.index) +
-         "." + std::to_string(p.b.generation) + ")";
+  std::string s = "(";
+  s += std::to_string(p.a.index);
+  s += ".";
+  s += std::to_string(p.a.generation);
+  s += ", ";
+  s += std::to_string(p.b.index);
+  s += ".";
+  s += std::to_string(p.b.generation);
+  s += ")";
+  return s;
 }
 
 /// Reports the first difference between two sorted pair lists; true when equal.
@@ -185,10 +195,16 @@ inline bool same_pairs(std::span<const proxy_pair> got, std::span<const proxy_pa
   std::vector<proxy_pair> missing, extra;
   std::set_difference(expected.begin(), expected.end(), got.begin(), got.end(), std::back_inserter(missing));
   std::set_difference(got.begin(), got.end(), expected.begin(), expected.end(), std::back_inserter(extra));
-  std::string message = std::string(what) + " differ at step " + std::to_string(step) + ": " +
-                        std::to_string(got.size()) + " reported, " + std::to_string(expected.size()) + " expected";
-  if (!missing.empty()) message += "; missing " + describe(missing.front());
-  if (!extra.empty()) message += "; extra " + describe(extra.front());
+  std::string message = what;
+  message += " differ at step ";
+  message += std::to_string(step);
+  message += ": ";
+  message += std::to_string(got.size());
+  message += " reported, ";
+  message += std::to_string(expected.size());
+  message += " expected";
+  if (!missing.empty()) message += "; missing ", message += describe(missing.front());
+  if (!extra.empty()) message += "; extra ", message += describe(extra.front());
   if (missing.empty() && extra.empty()) message += "; same set, different order or duplicates";
   FAIL_CHECK(message);
   return false;
