@@ -3743,6 +3743,7 @@ class basic_sweep_and_prune {
   void update() {
     swaps_ = 0;
     if (removed_count_ > 0) remove_destroyed();
+    crossed_.resize(axes_[0].size() + 2 * added_.size());  // room for the longest walk
     std::erase_if(moved_, [&](std::uint32_t h) { return handles_[h].state != proxy_state::moved; });
     for (const std::uint32_t h : moved_) handles_[h].state = proxy_state::resting;
     // A few boxes moved: each sifts to its place. Many: every box takes its
@@ -3897,56 +3898,72 @@ class basic_sweep_and_prune {
   }
 
   /// Insertion sort of a whole axis whose boxes all hold their new
-  /// intervals: each end sifts down into the sorted part before it.
+  /// intervals: each end sifts down into the sorted part before it. The
+  /// ends' positions are written once after the pass, not at every swap.
   void sort_axis(int axis) {
-    const std::uint32_t last = std::uint32_t(axes_[axis].size() - 1);
+    auto& ends = axes_[axis];
+    const std::uint32_t last = std::uint32_t(ends.size() - 1);
     std::size_t swaps = 0;
     for (std::uint32_t i = 1; i < last; ++i)
-      if (before(axes_[axis][i], axes_[axis][i - 1])) swaps += sift_down(axis, i);
+      if (before(ends[i], ends[i - 1]))
+        swaps += is_upper(ends[i]) ? walk<down, true, false>(axis, i) : walk<down, false, false>(axis, i);
     swaps_ += swaps;
+    for (std::uint32_t i = 1; i < last; ++i) positions_[handle_of(ends[i])].at[axis][is_upper(ends[i])] = i;
   }
 
   /// Moves the end at i to its sorted place, down or up, editing the pair
   /// set at each lower–upper crossing.
   void sift(int axis, std::uint32_t i) {
-    swaps_ += before(axes_[axis][i], axes_[axis][i - 1]) ? sift_down(axis, i) : sift_up(axis, i);
+    const auto& ends = axes_[axis];
+    if (before(ends[i], ends[i - 1]))
+      swaps_ += is_upper(ends[i]) ? walk<down, true, true>(axis, i) : walk<down, false, true>(axis, i);
+    else
+      swaps_ += is_upper(ends[i]) ? walk<up, true, true>(axis, i) : walk<up, false, true>(axis, i);
   }
 
-  /// Returns the number of ends passed.
-  std::uint32_t sift_down(int axis, std::uint32_t i) {
+  static constexpr int down = -1, up = 1;
+
+  /// Walks the end at i, an upper end or not, one place at a time in
+  /// `direction` while it belongs beyond the next end, and returns the
+  /// number of ends it passed. Without `track` the ends' positions are left
+  /// for the caller to write. Which kind of end comes next is a coin toss
+  /// that a branch predictor loses half the time, so the walk branches only
+  /// on whether to go on: it notes every box it passes, counting only those
+  /// whose end is of the other kind, and hands them to `cross`, in order,
+  /// after it.
+  template <int direction, bool upper, bool track>
+  std::uint32_t walk(int axis, std::uint32_t i) {
     auto& ends = axes_[axis];
     const end_point e = ends[i];
     const std::uint32_t h = handle_of(e);
-    const bool upper = is_upper(e);
+    // Whether e belongs beyond f: `before` with e's kind known. Ends of the
+    // same kind at equal values stay as they are (a box landing on a floor
+    // that others rest on does not walk past all their ends). The sentinels
+    // (±infinity) stop every walk: the ends are finite.
+    const auto beyond = [&](const end_point& f) {
+      if constexpr (direction == down)
+        return upper ? e.value < f.value : e.value < f.value || (e.value == f.value && is_upper(f));
+      else
+        return upper ? f.value < e.value || (f.value == e.value && !is_upper(f)) : f.value < e.value;
+    };
     const std::uint32_t start = i;
-    while (before(e, ends[i - 1])) {  // the lower sentinel stops the walk
-      const end_point f = ends[i - 1];
-      if (upper != is_upper(f)) cross(axis, h, handle_of(f), !upper);
+    std::uint32_t* crossed = crossed_.data();
+    std::size_t count = 0;
+    while (beyond(ends[i + direction])) {
+      const end_point f = ends[i + direction];
+      crossed[count] = handle_of(f);
+      count += is_upper(f) != upper;
       ends[i] = f;
-      positions_[handle_of(f)].at[axis][is_upper(f)] = i;
-      --i;
+      if constexpr (track) positions_[handle_of(f)].at[axis][is_upper(f)] = i;
+      i += direction;
     }
     ends[i] = e;
-    positions_[h].at[axis][upper] = i;
-    return start - i;
-  }
-
-  std::uint32_t sift_up(int axis, std::uint32_t i) {
-    auto& ends = axes_[axis];
-    const end_point e = ends[i];
-    const std::uint32_t h = handle_of(e);
-    const bool upper = is_upper(e);
-    const std::uint32_t start = i;
-    while (before(ends[i + 1], e)) {  // the upper sentinel stops the walk
-      const end_point f = ends[i + 1];
-      if (upper != is_upper(f)) cross(axis, h, handle_of(f), upper);
-      ends[i] = f;
-      positions_[handle_of(f)].at[axis][is_upper(f)] = i;
-      ++i;
-    }
-    ends[i] = e;
-    positions_[h].at[axis][upper] = i;
-    return i - start;
+    if constexpr (track) positions_[h].at[axis][upper] = i;
+    // Down, a lower end passing upper ends begins overlaps and an upper end
+    // passing lower ends ends them; up, the other way round.
+    constexpr bool begins = (direction == down) != upper;
+    for (std::size_t k = 0; k < count; ++k) cross(axis, h, crossed[k], begins);
+    return direction == down ? start - i : i - start;
   }
 
   /// h's end passed one of g's ends of the other kind on `axis`: their
@@ -4092,7 +4109,7 @@ class basic_sweep_and_prune {
   std::vector<end_positions> positions_;
   std::vector<std::uint32_t> handle_of_slot_;
   std::vector<std::uint32_t> free_handles_;
-  std::vector<std::uint32_t> moved_, added_, open_;
+  std::vector<std::uint32_t> moved_, added_, open_, crossed_;
   detail::pair_set pair_set_;
   std::size_t removed_count_ = 0;
   std::size_t swaps_ = 0;

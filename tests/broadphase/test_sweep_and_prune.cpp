@@ -71,6 +71,29 @@ TEST_CASE_TEMPLATE("coherent motion costs no swaps and reversing a row costs one
   CHECK(bp.pairs().size() == std::size_t(n - 1));
 }
 
+TEST_CASE_TEMPLATE("a box landing level with resting boxes walks past none of their ends", T, float, double) {
+  // A 10 × 10 floor of unit cubes, bottoms at y = 0 and tops at y = 1, and
+  // one more cube 20 m away along x, 0.5 m up. It drops to y = 0: level with
+  // all the others. Ends of one kind at equal values stay where they are,
+  // so its lower end stops above the hundred lower ends at 0 and its upper
+  // end above the hundred upper ends at 1: no swap at all (and no pair).
+  // Walking past equal ends would cost 200 swaps here, and a crowd resting
+  // on one floor makes that every landing.
+  basic_sweep_and_prune<T> bp;
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 10; ++k) bp.create(cube<T>(T(2 * i), T(0.5), T(2 * k), T(0.5)), 0);
+  const proxy_id falling = bp.create(cube<T>(T(40), T(1), T(0), T(0.5)), 0);
+  bp.update();
+  bp.move(falling, cube<T>(T(40), T(0.5), T(0), T(0.5)));
+  bp.update();
+  CHECK(bp.swaps() == 0);
+  CHECK(bp.pairs().empty());
+  // Moved onto the first cube's top face, it touches that cube alone.
+  bp.move(falling, cube<T>(T(0), T(1.5), T(0), T(0.5)));
+  bp.update();
+  CHECK(bp.pairs().size() == 1);
+}
+
 TEST_CASE_TEMPLATE("boxes added one at a time and many at once give the same pairs", T, float, double) {
   // Two ways in: a few new boxes are sifted in from the top of each axis, a
   // crowd of them triggers a fresh sort and one sweep.
