@@ -3813,7 +3813,9 @@ class sap_region {
   /// Calls f(owner a, owner b) for every overlapping pair of members.
   template <class F>
   void for_each_pair(F&& f) const {
-    pairs_.for_each([&](std::uint64_t key) { f(members_[pair_set::first(key)].owner, members_[pair_set::second(key)].owner); });
+    pairs_.for_each([&](std::uint64_t key) {
+      f(members_[pair_set::first(key)].owner, members_[pair_set::second(key)].owner);
+    });
   }
 
   /// Calls f(owner, box) for every member whose sorted box overlaps `region`.
@@ -3844,7 +3846,8 @@ class sap_region {
     const T x0 = r.origin.x, dx = r.translation.x;
     const auto end_x = [&] {
       const T end = x0 + max_fraction * dx;
-      return end + (dx >= T(0) ? T(1) : T(-1)) * T(8) * std::numeric_limits<T>::epsilon() * (std::abs(x0) + std::abs(end));
+      const T slack = T(8) * std::numeric_limits<T>::epsilon() * (std::abs(x0) + std::abs(end));
+      return dx >= T(0) ? end + slack : end - slack;
     };
     if (dx >= T(0)) {
       // Members whose lower x end lies between the ray's start (less the
@@ -4237,7 +4240,8 @@ class basic_sweep_and_prune {
       regions_[r].update();
       swaps_ += regions_[r].swaps();
       regions_[r].for_each_pair([&](std::uint32_t a, std::uint32_t b) {
-        if (first_shared_cell(handles_[a].cells, handles_[b].cells) == r) found_.push_back(pair_of(handles_[a].id, handles_[b].id));
+        if (first_shared_cell(handles_[a].cells, handles_[b].cells) == r)
+          found_.push_back(pair_of(handles_[a].id, handles_[b].id));
       });
     }
     // The boxes too big for the regions, against every box.

@@ -141,7 +141,8 @@ class basic_sweep_and_prune {
       regions_[r].update();
       swaps_ += regions_[r].swaps();
       regions_[r].for_each_pair([&](std::uint32_t a, std::uint32_t b) {
-        if (first_shared_cell(handles_[a].cells, handles_[b].cells) == r) found_.push_back(pair_of(handles_[a].id, handles_[b].id));
+        if (first_shared_cell(handles_[a].cells, handles_[b].cells) == r)
+          found_.push_back(pair_of(handles_[a].id, handles_[b].id));
       });
     }
     // The boxes too big for the regions, against every box.

@@ -128,7 +128,9 @@ class sap_region {
   /// Calls f(owner a, owner b) for every overlapping pair of members.
   template <class F>
   void for_each_pair(F&& f) const {
-    pairs_.for_each([&](std::uint64_t key) { f(members_[pair_set::first(key)].owner, members_[pair_set::second(key)].owner); });
+    pairs_.for_each([&](std::uint64_t key) {
+      f(members_[pair_set::first(key)].owner, members_[pair_set::second(key)].owner);
+    });
   }
 
   /// Calls f(owner, box) for every member whose sorted box overlaps `region`.
@@ -159,7 +161,8 @@ class sap_region {
     const T x0 = r.origin.x, dx = r.translation.x;
     const auto end_x = [&] {
       const T end = x0 + max_fraction * dx;
-      return end + (dx >= T(0) ? T(1) : T(-1)) * T(8) * std::numeric_limits<T>::epsilon() * (std::abs(x0) + std::abs(end));
+      const T slack = T(8) * std::numeric_limits<T>::epsilon() * (std::abs(x0) + std::abs(end));
+      return dx >= T(0) ? end + slack : end - slack;
     };
     if (dx >= T(0)) {
       // Members whose lower x end lies between the ray's start (less the
