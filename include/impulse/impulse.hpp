@@ -8,5 +8,6 @@
 #include "dynamics.hpp"
 #include "integrators.hpp"
 #include "math.hpp"
+#include "narrowphase.hpp"
 #include "particles.hpp"
 #include "shapes.hpp"

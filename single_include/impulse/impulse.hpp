@@ -6561,6 +6561,629 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 }  // namespace impulse
 // ---- end impulse/math/vec3_batch.hpp ----
 // ---- end impulse/math.hpp ----
+// ---- begin impulse/narrowphase.hpp ----
+// impulse/narrowphase.hpp — the narrow phase module: contact manifolds
+// between pairs of shapes. So far the closed-form tests between spheres,
+// capsules, boxes and planes (narrowphase/analytic.hpp).
+
+// ---- begin impulse/narrowphase/analytic.hpp ----
+// impulse/narrowphase/analytic.hpp — closed-form pair tests between
+// spheres, capsules, boxes and planes.
+//
+// Each `collide(a, pose_a, b, pose_b, margin)` returns the contact manifold
+// of shape a at pose_a against shape b at pose_b (manifold.hpp: the normal
+// points from a into b), empty when they are farther apart than `margin`.
+// The swapped pair (plane against sphere, …) is the same test with the
+// manifold flipped.
+//
+// A sphere is a point grown by its radius and a capsule a segment grown by
+// its radius, so every test between them is one between the closest points
+// of two cores (Ericson, "Real-Time Collision Detection", §5.1): the normal
+// lies along the line joining them and the depth is the radii less their
+// distance. When the cores meet (concentric spheres, crossing segments) that
+// line has no direction; the normal is then +y (any direction is right, and
+// a fixed one keeps the result deterministic). Two nearly parallel
+// capsules, one lying along the other, touch along a line: they get two
+// points, at the ends of the overlap, so that one can rest on the other.
+// A sphere against a box takes the box's closest point to the centre, or,
+// for a centre inside the box, the face nearest to it. A box or a capsule
+// against a plane reports each of its corners (or cap centres) below the
+// plane's surface plus the margin; a box keeps four of its corners
+// (reduce_to_four).
+//
+// Feature ids: a sphere has one feature; a capsule's two cap centres are
+// 0 and 1; a box's corners are numbered by the signs of their coordinates
+// (bit 0 set: +x, bit 1: +y, bit 2: +z), and the box feature nearest a
+// sphere by three base-3 digits, one per axis (0 between the faces, 1 at −h,
+// 2 at +h), so that a sphere rolling across one face keeps its id.
+
+#include <array>
+#include <initializer_list>
+
+// ---- begin impulse/shapes/box.hpp ----
+// impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct box {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  vec3<T> half_extents{T(0.5), T(0.5), T(0.5)};  ///< m, each > 0
+
+  static box make(const vec3<T>& half_extents) {
+    const box b{half_extents};
+    b.validate();
+    return b;
+  }
+  void validate() const {
+    if (!is_finite(half_extents)) detail::report_error(error_code::non_finite, "box: half extents are not finite");
+    if (!(min_component(half_extents) > T(0)))
+      detail::report_error(error_code::degenerate_shape, "box: every half extent must be positive");
+  }
+
+  /// The corner farthest along `direction`; on a tie (a zero component) the
+  /// positive side, so the result is always a vertex.
+  vec3<T> support(const vec3<T>& d) const noexcept {
+    return {d.x < T(0) ? -half_extents.x : half_extents.x, d.y < T(0) ? -half_extents.y : half_extents.y,
+            d.z < T(0) ? -half_extents.z : half_extents.z};
+  }
+  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, half_extents); }
+  /// Exact: the rotated box's extent along each axis is |R|·h.
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(local_aabb(), pose); }
+};
+
+/// Solid box of sides 2a, 2b, 2c: m = 8ρabc, I = m/3·diag(b² + c², c² + a², a² + b²).
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const box<T>& b, T density) {
+  b.validate();
+  detail::require_density(density);
+  const vec3<T> h = b.half_extents, h2 = mul(h, h);
+  const T m = T(8) * density * h.x * h.y * h.z;
+  return {m, {}, mat3<T>::diagonal(vec3<T>{h2.y + h2.z, h2.z + h2.x, h2.x + h2.y} * (m / T(3)))};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/box.hpp ----
+// ---- begin impulse/shapes/capsule.hpp ----
+// impulse/shapes/capsule.hpp — a cylinder with hemispherical caps, along y.
+//
+// The set of points within `radius` of the segment from (0, −h, 0) to
+// (0, h, 0): a swept sphere, the cheapest shape that rolls on its side and
+// stands on its end.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct capsule {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  T radius = T(0.25);       ///< m, > 0
+  T half_height = T(0.5);   ///< h, m, ≥ 0: half the length of the core segment
+
+  static capsule make(T radius, T half_height) {
+    const capsule c{radius, half_height};
+    c.validate();
+    return c;
+  }
+  void validate() const {
+    if (!std::isfinite(radius) || !std::isfinite(half_height))
+      detail::report_error(error_code::non_finite, "capsule: radius or half height is not finite");
+    if (!(radius > T(0)) || !(half_height >= T(0)))
+      detail::report_error(error_code::degenerate_shape,
+                           "capsule: radius must be positive and half height non-negative");
+  }
+
+  vec3<T> support(const vec3<T>& d) const noexcept {
+    const vec3<T> end{T(0), d.y < T(0) ? -half_height : half_height, T(0)};
+    return end + normalize_or(d, vec3<T>::unit_y()) * radius;
+  }
+  aabb<T> local_aabb() const noexcept {
+    return aabb<T>::from_center_half_extents({}, {radius, half_height + radius, radius});
+  }
+  /// Exact: the box around the two transformed cap centres, grown by the radius.
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    const vec3<T> axis = rotate(pose.rotation, vec3<T>{T(0), half_height, T(0)});
+    const vec3<T> reach = abs(axis) + vec3<T>::splat(radius);
+    return aabb<T>::from_center_half_extents(pose.position, reach);
+  }
+};
+
+/// Cylinder (mass m_c, radius r, height 2h) plus two hemispheres (together a
+/// ball of mass m_s). About the axis: m_c·r²/2 + 2/5·m_s·r². Across it: the
+/// cylinder's m_c·(r²/4 + h²/3), and each hemisphere's own 83/320·(m_s/2)·r²
+/// about its centre of mass, 3r/8 beyond the cylinder's end, carried to the
+/// middle: together m_s·(2r²/5 + h² + 3hr/4).
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const capsule<T>& c, T density) {
+  c.validate();
+  detail::require_density(density);
+  const T pi = T(3.14159265358979323846), r = c.radius, h = c.half_height, r2 = r * r;
+  const T m_cylinder = density * pi * r2 * T(2) * h;
+  const T m_sphere = density * T(4) / T(3) * pi * r2 * r;
+  const T axial = m_cylinder * r2 / T(2) + T(0.4) * m_sphere * r2;
+  const T across = m_cylinder * (r2 / T(4) + h * h / T(3)) + m_sphere * (T(0.4) * r2 + h * h + T(0.75) * h * r);
+  return {m_cylinder + m_sphere, {}, mat3<T>::diagonal({across, axial, across})};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/capsule.hpp ----
+// ---- begin impulse/shapes/plane.hpp ----
+// impulse/shapes/plane.hpp — a static half-space, the ground of most scenes.
+//
+// Solid where n·x + offset < 0; the surface is n·x + offset = 0 and the free
+// side is where n points (the convention of particles::plane_collider). It
+// is unbounded, so it has no mass properties and belongs only to static
+// bodies: mass_properties_of(plane) does not exist, and asking for it is a
+// compile error.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct plane {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, pointing out of the solid
+  T offset = T(0);                   ///< m: the surface is n·x + offset = 0
+
+  static plane make(const vec3<T>& normal, T offset) {
+    const plane p{normal, offset};
+    p.validate();
+    return p;
+  }
+  void validate() const {
+    if (!is_finite(normal) || !std::isfinite(offset))
+      detail::report_error(error_code::non_finite, "plane: normal or offset is not finite");
+    if (!(length_squared(normal) > scalar_traits<T>::zero_length_squared))
+      detail::report_error(error_code::degenerate_shape, "plane: normal has zero length");
+    if (!(std::abs(length(normal) - T(1)) <= scalar_traits<T>::unit_tolerance))
+      detail::report_error(error_code::not_normalized, "plane: normal is not a unit vector");
+  }
+
+  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
+
+  /// Unbounded in every direction a broad phase cares about.
+  aabb<T> local_aabb() const noexcept {
+    const T big = std::numeric_limits<T>::max();
+    return {vec3<T>::splat(-big), vec3<T>::splat(big)};
+  }
+  aabb<T> world_aabb(const transform<T>&) const noexcept { return local_aabb(); }
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/plane.hpp ----
+// ---- begin impulse/shapes/sphere.hpp ----
+// impulse/shapes/sphere.hpp — a solid ball centred at the body origin.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct sphere {
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  T radius = T(0.5);  ///< m, > 0
+
+  /// A sphere of the given radius; a zero, negative or non-finite radius is refused.
+  static sphere make(T radius) {
+    const sphere s{radius};
+    s.validate();
+    return s;
+  }
+  void validate() const {
+    if (!std::isfinite(radius)) detail::report_error(error_code::non_finite, "sphere: radius is not finite");
+    if (!(radius > T(0))) detail::report_error(error_code::degenerate_shape, "sphere: radius must be positive");
+  }
+
+  /// The point of the sphere farthest along `direction` (any point of the
+  /// surface for a zero direction).
+  vec3<T> support(const vec3<T>& direction) const noexcept {
+    return normalize_or(direction, vec3<T>::unit_x()) * radius;
+  }
+  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, vec3<T>::splat(radius)); }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    return aabb<T>::from_center_half_extents(pose.position, vec3<T>::splat(radius));
+  }
+};
+
+/// Solid ball: m = ρ·4/3·πr³, I = 2/5·m·r² about every axis.
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const sphere<T>& s, T density) {
+  s.validate();
+  detail::require_density(density);
+  const T pi = T(3.14159265358979323846);
+  const T m = density * T(4) / T(3) * pi * s.radius * s.radius * s.radius;
+  return {m, {}, mat3<T>::diagonal(vec3<T>::splat(T(0.4) * m * s.radius * s.radius))};
+}
+
+}  // namespace impulse
+// ---- end impulse/shapes/sphere.hpp ----
+// ---- begin impulse/narrowphase/manifold.hpp ----
+// impulse/narrowphase/manifold.hpp — what a pair test reports: one normal
+// and up to four contact points, each with its depth and a feature id.
+//
+// The normal is a unit vector pointing from shape A into shape B: pushing B
+// along it (or A against it) separates them. Each point lies midway between
+// the two surfaces along the normal, and its depth is how far they
+// interpenetrate there (negative: how far apart they still are, reported
+// when a pair test is given a margin, so that a solver can act before
+// contact). The feature id names the pair of features (faces, edges,
+// vertices) that made the point, so that while the same features touch the
+// same id comes back step after step and a solver can carry the point's
+// impulse over (warm starting).
+//
+// Four points are enough for a face resting on a face: any more add nothing
+// a solver can use, and cost iterations. A pair test that finds more (a box
+// on a plane, a clipped face) keeps four by `reduce_to_four`.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+struct contact_point {
+  vec3<T> position{};         ///< world, midway between the surfaces
+  T depth = T(0);             ///< m: > 0 overlapping, < 0 apart (within the margin)
+  std::uint32_t feature = 0;  ///< the touching features, stable while they touch
+};
+
+template <scalar_type T>
+struct contact_manifold {
+  static constexpr int capacity = 4;
+
+  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, from A into B
+  std::array<contact_point<T>, capacity> points{};
+  int count = 0;
+
+  [[nodiscard]] bool empty() const noexcept { return count == 0; }
+  [[nodiscard]] std::span<const contact_point<T>> contacts() const noexcept {
+    return {points.data(), std::size_t(count)};
+  }
+  void add(const contact_point<T>& p) noexcept {
+    if (count < capacity) points[std::size_t(count++)] = p;
+  }
+  /// The same contact seen from B: the normal reversed, the points kept.
+  [[nodiscard]] contact_manifold flipped() const noexcept {
+    contact_manifold m = *this;
+    m.normal = -normal;
+    return m;
+  }
+};
+
+/// Keeps at most four of `candidates` in `out`: the deepest (the solver's
+/// most important point), then the one farthest from it, then the one that
+/// makes the largest triangle with those two, then the one that adds the
+/// most area outside that triangle (distances and areas measured across
+/// the normal; on a line, its two ends and the deepest). The kept points span nearly the largest area the candidates
+/// offer, so a box keeps resting on its corners, and the choice depends on
+/// positions alone, so it does not flicker while they hold still.
+template <scalar_type T>
+void reduce_to_four(std::span<const contact_point<T>> candidates, const vec3<T>& normal,
+                    contact_manifold<T>& out) noexcept {
+  out.count = 0;
+  if (candidates.size() <= std::size_t(contact_manifold<T>::capacity)) {
+    for (const contact_point<T>& p : candidates) out.add(p);
+    return;
+  }
+  const auto pick = [&](auto&& score) {
+    std::size_t best = 0;
+    T best_score = score(candidates[0]);
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+      const T s = score(candidates[i]);
+      if (s > best_score) best_score = s, best = i;
+    }
+    return candidates[best];
+  };
+  // Distances and areas across the normal: the candidates' spread in the
+  // contact plane, whatever their depths.
+  const auto across = [&](const vec3<T>& d) { return length_squared(d - normal * dot(d, normal)); };
+  const contact_point<T> a = pick([](const contact_point<T>& p) { return p.depth; });
+  const contact_point<T> b = pick([&](const contact_point<T>& p) { return across(p.position - a.position); });
+  // Signed area (twice) of the triangle a, b, p across the normal.
+  const auto area = [&](const contact_point<T>& p) {
+    return dot(cross(b.position - a.position, p.position - a.position), normal);
+  };
+  const contact_point<T> c = pick([&](const contact_point<T>& p) { return std::abs(area(p)); });
+  // The fourth on the side of ab away from c, adding the most area there,
+  // or, past ac and bc, outside the triangle the farthest.
+  const T side = area(c) < T(0) ? T(-1) : T(1);
+  const auto added = [&](const contact_point<T>& p) {
+    const T across_ab = -side * area(p);
+    const T across_bc = -side * dot(cross(c.position - b.position, p.position - b.position), normal);
+    const T across_ca = -side * dot(cross(a.position - c.position, p.position - c.position), normal);
+    return std::max(across_ab, std::max(across_bc, across_ca));
+  };
+  const contact_point<T> d = pick(added);
+  out.add(a);
+  out.add(b);
+  if (area(c) == T(0)) {
+    // All on one line: its two ends (b and the farthest from b), and the
+    // deepest if it lies between them.
+    const contact_point<T> e = pick([&](const contact_point<T>& p) { return across(p.position - b.position); });
+    if (across(e.position - b.position) > across(a.position - b.position)) out.add(e);
+    return;
+  }
+  out.add(c);
+  if (added(d) > T(0)) out.add(d);  // else every candidate lies within abc
+}
+
+}  // namespace impulse
+// ---- end impulse/narrowphase/manifold.hpp ----
+
+namespace impulse::narrowphase {
+
+namespace detail {
+
+template <scalar_type T>
+struct segment_closest {
+  T s = T(0), t = T(0);  ///< parameters along the first and second segment, in [0, 1]
+  vec3<T> on_first{}, on_second{};
+};
+
+/// The closest points of segments p0 p1 and q0 q1 (Ericson §5.1.9); a
+/// segment of zero length is a point, and parallel segments give one of
+/// their closest pairs.
+template <scalar_type T>
+segment_closest<T> closest_points_of_segments(const vec3<T>& p0, const vec3<T>& p1, const vec3<T>& q0,
+                                              const vec3<T>& q1) noexcept {
+  const vec3<T> d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const T a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  constexpr T tiny = scalar_traits<T>::zero_length_squared;
+  segment_closest<T> out;
+  if (a <= tiny && e <= tiny) {
+    // Two points.
+  } else if (a <= tiny) {
+    out.t = std::clamp(f / e, T(0), T(1));
+  } else {
+    const T c = dot(d1, r);
+    if (e <= tiny) {
+      out.s = std::clamp(-c / a, T(0), T(1));
+    } else {
+      const T b = dot(d1, d2), denominator = a * e - b * b;  // ≥ 0; 0 when parallel
+      out.s = denominator > T(0) ? std::clamp((b * f - c * e) / denominator, T(0), T(1)) : T(0);
+      out.t = (b * out.s + f) / e;
+      if (out.t < T(0)) {
+        out.t = T(0);
+        out.s = std::clamp(-c / a, T(0), T(1));
+      } else if (out.t > T(1)) {
+        out.t = T(1);
+        out.s = std::clamp((b - c) / a, T(0), T(1));
+      }
+    }
+  }
+  out.on_first = p0 + d1 * out.s;
+  out.on_second = q0 + d2 * out.t;
+  return out;
+}
+
+/// The point of segment p0 p1 closest to x.
+template <scalar_type T>
+vec3<T> closest_point_on_segment(const vec3<T>& p0, const vec3<T>& p1, const vec3<T>& x) noexcept {
+  const vec3<T> d = p1 - p0;
+  const T a = dot(d, d);
+  if (a <= scalar_traits<T>::zero_length_squared) return p0;
+  return p0 + d * std::clamp(dot(x - p0, d) / a, T(0), T(1));
+}
+
+/// Adds the contact of a ball (centre a, radius ra) against a ball (centre
+/// b, radius rb) to m, setting m's normal, if they are within `margin`.
+template <scalar_type T>
+void add_ball_contact(const vec3<T>& a, T ra, const vec3<T>& b, T rb, T margin, std::uint32_t feature,
+                      contact_manifold<T>& m) noexcept {
+  const vec3<T> d = b - a;
+  const T distance = length(d);
+  if (distance - ra - rb > margin) return;
+  m.normal = normalize_or(d, vec3<T>::unit_y());
+  const vec3<T> on_a = a + m.normal * ra, on_b = b - m.normal * rb;
+  m.add({(on_a + on_b) * T(0.5), ra + rb - distance, feature});
+}
+
+/// A plane's unit normal and offset in world space: n·x + offset = 0 on its
+/// surface, > 0 outside the solid.
+template <scalar_type T>
+struct world_plane {
+  vec3<T> normal;
+  T offset;
+};
+template <scalar_type T>
+world_plane<T> in_world(const plane<T>& p, const transform<T>& pose) noexcept {
+  const vec3<T> n = apply_direction(pose, p.normal);
+  return {n, p.offset - dot(n, pose.position)};
+}
+
+/// The two cap centres of a capsule in world space, feature 0 then 1.
+template <scalar_type T>
+std::array<vec3<T>, 2> capsule_ends(const capsule<T>& c, const transform<T>& pose) noexcept {
+  const vec3<T> half = apply_direction(pose, vec3<T>{T(0), c.half_height, T(0)});
+  return {pose.position - half, pose.position + half};
+}
+
+}  // namespace detail
+
+// ---- sphere ---------------------------------------------------------------
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  contact_manifold<T> m;
+  detail::add_ball_contact(pose_a.position, a.radius, pose_b.position, b.radius, margin, 0u, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  const vec3<T>& c = pose_a.position;
+  const T height = dot(p.normal, c) + p.offset;  // of the centre above the surface
+  contact_manifold<T> m;
+  if (height - a.radius > margin) return m;
+  m.normal = -p.normal;
+  m.add({c - p.normal * ((a.radius + height) * T(0.5)), a.radius - height, 0u});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const box<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the box's frame
+  const vec3<T>& h = b.half_extents;
+  contact_manifold<T> m;
+  std::uint32_t feature = 0;
+  vec3<T> nearest = centre;  // on the box's surface or inside it
+  bool inside = true;
+  for (int axis = 2; axis >= 0; --axis) {
+    feature *= 3;
+    if (centre[axis] < -h[axis]) nearest[axis] = -h[axis], feature += 1, inside = false;
+    else if (centre[axis] > h[axis]) nearest[axis] = h[axis], feature += 2, inside = false;
+  }
+  if (!inside) {
+    const vec3<T> d = nearest - centre;
+    const T distance = length(d);
+    if (distance - a.radius > margin) return m;
+    const vec3<T> n = normalize_or(d, vec3<T>::unit_y());
+    m.normal = apply_direction(pose_b, n);
+    m.add({apply(pose_b, (centre + n * a.radius + nearest) * T(0.5)), a.radius - distance, feature});
+    return m;
+  }
+  // The centre is inside: out through the nearest face.
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (h[k] - std::abs(centre[k]) < h[axis] - std::abs(centre[axis])) axis = k;
+  const T side = centre[axis] < T(0) ? T(-1) : T(1);
+  vec3<T> n{};
+  n[axis] = -side;  // from the sphere into the box: the box lies beyond the face
+  vec3<T> on_face = centre;
+  on_face[axis] = side * h[axis];
+  const T depth = a.radius + (h[axis] - std::abs(centre[axis]));
+  feature = std::uint32_t(side < T(0) ? 1 : 2);
+  for (int k = 0; k < axis; ++k) feature *= 3;
+  m.normal = apply_direction(pose_b, n);
+  m.add({apply(pose_b, (centre + n * a.radius + on_face) * T(0.5)), depth, feature});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const capsule<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const auto [b0, b1] = detail::capsule_ends(b, pose_b);
+  const vec3<T> core = detail::closest_point_on_segment(b0, b1, pose_a.position);
+  contact_manifold<T> m;
+  detail::add_ball_contact(pose_a.position, a.radius, core, b.radius, margin, 0u, m);
+  return m;
+}
+
+// ---- capsule --------------------------------------------------------------
+
+template <scalar_type T>
+contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, const capsule<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const auto [a0, a1] = detail::capsule_ends(a, pose_a);
+  const auto [b0, b1] = detail::capsule_ends(b, pose_b);
+  contact_manifold<T> m;
+  const vec3<T> da = a1 - a0, db = b1 - b0;
+  const T la = dot(da, da), lb = dot(db, db);
+  constexpr T tiny = scalar_traits<T>::zero_length_squared;
+  // Nearly parallel (the cores' directions within about 0.5° of each
+  // other): the two ends of their overlap along a, each against b's core.
+  if (la > tiny && lb > tiny && length_squared(cross(da, db)) <= T(1e-4) * la * lb) {
+    const T s0 = std::clamp(dot(b0 - a0, da) / la, T(0), T(1)), s1 = std::clamp(dot(b1 - a0, da) / la, T(0), T(1));
+    const T lo = std::min(s0, s1), hi = std::max(s0, s1);
+    if (hi > lo) {
+      for (const T s : {lo, hi}) {
+        const vec3<T> on_a = a0 + da * s;
+        const vec3<T> on_b = detail::closest_point_on_segment(b0, b1, on_a);
+        detail::add_ball_contact(on_a, a.radius, on_b, b.radius, margin, s == lo ? 1u : 2u, m);
+      }
+      // Both points share one normal: the one through the overlap's middle
+      // (the two can differ by rounding when the cores meet at an angle).
+      if (m.count == 2) {
+        const vec3<T> mid = a0 + da * ((lo + hi) * T(0.5));
+        m.normal = normalize_or(detail::closest_point_on_segment(b0, b1, mid) - mid, m.normal);
+      }
+      if (!m.empty()) return m;
+    }
+  }
+  const detail::segment_closest<T> c = detail::closest_points_of_segments(a0, a1, b0, b1);
+  detail::add_ball_contact(c.on_first, a.radius, c.on_second, b.radius, margin, 0u, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  const auto ends = detail::capsule_ends(a, pose_a);
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    const T height = dot(p.normal, ends[k]) + p.offset;
+    if (height - a.radius <= margin) m.add({ends[k] - p.normal * ((a.radius + height) * T(0.5)), a.radius - height, k});
+  }
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+// ---- box ------------------------------------------------------------------
+
+template <scalar_type T>
+contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  contact_point<T> below[8];
+  int count = 0;
+  for (std::uint32_t k = 0; k < 8; ++k) {
+    const vec3<T> corner{(k & 1u) ? a.half_extents.x : -a.half_extents.x, (k & 2u) ? a.half_extents.y : -a.half_extents.y,
+                         (k & 4u) ? a.half_extents.z : -a.half_extents.z};
+    const vec3<T> x = apply(pose_a, corner);
+    const T height = dot(p.normal, x) + p.offset;
+    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
+  }
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  reduce_to_four(std::span<const contact_point<T>>(below, std::size_t(count)), m.normal, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+// ---- plane ----------------------------------------------------------------
+
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const capsule<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const box<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/analytic.hpp ----
+// ---- end impulse/narrowphase.hpp ----
 // ---- begin impulse/particles.hpp ----
 // impulse/particles.hpp — the particle module: particle_system, its forces
 // (gravity, drag, point_forces, wind, springs), plane colliders and emitters.
@@ -6825,7 +7448,6 @@ struct gravity {
 // the kernel never spends lanes on the dead; a spring follows the particle
 // it is attached to.
 
-#include <array>
 #include <tuple>
 
 // ---- begin impulse/particles/plane_collider.hpp ----
@@ -7764,118 +8386,6 @@ struct wind {
 // impulse/shapes.hpp — the shape module: sphere, box, capsule, convex_hull, plane,
 // triangle_mesh, with support functions, bounds and exact mass properties.
 
-// ---- begin impulse/shapes/box.hpp ----
-// impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct box {
-  static constexpr policy_kind kind = policy_kind::shape;
-
-  vec3<T> half_extents{T(0.5), T(0.5), T(0.5)};  ///< m, each > 0
-
-  static box make(const vec3<T>& half_extents) {
-    const box b{half_extents};
-    b.validate();
-    return b;
-  }
-  void validate() const {
-    if (!is_finite(half_extents)) detail::report_error(error_code::non_finite, "box: half extents are not finite");
-    if (!(min_component(half_extents) > T(0)))
-      detail::report_error(error_code::degenerate_shape, "box: every half extent must be positive");
-  }
-
-  /// The corner farthest along `direction`; on a tie (a zero component) the
-  /// positive side, so the result is always a vertex.
-  vec3<T> support(const vec3<T>& d) const noexcept {
-    return {d.x < T(0) ? -half_extents.x : half_extents.x, d.y < T(0) ? -half_extents.y : half_extents.y,
-            d.z < T(0) ? -half_extents.z : half_extents.z};
-  }
-  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, half_extents); }
-  /// Exact: the rotated box's extent along each axis is |R|·h.
-  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(local_aabb(), pose); }
-};
-
-/// Solid box of sides 2a, 2b, 2c: m = 8ρabc, I = m/3·diag(b² + c², c² + a², a² + b²).
-template <scalar_type T>
-mass_properties<T> mass_properties_of(const box<T>& b, T density) {
-  b.validate();
-  detail::require_density(density);
-  const vec3<T> h = b.half_extents, h2 = mul(h, h);
-  const T m = T(8) * density * h.x * h.y * h.z;
-  return {m, {}, mat3<T>::diagonal(vec3<T>{h2.y + h2.z, h2.z + h2.x, h2.x + h2.y} * (m / T(3)))};
-}
-
-}  // namespace impulse
-// ---- end impulse/shapes/box.hpp ----
-// ---- begin impulse/shapes/capsule.hpp ----
-// impulse/shapes/capsule.hpp — a cylinder with hemispherical caps, along y.
-//
-// The set of points within `radius` of the segment from (0, −h, 0) to
-// (0, h, 0): a swept sphere, the cheapest shape that rolls on its side and
-// stands on its end.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct capsule {
-  static constexpr policy_kind kind = policy_kind::shape;
-
-  T radius = T(0.25);       ///< m, > 0
-  T half_height = T(0.5);   ///< h, m, ≥ 0: half the length of the core segment
-
-  static capsule make(T radius, T half_height) {
-    const capsule c{radius, half_height};
-    c.validate();
-    return c;
-  }
-  void validate() const {
-    if (!std::isfinite(radius) || !std::isfinite(half_height))
-      detail::report_error(error_code::non_finite, "capsule: radius or half height is not finite");
-    if (!(radius > T(0)) || !(half_height >= T(0)))
-      detail::report_error(error_code::degenerate_shape,
-                           "capsule: radius must be positive and half height non-negative");
-  }
-
-  vec3<T> support(const vec3<T>& d) const noexcept {
-    const vec3<T> end{T(0), d.y < T(0) ? -half_height : half_height, T(0)};
-    return end + normalize_or(d, vec3<T>::unit_y()) * radius;
-  }
-  aabb<T> local_aabb() const noexcept {
-    return aabb<T>::from_center_half_extents({}, {radius, half_height + radius, radius});
-  }
-  /// Exact: the box around the two transformed cap centres, grown by the radius.
-  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
-    const vec3<T> axis = rotate(pose.rotation, vec3<T>{T(0), half_height, T(0)});
-    const vec3<T> reach = abs(axis) + vec3<T>::splat(radius);
-    return aabb<T>::from_center_half_extents(pose.position, reach);
-  }
-};
-
-/// Cylinder (mass m_c, radius r, height 2h) plus two hemispheres (together a
-/// ball of mass m_s). About the axis: m_c·r²/2 + 2/5·m_s·r². Across it: the
-/// cylinder's m_c·(r²/4 + h²/3), and each hemisphere's own 83/320·(m_s/2)·r²
-/// about its centre of mass, 3r/8 beyond the cylinder's end, carried to the
-/// middle: together m_s·(2r²/5 + h² + 3hr/4).
-template <scalar_type T>
-mass_properties<T> mass_properties_of(const capsule<T>& c, T density) {
-  c.validate();
-  detail::require_density(density);
-  const T pi = T(3.14159265358979323846), r = c.radius, h = c.half_height, r2 = r * r;
-  const T m_cylinder = density * pi * r2 * T(2) * h;
-  const T m_sphere = density * T(4) / T(3) * pi * r2 * r;
-  const T axial = m_cylinder * r2 / T(2) + T(0.4) * m_sphere * r2;
-  const T across = m_cylinder * (r2 / T(4) + h * h / T(3)) + m_sphere * (T(0.4) * r2 + h * h + T(0.75) * h * r);
-  return {m_cylinder + m_sphere, {}, mat3<T>::diagonal({across, axial, across})};
-}
-
-}  // namespace impulse
-// ---- end impulse/shapes/capsule.hpp ----
 // ---- begin impulse/shapes/convex_hull.hpp ----
 // impulse/shapes/convex_hull.hpp — a convex polyhedron, built as the hull of a point cloud.
 //
@@ -9355,99 +9865,6 @@ template <scalar_type T> struct mass_properties;
 
 }  // namespace impulse
 // ---- end impulse/shapes/fwd.hpp ----
-// ---- begin impulse/shapes/plane.hpp ----
-// impulse/shapes/plane.hpp — a static half-space, the ground of most scenes.
-//
-// Solid where n·x + offset < 0; the surface is n·x + offset = 0 and the free
-// side is where n points (the convention of particles::plane_collider). It
-// is unbounded, so it has no mass properties and belongs only to static
-// bodies: mass_properties_of(plane) does not exist, and asking for it is a
-// compile error.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct plane {
-  static constexpr policy_kind kind = policy_kind::shape;
-
-  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, pointing out of the solid
-  T offset = T(0);                   ///< m: the surface is n·x + offset = 0
-
-  static plane make(const vec3<T>& normal, T offset) {
-    const plane p{normal, offset};
-    p.validate();
-    return p;
-  }
-  void validate() const {
-    if (!is_finite(normal) || !std::isfinite(offset))
-      detail::report_error(error_code::non_finite, "plane: normal or offset is not finite");
-    if (!(length_squared(normal) > scalar_traits<T>::zero_length_squared))
-      detail::report_error(error_code::degenerate_shape, "plane: normal has zero length");
-    if (!(std::abs(length(normal) - T(1)) <= scalar_traits<T>::unit_tolerance))
-      detail::report_error(error_code::not_normalized, "plane: normal is not a unit vector");
-  }
-
-  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
-
-  /// Unbounded in every direction a broad phase cares about.
-  aabb<T> local_aabb() const noexcept {
-    const T big = std::numeric_limits<T>::max();
-    return {vec3<T>::splat(-big), vec3<T>::splat(big)};
-  }
-  aabb<T> world_aabb(const transform<T>&) const noexcept { return local_aabb(); }
-};
-
-}  // namespace impulse
-// ---- end impulse/shapes/plane.hpp ----
-// ---- begin impulse/shapes/sphere.hpp ----
-// impulse/shapes/sphere.hpp — a solid ball centred at the body origin.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-struct sphere {
-  static constexpr policy_kind kind = policy_kind::shape;
-
-  T radius = T(0.5);  ///< m, > 0
-
-  /// A sphere of the given radius; a zero, negative or non-finite radius is refused.
-  static sphere make(T radius) {
-    const sphere s{radius};
-    s.validate();
-    return s;
-  }
-  void validate() const {
-    if (!std::isfinite(radius)) detail::report_error(error_code::non_finite, "sphere: radius is not finite");
-    if (!(radius > T(0))) detail::report_error(error_code::degenerate_shape, "sphere: radius must be positive");
-  }
-
-  /// The point of the sphere farthest along `direction` (any point of the
-  /// surface for a zero direction).
-  vec3<T> support(const vec3<T>& direction) const noexcept {
-    return normalize_or(direction, vec3<T>::unit_x()) * radius;
-  }
-  aabb<T> local_aabb() const noexcept { return aabb<T>::from_center_half_extents({}, vec3<T>::splat(radius)); }
-  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
-    return aabb<T>::from_center_half_extents(pose.position, vec3<T>::splat(radius));
-  }
-};
-
-/// Solid ball: m = ρ·4/3·πr³, I = 2/5·m·r² about every axis.
-template <scalar_type T>
-mass_properties<T> mass_properties_of(const sphere<T>& s, T density) {
-  s.validate();
-  detail::require_density(density);
-  const T pi = T(3.14159265358979323846);
-  const T m = density * T(4) / T(3) * pi * s.radius * s.radius * s.radius;
-  return {m, {}, mat3<T>::diagonal(vec3<T>::splat(T(0.4) * m * s.radius * s.radius))};
-}
-
-}  // namespace impulse
-// ---- end impulse/shapes/sphere.hpp ----
 // ---- begin impulse/shapes/triangle_mesh.hpp ----
 // impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
 //
