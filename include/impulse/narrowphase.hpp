@@ -1,9 +1,11 @@
 // impulse/narrowphase.hpp — the narrow phase module: contact manifolds
 // between pairs of shapes. So far the closed-form tests between spheres,
-// capsules, boxes and planes (narrowphase/analytic.hpp) and box against box
-// by separating axes and clipping (narrowphase/box_box.hpp).
+// capsules, boxes and planes (narrowphase/analytic.hpp), box against box
+// by separating axes and clipping (narrowphase/box_box.hpp), and the
+// closest point on a triangle by Voronoi regions (narrowphase/triangle.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
 #include "narrowphase/box_box.hpp"
 #include "narrowphase/manifold.hpp"
+#include "narrowphase/triangle.hpp"
