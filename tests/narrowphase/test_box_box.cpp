@@ -12,18 +12,16 @@
 #include "impulse/core/random.hpp"
 #include "impulse/narrowphase.hpp"
 
+#include "poses.hpp"
+
 namespace {
 
 using namespace impulse;
 using narrowphase::collide;
+using test::at;
 
 template <class T>
 constexpr T tolerance = sizeof(T) == 4 ? T(2e-5) : T(1e-12);
-
-template <class T>
-transform<T> at(const vec3<T>& p, const quat<T>& q = quat<T>::identity()) {
-  return {p, q};
-}
 
 template <class T>
 std::set<std::uint32_t> ids_of(const contact_manifold<T>& m) {
@@ -161,11 +159,7 @@ TEST_CASE_TEMPLATE("random box pairs: no missing contact, no NaN, points on both
   // must have A's surface point (position + n·depth/2) in A and B's
   // (position − n·depth/2) in B, to rounding.
   lcg32 random{99};
-  const auto random_quat = [&] {
-    const vec3<T> axis = normalize(vec3<T>{random.uniform<T>(-1, 1), random.uniform<T>(-1, 1), random.uniform<T>(T(-1), T(1))} +
-                                   vec3<T>{T(1e-3), 0, 0});
-    return quat<T>::from_axis_angle(axis, random.uniform<T>(T(-3.14), T(3.14)));
-  };
+  const auto random_quat = [&] { return test::random_rotation<T>(random); };
   int touching = 0, missed = 0, off_surface = 0;
   for (int k = 0; k < 10000; ++k) {
     const box<T> a{{random.uniform<T>(T(0.05), T(2)), random.uniform<T>(T(0.05), T(2)), random.uniform<T>(T(0.05), T(2))}};

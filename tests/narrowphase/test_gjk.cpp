@@ -10,29 +10,21 @@
 
 #include "impulse/core/random.hpp"
 #include "impulse/narrowphase.hpp"
+
+#include "poses.hpp"
 #include "impulse/shapes/convex_hull.hpp"
 
 namespace {
 
 using namespace impulse;
 using narrowphase::gjk_distance;
+using test::at;
+using test::random_rotation;
 
 /// Distances from GJK: ε/2 relative from its termination (1e-6 in float,
 /// 1e-12 in double), plus rounding of the shapes' own size.
 template <class T>
 constexpr T tolerance = sizeof(T) == 4 ? T(1e-5) : T(1e-10);
-
-template <class T>
-transform<T> at(const vec3<T>& p, const quat<T>& q = quat<T>::identity()) {
-  return {p, q};
-}
-
-template <class T>
-quat<T> random_rotation(lcg32& random) {
-  const vec3<T> axis =
-      normalize(vec3<T>{random.uniform<T>(-1, 1), random.uniform<T>(-1, 1), random.uniform<T>(T(-1), T(1))} + vec3<T>{T(1e-3), 0, 0});
-  return quat<T>::from_axis_angle(axis, random.uniform<T>(T(-3.14), T(3.14)));
-}
 
 }  // namespace
 
