@@ -3,13 +3,15 @@
 // capsules, boxes and planes (narrowphase/analytic.hpp), box against box
 // by separating axes and clipping (narrowphase/box_box.hpp), the closest
 // point on a triangle by Voronoi regions (narrowphase/triangle.hpp), the
-// distance between any two convex shapes by GJK (narrowphase/gjk.hpp), and
-// their penetration when they overlap by EPA (narrowphase/epa.hpp).
+// distance between any two convex shapes by GJK (narrowphase/gjk.hpp),
+// their penetration when they overlap by EPA (narrowphase/epa.hpp), and
+// convex hulls against planes and spheres (narrowphase/hull.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
 #include "narrowphase/box_box.hpp"
 #include "narrowphase/epa.hpp"
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/hull.hpp"
 #include "narrowphase/manifold.hpp"
 #include "narrowphase/triangle.hpp"

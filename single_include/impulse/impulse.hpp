@@ -6567,8 +6567,9 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 // capsules, boxes and planes (narrowphase/analytic.hpp), box against box
 // by separating axes and clipping (narrowphase/box_box.hpp), the closest
 // point on a triangle by Voronoi regions (narrowphase/triangle.hpp), the
-// distance between any two convex shapes by GJK (narrowphase/gjk.hpp), and
-// their penetration when they overlap by EPA (narrowphase/epa.hpp).
+// distance between any two convex shapes by GJK (narrowphase/gjk.hpp),
+// their penetration when they overlap by EPA (narrowphase/epa.hpp), and
+// convex hulls against planes and spheres (narrowphase/hull.hpp).
 
 // ---- begin impulse/narrowphase/analytic.hpp ----
 // impulse/narrowphase/analytic.hpp — closed-form pair tests between
@@ -8043,1208 +8044,22 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/epa.hpp ----
-// ---- end impulse/narrowphase.hpp ----
-// ---- begin impulse/particles.hpp ----
-// impulse/particles.hpp — the particle module: particle_system, its forces
-// (gravity, drag, point_forces, wind, springs), plane colliders and emitters.
-// A particles-only program includes this and never parses rigid-body code.
-
-// ---- begin impulse/particles/drag.hpp ----
-// impulse/particles/drag.hpp — viscous (linear) drag, F = −k·v.
+// ---- begin impulse/narrowphase/hull.hpp ----
+// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
 //
-// Linear drag is the low-Reynolds-number law (Stokes): right for snow, dust
-// and smoke at the speeds a particle effect has, and it keeps the
-// projectile-with-drag problem in closed form for the tests. A heavier
-// particle slows less, since the force is divided by its mass.
-
-// ---- begin impulse/particles/force.hpp ----
-// impulse/particles/force.hpp — what a particle force policy is.
+// A hull against a plane: each vertex below the plane's surface plus the
+// margin is a candidate (its id the vertex's index), and four are kept
+// (reduce_to_four), as for a box.
 //
-// A particle system is compiled for a list of force policies
-// (particle_system<Config, gravity, drag, point_forces>); only the listed ones
-// exist in its kernel. Each policy is a class template over the scalar with
-// runtime parameters as public data members, so a program changes them
-// between steps like any struct; the system checks them with validate() at
-// the start of every step and refuses to step on a bad value.
-//
-// A force states how it enters the motion:
-//  - acceleration: the same for every mass (gravity), added as is;
-//  - force: newtons, multiplied by each particle's inverse mass;
-//  - pairwise: between pairs of particles (springs), evaluated by a separate
-//    gather/scatter pass over the whole system at every integrator stage.
-// The first two are evaluated lane-parallel on a batch by evaluate(x, v, p).
+// A sphere against a hull, in the hull's frame: the face whose plane lies
+// farthest above the centre decides. If even that plane is below it, the
+// centre is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the centre is below it. Otherwise the point of
+// the hull nearest the centre comes from GJK between the centre and the
+// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
+// that point lies within the radius plus the margin. The feature id is that
+// face's index: it holds while the sphere rolls across one face.
 
-
-
-
-namespace impulse::particles {
-
-enum class force_effect { acceleration, force, pairwise };
-
-/// Per-particle inputs a force may read besides position and velocity.
-template <scalar_type T, int W>
-struct particle_lanes {
-  /// A fixed number in [-1, 1) per particle, hashed from its serial number
-  /// when it was added (wind uses it for a deterministic per-particle gust).
-  batch<T, W> variation;
-};
-
-/// True when the force reads particle_lanes::variation, so the system stores
-/// and loads that column only for force lists that need it.
-template <class F>
-constexpr bool uses_variation() {
-  if constexpr (requires { F::uses_variation; }) return F::uses_variation;
-  else return false;
-}
-
-/// A particle force policy instantiated for scalar T, evaluated W lanes at a time.
-template <class F, class T, int W>
-concept particle_force =
-    requires(const F& f) {
-      { F::effect } -> std::convertible_to<force_effect>;
-      f.validate();
-    } &&
-    (F::effect == force_effect::pairwise ||
-     requires(const F& f, const vec3_batch<T, W>& x, const particle_lanes<T, W>& p) {
-       { f.evaluate(x, x, p) } -> std::same_as<vec3_batch<T, W>>;
-     });
-
-namespace detail {
-
-/// The checks the validate() functions share: each reports with a message
-/// naming the parameter, before anything has been changed.
-inline void require(bool ok, error_code code, const char* message,
-                    std::uint32_t object = no_object) {
-  if (!ok) impulse::detail::report_error(code, message, object);
-}
-template <scalar_type T>
-void require_finite(T value, const char* message, std::uint32_t object = no_object) {
-  require(std::isfinite(value), error_code::non_finite, message, object);
-}
-template <scalar_type T>
-void require_finite(const vec3<T>& value, const char* message, std::uint32_t object = no_object) {
-  require(is_finite(value), error_code::non_finite, message, object);
-}
-
-}  // namespace detail
-}  // namespace impulse::particles
-// ---- end impulse/particles/force.hpp ----
-
-namespace impulse::particles {
-
-template <class T>
-struct drag {
-  static constexpr force_effect effect = force_effect::force;
-
-  /// k in N·s/m (kg/s), ≥ 0. With mass 1 kg a velocity decays as e^(−k·t).
-  T coefficient = T(0.1);
-
-  void validate() const {
-    detail::require_finite(coefficient, "drag: coefficient is not finite");
-    detail::require(coefficient >= T(0), error_code::invalid_parameter,
-                    "drag: coefficient is negative (it would feed energy in)");
-  }
-
-  template <int W>
-  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>& v,
-                            const particle_lanes<T, W>&) const noexcept {
-    return v * -coefficient;
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/drag.hpp ----
-// ---- begin impulse/particles/emitter.hpp ----
-// impulse/particles/emitter.hpp — a source that keeps a stream of particles coming.
-//
-// An emitter adds `rate` particles per second, each placed uniformly in a box
-// around `position`, with a velocity drawn uniformly in `velocity` ±
-// `velocity_spread` (per axis) and a lifetime drawn uniformly in
-// `lifetime` ± `lifetime_spread`. Emission carries its fraction over between
-// steps, so 30 particles/s at dt = 1/120 gives one particle every fourth step,
-// not none. Its generator is seeded, so a run is the same every time.
-//
-// Particles whose age reaches their lifetime die at the end of a step and
-// their slots are reused by the next emissions: a snowfall of rate r and
-// lifetime L holds about r·L particles, and runs for ever in the capacity the
-// system was created with. Emissions that do not fit are dropped and counted.
-
-
-
-namespace impulse::particles {
-
-template <class T>
-struct emitter {
-  vec3<T> position{};
-  /// Half extents of the box particles appear in, m (0 for a point source).
-  vec3<T> half_extents{};
-  vec3<T> velocity{};
-  /// Per-axis half-range of the initial velocity, m/s.
-  vec3<T> velocity_spread{};
-  /// Particles per second, ≥ 0.
-  T rate = T(100);
-  /// Lifetime, s, > 0; each particle gets lifetime ± lifetime_spread.
-  T lifetime = T(5);
-  T lifetime_spread = T(0);
-  /// Mass of each particle, kg, > 0.
-  T mass = T(1);
-  bool enabled = true;
-  /// Generator state; set it to choose a different but repeatable stream.
-  lcg32 random{12345};
-
-  /// Fraction of a particle owed from the previous steps, in [0, 1).
-  T owed = T(0);
-  /// Particles that were due but found the system full.
-  std::uint64_t dropped = 0;
-
-  void validate(std::uint32_t index = no_object) const {
-    using detail::require;
-    const bool finite = is_finite(position) && is_finite(half_extents) && is_finite(velocity) &&
-                        is_finite(velocity_spread) && std::isfinite(rate) && std::isfinite(lifetime) &&
-                        std::isfinite(lifetime_spread) && std::isfinite(mass) && std::isfinite(owed);
-    require(finite, error_code::non_finite, "emitter: a parameter is not finite", index);
-    require(min_component(half_extents) >= T(0) && min_component(velocity_spread) >= T(0),
-            error_code::invalid_parameter, "emitter: half extents and velocity spread must be non-negative",
-            index);
-    require(rate >= T(0), error_code::invalid_parameter, "emitter: rate is negative", index);
-    require(mass > T(0), error_code::non_positive_mass, "emitter: mass must be positive", index);
-    require(lifetime > T(0) && lifetime_spread >= T(0) && lifetime_spread < lifetime,
-            error_code::invalid_parameter,
-            "emitter: lifetime must be positive and larger than its spread", index);
-  }
-
-  /// Position, velocity and lifetime of the next particle.
-  struct draw {
-    vec3<T> position, velocity;
-    T lifetime;
-  };
-  draw next() noexcept {
-    auto signed_unit = [this] { return random.template uniform<T>(T(-1), T(1)); };
-    draw d;
-    d.position = position + mul(half_extents, vec3<T>{signed_unit(), signed_unit(), signed_unit()});
-    d.velocity = velocity + mul(velocity_spread, vec3<T>{signed_unit(), signed_unit(), signed_unit()});
-    d.lifetime = lifetime + lifetime_spread * signed_unit();
-    return d;
-  }
-
-  /// How many particles are due after dt seconds; keeps the remainder.
-  std::size_t due(T dt) noexcept {
-    if (!enabled) return 0;
-    const T total = owed + rate * dt;
-    const auto whole = static_cast<std::size_t>(total);
-    owed = total - T(whole);
-    return whole;
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/emitter.hpp ----
-// ---- begin impulse/particles/fwd.hpp ----
-// impulse/particles/fwd.hpp — the particle module's names.
-
-namespace impulse::particles {
-
-template <class T> struct gravity;
-template <class T> struct drag;
-template <class T> struct point_forces;
-template <class T> struct wind;
-template <class T> struct springs;
-template <class T> struct plane_collider;
-template <class T> struct emitter;
-template <class Config, template <class> class... Forces>
-class particle_system;
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/fwd.hpp ----
-// ---- begin impulse/particles/gravity.hpp ----
-// impulse/particles/gravity.hpp — uniform gravity, an acceleration.
-
-
-namespace impulse::particles {
-
-template <class T>
-struct gravity {
-  static constexpr force_effect effect = force_effect::acceleration;
-
-  /// m/s², the same for every particle whatever its mass.
-  vec3<T> acceleration{T(0), T(-9.81), T(0)};
-
-  void validate() const { detail::require_finite(acceleration, "gravity: acceleration is not finite"); }
-
-  template <int W>
-  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>&,
-                            const particle_lanes<T, W>&) const noexcept {
-    return vec3_batch<T, W>::broadcast(acceleration);
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/gravity.hpp ----
-// ---- begin impulse/particles/particle_system.hpp ----
-// impulse/particles/particle_system.hpp — particles in SIMD batches, stepped by
-// one fused pass.
-//
-//   struct snow_config : impulse::default_config {};
-//   impulse::particle_system<snow_config, gravity, wind> snow{10'000};
-//   snow.add_plane(plane_collider<float>::half_space({0, 1, 0}, 0, 0, 1));
-//   snow.add_emitter({.position = {0, 20, 0}, .half_extents = {10, 0, 10}, .rate = 500});
-//   snow.step(1.0f / 60);
-//
-// Storage is structure-of-arrays: one 64-byte-aligned column per component
-// (x, y, z, vx, vy, vz, inverse mass, and the per-particle wind variation,
-// age and lifetime when the configuration uses them), each padded to whole
-// batches of W lanes. A step loads a batch into registers, runs the
-// configured integrator over it with the force list evaluated at every stage,
-// resolves the planes, ages it and stores it: every byte is read and written
-// once per step whatever the integrator, so RK4 moves the bytes Euler moves.
-//
-// Springs couple particles across batches, so a force list that contains them
-// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
-// stage sweeps all batches and then the springs. The same integrator code
-// runs both paths.
-//
-// Indices are positions in the columns. Killing a particle, or its death by
-// age, moves the last particle into its slot, so the columns stay dense and
-// the kernel never spends lanes on the dead; a spring follows the particle
-// it is attached to.
-
-#include <tuple>
-
-// ---- begin impulse/particles/plane_collider.hpp ----
-// impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
-//
-// A plane is n·x + d ≥ 0 on its free side. An infinite plane is a half-space:
-// a particle found behind it after the move is projected back onto it, which
-// is exact at any speed because the whole space behind is solid. A finite
-// rectangle is a thin board, solid from both sides: the segment a particle
-// travelled this step is tested against it (a swept test), so a particle fast
-// enough to cross the board within one step is still stopped. In both cases
-// the contact then
-//  - reflects the normal velocity with restitution e, only if the particle is
-//    moving into the plane (one that already separates keeps its speed), and
-//  - scales the tangential velocity by (1 − μ), a per-contact friction loss
-//    (the model of DESIGN.md's `particles` scene, not Coulomb's law: a
-//    particle lying on a plane loses that fraction every step).
-
-
-
-namespace impulse::particles {
-
-template <class T>
-struct plane_collider {
-  /// Unit normal pointing to the free side.
-  vec3<T> normal{T(0), T(1), T(0)};
-  /// d in n·x + d ≥ 0, m: the plane is at distance −d from the origin along n.
-  T offset = T(0);
-  /// e ∈ [0, 1]: the normal speed after a bounce over the speed before.
-  T restitution = T(0.5);
-  /// μ ∈ [0, 1]: the fraction of tangential velocity removed at each contact.
-  T friction = T(0.2);
-
-  /// A finite rectangle instead of a half-space: centred at `center` (on the
-  /// plane), spanning ±half_u along axis_u and ±half_v along normal × axis_u.
-  bool finite = false;
-  vec3<T> center{};
-  vec3<T> axis_u{T(1), T(0), T(0)};
-  T half_u = T(0), half_v = T(0);
-
-  /// The half-space n·x + d ≥ 0.
-  static plane_collider half_space(const vec3<T>& n, T d, T restitution, T friction) {
-    plane_collider p;
-    p.normal = n;
-    p.offset = d;
-    p.restitution = restitution;
-    p.friction = friction;
-    return p;
-  }
-  /// A two-sided rectangle; axis_u must be a unit vector perpendicular to n.
-  static plane_collider rectangle(const vec3<T>& center, const vec3<T>& n, const vec3<T>& axis_u,
-                                  T half_u, T half_v, T restitution, T friction) {
-    plane_collider p = half_space(n, -dot(n, center), restitution, friction);
-    p.finite = true;
-    p.center = center;
-    p.axis_u = axis_u;
-    p.half_u = half_u;
-    p.half_v = half_v;
-    return p;
-  }
-
-  /// Signed distance n·x + d, m: negative behind the plane.
-  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
-
-  /// How far behind the plane rounding can leave a particle at x that was
-  /// just projected onto it, m: s = n·x + d and x − s·n each round every
-  /// term once, ~8ε·(|x| + |d|); this is twice that, plus 16ε of headroom
-  /// near the origin. "No particle behind a plane" means distance(x) ≥ −rounding_at(x).
-  T rounding_at(const vec3<T>& x) const noexcept {
-    return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(offset) + max_component(abs(x)));
-  }
-
-  void validate(std::uint32_t index = no_object) const {
-    using detail::require;
-    const T tolerance = scalar_traits<T>::unit_tolerance;
-    detail::require_finite(normal, "plane_collider: normal is not finite", index);
-    detail::require_finite(offset, "plane_collider: offset is not finite", index);
-    require(length_squared(normal) > scalar_traits<T>::zero_length_squared, error_code::degenerate_shape,
-            "plane_collider: normal has zero length", index);
-    require(std::abs(length(normal) - T(1)) <= tolerance, error_code::not_normalized,
-            "plane_collider: normal is not a unit vector", index);
-    require(restitution >= T(0) && restitution <= T(1), error_code::invalid_parameter,
-            "plane_collider: restitution is outside [0, 1]", index);
-    require(friction >= T(0) && friction <= T(1), error_code::invalid_parameter,
-            "plane_collider: friction is outside [0, 1]", index);
-    if (!finite) return;
-    detail::require_finite(center, "plane_collider: center is not finite", index);
-    detail::require_finite(axis_u, "plane_collider: axis_u is not finite", index);
-    require(std::isfinite(half_u) && std::isfinite(half_v) && half_u > T(0) && half_v > T(0),
-            error_code::degenerate_shape, "plane_collider: a rectangle's half extents must be positive",
-            index);
-    require(std::abs(length(axis_u) - T(1)) <= tolerance &&
-                std::abs(dot(axis_u, normal)) <= tolerance,
-            error_code::not_normalized, "plane_collider: axis_u is not a unit vector in the plane", index);
-    require(std::abs(dot(normal, center) + offset) <= tolerance * (T(1) + length(center)),
-            error_code::invalid_parameter, "plane_collider: center is not on the plane", index);
-  }
-};
-
-namespace detail {
-
-/// Velocity after contact with a plane of unit normal n (facing the particle)
-/// in the lanes of `touching`. Always inlined: as a call, its vector
-/// arguments go through memory (GCC 12 outlines it otherwise).
-template <class T, int W>
-[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
-                    const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
-  const batch<T, W> vn = dot(v, n);
-  const vec3_batch<T, W> tangential = v - n * vn;
-  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
-  const batch<T, W> vn_after = select(touching & (vn < zero), vn * -plane.restitution, vn);
-  const batch<T, W> keep = select(touching, batch<T, W>::broadcast(T(1) - plane.friction),
-                                  batch<T, W>::broadcast(T(1)));
-  v = tangential * keep + n * vn_after;
-}
-
-/// Half-space: lanes behind are projected onto the plane. Returns whether any was.
-template <class T, int W>
-bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
-                        vec3_batch<T, W>& v) noexcept {
-  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
-  const batch<T, W> s = dot(x, n) + plane.offset;
-  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
-  const batch_mask<T, W> behind = s < zero;
-  if (none(behind)) return false;
-  x = x - n * select(behind, s, zero);
-  plane_response(plane, behind, n, v);
-  return true;
-}
-
-/// plane_collider::rounding_at for each lane.
-template <class T, int W>
-batch<T, W> rounding_at(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
-  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
-  return (largest + (T(1) + std::abs(plane.offset))) * (T(16) * scalar_traits<T>::epsilon);
-}
-
-template <class T, int W>
-batch<T, W> distance(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
-  return dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
-}
-
-/// Lanes behind the half-space by more than rounding.
-template <class T, int W>
-batch_mask<T, W> behind_half_space(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
-  return distance(plane, x) < -rounding_at(plane, x);
-}
-
-/// Moves the lanes of `lanes_in` onto the line where planes a and b meet:
-/// x' = x − α·n_a − β·n_b with n_a·x' + d_a = 0 = n_b·x' + d_b, i.e.
-/// α = (s_a − c·s_b)/(1 − c²), β = (s_b − c·s_a)/(1 − c²), c = n_a·n_b.
-/// The point of a crease nearest to a particle driven into it.
-template <class T, int W>
-void project_onto_crease(const plane_collider<T>& a, const plane_collider<T>& b, batch_mask<T, W> lanes_in,
-                         vec3_batch<T, W>& x) noexcept {
-  const T c = dot(a.normal, b.normal);
-  const T inverse = T(1) / (T(1) - c * c);
-  const batch<T, W> s_a = distance(a, x), s_b = distance(b, x);
-  const batch<T, W> alpha = (s_a - s_b * c) * inverse, beta = (s_b - s_a * c) * inverse;
-  const vec3_batch<T, W> moved = x - vec3_batch<T, W>::broadcast(a.normal) * alpha -
-                                 vec3_batch<T, W>::broadcast(b.normal) * beta;
-  x = {select(lanes_in, moved.x, x.x), select(lanes_in, moved.y, x.y), select(lanes_in, moved.z, x.z)};
-}
-
-/// Rectangle: lanes whose move x0 -> x crossed it within its extent are put
-/// back on the side they came from, just off the surface, and respond.
-template <class T, int W>
-void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x0,
-                       vec3_batch<T, W>& x, vec3_batch<T, W>& v) noexcept {
-  using lanes = batch<T, W>;
-  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
-  const lanes zero = lanes::broadcast(T(0));
-  const lanes s0 = dot(x0, n) + plane.offset;
-  const lanes s1 = dot(x, n) + plane.offset;
-  // From the front, arriving on or behind the plane; or from behind, arriving
-  // in front. A particle exactly on the plane counts as in front.
-  const batch_mask<T, W> crossed = ((s0 >= zero) & (s1 < zero)) | ((s0 < zero) & (s1 >= zero));
-  if (none(crossed)) return;
-  const lanes t = select(crossed, s0 / (s0 - s1), zero);
-  vec3_batch<T, W> p = x0 + (x - x0) * t;
-  p = p - n * (dot(p, n) + plane.offset);  // onto the plane, to rounding
-  const vec3_batch<T, W> r = p - vec3_batch<T, W>::broadcast(plane.center);
-  const vec3<T> axis_v = cross(plane.normal, plane.axis_u);
-  const batch_mask<T, W> inside = (abs(dot(r, vec3_batch<T, W>::broadcast(plane.axis_u))) <= lanes::broadcast(plane.half_u)) &
-                                  (abs(dot(r, vec3_batch<T, W>::broadcast(axis_v))) <= lanes::broadcast(plane.half_v));
-  const batch_mask<T, W> hit = crossed & inside;
-  if (none(hit)) return;
-  // The side it came from, and a skin that keeps it strictly on that side:
-  // 16 roundings of the largest coordinate on the board, so that the next
-  // step's s0 has the right sign however far the particle then moves.
-  const lanes side = select(s0 >= zero, lanes::broadcast(T(1)), lanes::broadcast(T(-1)));
-  const vec3_batch<T, W> n_side = n * side;
-  const T skin = T(16) * scalar_traits<T>::epsilon *
-                 (T(1) + max_component(abs(plane.center)) + plane.half_u + plane.half_v);
-  const vec3_batch<T, W> placed = p + n_side * skin;
-  x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
-  plane_response(plane, hit, n_side, v);
-}
-
-}  // namespace detail
-}  // namespace impulse::particles
-// ---- end impulse/particles/plane_collider.hpp ----
-
-namespace impulse::particles {
-
-/// Batch width of a configuration's particle systems: Config::particle_width
-/// when it sets one, else the widest the target compiles for.
-template <class Config>
-inline constexpr int particle_width_of = [] {
-  if constexpr (requires { Config::particle_width; }) return int(Config::particle_width);
-  else return native_width<typename Config::scalar>;
-}();
-
-/// Whether particles age and die: Config::particle_lifetime, default true.
-/// Without it the age and lifetime columns do not exist and a step moves
-/// 12 fewer bytes per float particle.
-template <class Config>
-inline constexpr bool particle_lifetime_of = [] {
-  if constexpr (requires { Config::particle_lifetime; }) return bool(Config::particle_lifetime);
-  else return true;
-}();
-
-/// Read-only view of three columns as vectors.
-template <class T>
-struct vec3_columns {
-  std::span<const T> x, y, z;
-  [[nodiscard]] std::size_t size() const noexcept { return x.size(); }
-  vec3<T> operator[](std::size_t i) const noexcept { return {x[i], y[i], z[i]}; }
-};
-
-template <class Config, template <class> class... Forces>
-class particle_system {
- public:
-  using config = Config;
-  using scalar = typename Config::scalar;
-  using integrator = typename Config::integrator;
-  static constexpr int width = particle_width_of<Config>;
-  static constexpr bool has_lifetime = particle_lifetime_of<Config>;
-
-  static_assert(scalar_type<scalar>, "impulse particle_system: Config::scalar must be float or double");
-  static_assert(batch_width<scalar, width>,
-                "impulse particle_system: Config::particle_width must be 1, 2, 4, 8 or 16 and at most 64 bytes");
-  static_assert(integrator_policy<integrator>,
-                "impulse particle_system: Config::integrator must be an integrator policy");
-  static_assert((particle_force<Forces<scalar>, scalar, width> && ...),
-                "impulse particle_system: every force must state its effect, validate() and evaluate(x, v, p)");
-  static_assert(((Forces<scalar>::effect == force_effect::pairwise ? 1 : 0) + ... + 0) <= 1,
-                "impulse particle_system: at most one pairwise force (springs) in the list");
-
- private:
-  using T = scalar;
-  using lanes = batch<T, width>;
-  using state = vec3_batch<T, width>;
-  template <class F>
-  static constexpr bool is_pairwise = F::effect == force_effect::pairwise;
-  static constexpr bool has_pairwise = (is_pairwise<Forces<T>> || ...);
-  static constexpr bool needs_inverse_mass = ((Forces<T>::effect != force_effect::acceleration) || ...);
-  static constexpr bool needs_variation = (uses_variation<Forces<T>>() || ...);
-
- public:
-  /// A system that holds up to `capacity` particles, with each force's
-  /// default parameters.
-  explicit particle_system(std::size_t capacity)
-    requires(sizeof...(Forces) > 0)
-      : particle_system(capacity, Forces<T>{}...) {}
-  /// A system that holds up to `capacity` particles, with the forces' parameters.
-  explicit particle_system(std::size_t capacity, Forces<T>... forces)
-      : forces_(std::move(forces)...),
-        capacity_(capacity),
-        stride_((capacity + width - 1) / width * width),
-        x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
-        inverse_mass_(stride_),
-        variation_(needs_variation ? stride_ : 0),
-        age_(has_lifetime ? stride_ : 0),
-        lifetime_(has_lifetime ? stride_ : 0) {
-    if (capacity == 0 || capacity > std::size_t(std::numeric_limits<std::uint32_t>::max()))
-      impulse::detail::report_error(error_code::invalid_parameter,
-                                    "particle_system: capacity must be between 1 and 2^32 - 1");
-    died_batches_.reserve(stride_ / width);
-  }
-
-  // ---- particles --------------------------------------------------------------
-
-  [[nodiscard]] std::size_t size() const noexcept { return size_; }
-  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
-  [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
-
-  /// Adds a particle and returns its index. Lifetime in s (has_lifetime only);
-  /// an infinite lifetime never dies.
-  std::uint32_t add(const vec3<T>& position, const vec3<T>& velocity = {}, T mass = T(1),
-                    T lifetime = std::numeric_limits<T>::infinity()) {
-    check_particle(position, velocity, mass, no_object);
-    detail::require(lifetime > T(0), error_code::invalid_parameter,
-                    "particle_system: lifetime must be positive (infinity for none)");
-    detail::require(size_ < capacity_, error_code::capacity_exceeded,
-                    "particle_system: add() on a full system (capacity reached)");
-    const std::size_t i = size_++;
-    write(i, position, velocity, T(1) / mass, lifetime);
-    return std::uint32_t(i);
-  }
-
-  /// Adds `count` particles drawn from the emitter's distribution now, as far
-  /// as they fit; returns how many were added.
-  std::size_t emit(emitter<T>& source, std::size_t count) {
-    source.validate();
-    return emit_unchecked(source, count);
-  }
-
-  /// Removes particle i; the last particle takes its index.
-  void kill(std::uint32_t i) {
-    check_index(i);
-    begin_removals();
-    remove(i);
-    end_removals();
-  }
-
-  /// Removes every particle (forces, planes and emitters stay).
-  void clear() noexcept {
-    size_ = 0;
-    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).list.clear();
-  }
-
-  [[nodiscard]] vec3<T> position(std::uint32_t i) const { check_index(i); return {x_[i], y_[i], z_[i]}; }
-  [[nodiscard]] vec3<T> velocity(std::uint32_t i) const { check_index(i); return {vx_[i], vy_[i], vz_[i]}; }
-  [[nodiscard]] T mass(std::uint32_t i) const { check_index(i); return T(1) / inverse_mass_[i]; }
-  [[nodiscard]] T age(std::uint32_t i) const requires has_lifetime { check_index(i); return age_[i]; }
-  [[nodiscard]] T lifetime(std::uint32_t i) const requires has_lifetime { check_index(i); return lifetime_[i]; }
-
-  void set_position(std::uint32_t i, const vec3<T>& p) {
-    check_index(i);
-    detail::require_finite(p, "particle_system: position is not finite", i);
-    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
-  }
-  void set_velocity(std::uint32_t i, const vec3<T>& v) {
-    check_index(i);
-    detail::require_finite(v, "particle_system: velocity is not finite", i);
-    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
-  }
-  void set_mass(std::uint32_t i, T m) {
-    check_index(i);
-    check_mass(m, i);
-    inverse_mass_[i] = T(1) / m;
-  }
-
-  [[nodiscard]] vec3_columns<T> positions() const noexcept { return {column(x_), column(y_), column(z_)}; }
-  [[nodiscard]] vec3_columns<T> velocities() const noexcept { return {column(vx_), column(vy_), column(vz_)}; }
-  [[nodiscard]] std::span<const T> inverse_masses() const noexcept { return column(inverse_mass_); }
-  [[nodiscard]] std::span<const T> ages() const noexcept requires has_lifetime { return column(age_); }
-  [[nodiscard]] std::span<const T> lifetimes() const noexcept requires has_lifetime { return column(lifetime_); }
-
-  // ---- forces, planes, emitters ---------------------------------------------------
-
-  /// The parameters of force F (one of the system's force list).
-  template <template <class> class F>
-  F<T>& force() noexcept { return std::get<F<T>>(forces_); }
-  template <template <class> class F>
-  const F<T>& force() const noexcept { return std::get<F<T>>(forces_); }
-
-  /// Adds a plane; it must be valid now, and is checked again at every step.
-  std::uint32_t add_plane(const plane_collider<T>& plane) {
-    plane.validate(std::uint32_t(planes_.size()));
-    planes_.push_back(plane);
-    return std::uint32_t(planes_.size() - 1);
-  }
-  /// Removes every plane.
-  void clear_planes() noexcept { planes_.clear(); }
-  std::span<plane_collider<T>> planes() noexcept { return planes_; }
-  std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
-
-  std::uint32_t add_emitter(const emitter<T>& source) {
-    source.validate(std::uint32_t(emitters_.size()));
-    emitters_.push_back(source);
-    return std::uint32_t(emitters_.size() - 1);
-  }
-  std::span<emitter<T>> emitters() noexcept { return emitters_; }
-  std::span<const emitter<T>> emitters() const noexcept { return emitters_; }
-
-  /// Simulated time, s: the sum of the steps taken.
-  [[nodiscard]] double time() const noexcept { return time_; }
-
-  // ---- stepping ---------------------------------------------------------------------
-
-  /// Advances every particle by dt seconds: forces and integration, planes,
-  /// ageing and death, then emission. Every parameter is checked first; on a
-  /// bad one nothing moves.
-  void step(T dt) {
-    validate(dt);
-    prepare_planes();
-    if (size_ != 0) {
-      fill_padding();
-      if constexpr (has_pairwise) step_staged(dt);
-      else step_fused(dt);
-      if constexpr (has_lifetime) remove_dead();
-    }
-    for (emitter<T>& source : emitters_) emit_unchecked(source, source.due(dt));
-    time_ += double(dt);
-  }
-
- private:
-  // ---- the kernel -----------------------------------------------------------------
-
-  /// Pointers to one batch's slice of every column.
-  struct slice {
-    T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
-  };
-  /// Which columns exist is known at compile time, so this has no branches.
-  slice at(std::size_t first) noexcept {
-    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
-            vy_.data() + first, vz_.data() + first, inverse_mass_.data() + first, nullptr, nullptr, nullptr};
-    if constexpr (needs_variation) s.variation = variation_.data() + first;
-    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
-    return s;
-  }
-
-  /// Acceleration of a batch: the accelerations as they are plus the forces
-  /// over the mass. Only the listed forces are compiled in.
-  state acceleration(const state& x, const state& v, const lanes& inverse_mass,
-                     const particle_lanes<T, width>& p) const noexcept {
-    state accel{}, force{};
-    bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
-    auto add = [&]<class F>(const F& f) {
-      if constexpr (F::effect == force_effect::acceleration) {
-        accel = have_accel ? accel + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_accel = true;
-      } else if constexpr (F::effect == force_effect::force) {
-        force = have_force ? force + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_force = true;
-      }
-    };
-    std::apply([&](const auto&... f) { (add(f), ...); }, forces_);
-    if (!have_force) return have_accel ? accel : state::broadcast({});
-    return have_accel ? accel + force * inverse_mass : force * inverse_mass;
-  }
-
-  lanes load_inverse_mass(const slice& s) const noexcept {
-    if constexpr (needs_inverse_mass) return lanes::load(s.inverse_mass);
-    else return lanes::broadcast(T(1));
-  }
-  particle_lanes<T, width> load_lanes(const slice& s) const noexcept {
-    if constexpr (needs_variation) return {lanes::load(s.variation)};
-    else return {lanes::broadcast(T(0))};
-  }
-
-  /// Planes, then age: the part of a step after integration. x0 is where the
-  /// batch started the step. Records the batch if a particle in it died.
-  void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v, T dt) {
-    if (!planes_.empty()) collide(x0, x, v);
-    x.store(s.x, s.y, s.z);
-    v.store(s.vx, s.vy, s.vz);
-    if constexpr (has_lifetime) {
-      const lanes age = lanes::load(s.age) + dt;
-      age.store(s.age);
-      if (any(age >= lanes::load(s.lifetime))) died_batches_.push_back(first / width);
-    }
-  }
-
-  void collide(const state& x0, state& x, state& v) const noexcept {
-    for (const plane_collider<T>& plane : planes_)
-      if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
-    // Moving a lane out of plane k along n_k lowers its distance to plane j
-    // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
-    // checked before k (risky_[k]). The floor and its walls meet at right
-    // angles, so most contacts skip the check below.
-    bool check = false;
-    for (std::size_t k = 0; k < planes_.size(); ++k)
-      if (!planes_[k].finite && detail::collide_half_space(planes_[k], x, v)) check |= risky_[k] != 0;
-    if (!check) return;
-    // Projecting onto one half-space can push a particle back behind another
-    // that meets it at an acute angle (a crease). Cyclic projection would
-    // converge there only geometrically, by cos² of the angle per sweep, so
-    // a lane still behind plane a while on or behind plane b is moved
-    // straight onto the line where the two meet.
-    bool residual = false;
-    for (std::size_t a = 0; a < planes_.size(); ++a) {
-      if (planes_[a].finite) continue;
-      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
-      if (none(behind_a)) continue;
-      residual = true;
-      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
-        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
-        const batch_mask<T, width> on_b =
-            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
-        const batch_mask<T, width> in_crease = behind_a & on_b;
-        if (none(in_crease)) continue;
-        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
-        behind_a = behind_a & !in_crease;
-      }
-    }
-    if (!residual) return;  // the common case: one sweep settled every lane
-    // Three or more planes meeting at a corner can still leave a lane
-    // behind one: it goes back to where it started the step, which was
-    // inside, and stops there. "No particle behind a plane" holds always.
-    const lanes zero = lanes::broadcast(T(0));
-    batch_mask<T, width> behind = zero < zero, was_behind = behind;
-    for (const plane_collider<T>& plane : planes_)
-      if (!plane.finite) {
-        behind = behind | detail::behind_half_space(plane, x);
-        was_behind = was_behind | detail::behind_half_space(plane, x0);
-      }
-    const batch_mask<T, width> revert = behind & !was_behind;
-    if (none(revert)) return;
-    x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
-    v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
-  }
-
-  void step_fused(T dt) {
-    const std::size_t used = padded(size_);
-    for (std::size_t first = 0; first < used; first += width) {
-      const slice s = at(first);
-      const state x0 = state::load(s.x, s.y, s.z);
-      state x = x0;
-      state v = state::load(s.vx, s.vy, s.vz);
-      const lanes inverse_mass = load_inverse_mass(s);
-      const particle_lanes<T, width> p = load_lanes(s);
-      integrator::step(x, v, dt, [&](const state& xs, const state& vs) {
-        return acceleration(xs, vs, inverse_mass, p);
-      });
-      finish_batch(s, first, x0, x, v, dt);
-    }
-  }
-
-  void step_staged(T dt) requires has_pairwise {
-    const std::size_t used = padded(size_);
-    pool_.resize(3, stride_, used);
-    using whole = impulse::detail::pooled_state<T>;
-    whole x(pool_), v(pool_);
-    copy_columns(x.data(), x_, y_, z_, used);
-    copy_columns(v.data(), vx_, vy_, vz_, used);
-    const auto& pairwise = std::get<pairwise_index()>(forces_);
-    integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
-      whole a(pool_);
-      for (std::size_t first = 0; first < used; first += width) {
-        const slice s = at(first);
-        const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-        acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
-            a.data() + stride_ + first, a.data() + 2 * stride_ + first);
-      }
-      pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
-      return a;
-    });
-    for (std::size_t first = 0; first < used; first += width) {
-      const slice s = at(first);
-      const state x0 = state::load(s.x, s.y, s.z);
-      state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-      finish_batch(s, first, x0, xb, vb, dt);
-    }
-  }
-
-  state load_from(const T* columns, std::size_t first) const noexcept {
-    return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
-  }
-  void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
-                    std::size_t used) const noexcept {
-    for (std::size_t i = 0; i < used; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
-  }
-
-  static constexpr std::size_t pairwise_index() {
-    std::size_t index = 0, i = 0;
-    ((is_pairwise<Forces<T>> ? (index = i, ++i) : ++i), ...);
-    return index;
-  }
-
-  /// Which pairs of half-spaces can form a crease (not parallel, where
-  /// 1 − c² would vanish and one projection settles both anyway), and which
-  /// planes can push a lane behind an earlier one. Planes can be edited
-  /// between steps, so this is redone (k² dot products) each step.
-  void prepare_planes() {
-    const std::size_t k = planes_.size();
-    crease_.assign(k * k, 0);
-    risky_.assign(k, 0);
-    for (std::size_t a = 0; a < k; ++a)
-      for (std::size_t b = 0; b < k; ++b) {
-        if (a == b || planes_[a].finite || planes_[b].finite) continue;
-        const T c = dot(planes_[a].normal, planes_[b].normal);
-        crease_[a * k + b] = std::abs(c) < T(1) - T(1e-3);
-        if (b < a && c < T(0)) risky_[a] = 1;
-      }
-  }
-
-  // ---- storage upkeep -----------------------------------------------------------
-
-  std::size_t padded(std::size_t n) const noexcept { return (n + width - 1) / width * width; }
-
-  /// The lanes past the last particle in its batch are computed with it and
-  /// thrown away. They hold copies of the last particle, so they stay finite
-  /// and cost nothing special; they never die (infinite lifetime).
-  void fill_padding() noexcept {
-    const std::size_t last = size_ - 1;
-    for (std::size_t i = size_; i < padded(size_); ++i) {
-      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
-      if constexpr (has_lifetime) lifetime_[i] = std::numeric_limits<T>::infinity();
-    }
-  }
-
-  std::array<aligned_array<T>*, 10> all_columns() noexcept {
-    return {&x_, &y_, &z_, &vx_, &vy_, &vz_, &inverse_mass_, &variation_, &age_, &lifetime_};
-  }
-  /// The columns this configuration stores.
-  std::span<aligned_array<T>*> columns() noexcept {
-    columns_ = all_columns();
-    std::size_t n = 0;
-    for (aligned_array<T>* c : columns_)
-      if (c->size() != 0) columns_[n++] = c;
-    return {columns_.data(), n};
-  }
-
-  void write(std::size_t i, const vec3<T>& p, const vec3<T>& v, T inverse_mass, T lifetime) noexcept {
-    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
-    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
-    inverse_mass_[i] = inverse_mass;
-    if constexpr (needs_variation) variation_[i] = hash_signed_unit<T>(serial_);
-    ++serial_;
-    if constexpr (has_lifetime) age_[i] = T(0), lifetime_[i] = lifetime;
-  }
-
-  std::size_t emit_unchecked(emitter<T>& source, std::size_t count) {
-    const std::size_t room = capacity_ - size_, fit = count < room ? count : room;
-    for (std::size_t k = 0; k < fit; ++k) {
-      const auto d = source.next();
-      write(size_++, d.position, d.velocity, T(1) / source.mass, d.lifetime);
-    }
-    source.dropped += count - fit;
-    return fit;
-  }
-
-  // Removal keeps the columns dense: the last particle moves into the hole.
-  // With springs, origin_ records which original particle each slot holds
-  // so that the springs can be re-pointed once, after all the moves.
-  void begin_removals() {
-    if constexpr (has_pairwise) {
-      origin_.resize(size_);
-      for (std::size_t i = 0; i < size_; ++i) origin_[i] = std::uint32_t(i);
-      removed_from_ = size_;
-    }
-  }
-  void remove(std::size_t i) noexcept {
-    const std::size_t last = --size_;
-    if (i != last)
-      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
-    if constexpr (has_pairwise) origin_[i] = origin_[last];
-  }
-  void end_removals() {
-    if constexpr (has_pairwise) {
-      remap_.assign(removed_from_, no_object);
-      for (std::size_t i = 0; i < size_; ++i) remap_[origin_[i]] = std::uint32_t(i);
-      std::get<pairwise_index()>(forces_).remap(remap_.data());
-    }
-  }
-
-  /// Particles whose age reached their lifetime this step. Batches are
-  /// visited from the end so that the particle moved into a hole is always
-  /// one already known to be alive.
-  void remove_dead() requires has_lifetime {
-    if (died_batches_.empty()) return;
-    begin_removals();
-    for (auto b = died_batches_.rbegin(); b != died_batches_.rend(); ++b)
-      for (int lane = width - 1; lane >= 0; --lane) {
-        const std::size_t i = *b * width + std::size_t(lane);
-        if (i < size_ && age_[i] >= lifetime_[i]) remove(i);
-      }
-    end_removals();
-    died_batches_.clear();
-  }
-
-  // ---- checks ---------------------------------------------------------------------
-
-  void check_index(std::uint32_t i) const {
-    detail::require(i < size_, error_code::out_of_range, "particle_system: no particle has this index", i);
-  }
-  static void check_mass(T mass, std::uint32_t i) {
-    detail::require_finite(mass, "particle_system: mass is not finite", i);
-    detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
-  }
-  static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
-    detail::require_finite(p, "particle_system: position is not finite", i);
-    detail::require_finite(v, "particle_system: velocity is not finite", i);
-    check_mass(mass, i);
-  }
-
-  void validate(T dt) const {
-    detail::require(std::isfinite(dt) && dt > T(0), error_code::invalid_parameter,
-                    "particle_system: step() needs a finite, positive dt");
-    std::apply([](const auto&... f) { (f.validate(), ...); }, forces_);
-    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).validate_indices(size_);
-    for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
-    for (std::size_t i = 0; i < emitters_.size(); ++i) emitters_[i].validate(std::uint32_t(i));
-  }
-
-  std::span<const T> column(const aligned_array<T>& c) const noexcept { return {c.data(), size_}; }
-
-  std::tuple<Forces<T>...> forces_;
-  std::size_t capacity_, stride_, size_ = 0;
-  aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
-  std::vector<plane_collider<T>> planes_;
-  std::vector<unsigned char> crease_, risky_;
-  std::vector<emitter<T>> emitters_;
-  std::vector<std::size_t> died_batches_;
-  std::array<aligned_array<T>*, 10> columns_{};
-  std::vector<std::uint32_t> origin_, remap_;
-  std::size_t removed_from_ = 0;
-  impulse::detail::buffer_pool<T> pool_;
-  std::uint32_t serial_ = 0;
-  double time_ = 0;
-};
-
-}  // namespace impulse::particles
-
-namespace impulse {
-using particles::particle_system;
-}  // namespace impulse
-// ---- end impulse/particles/particle_system.hpp ----
-// ---- begin impulse/particles/point_forces.hpp ----
-// impulse/particles/point_forces.hpp — attractors and repellers with softened
-// inverse-square fall-off.
-//
-// Each point pulls a particle at x with F = s·d / (|d|² + ε)^(3/2), d = p − x:
-// inverse-square at distances well beyond √ε, and bounded (|F| ≤ 0.385·s/ε) at
-// the point itself, where the bare law is infinite and a particle passing
-// through would be flung out at whatever speed the step happened to sample.
-// s > 0 attracts, s < 0 repels. Points can be moved, re-signed and switched
-// off between steps; the kernel loops over the active ones only.
-
-
-
-namespace impulse::particles {
-
-template <class T>
-struct point_force {
-  vec3<T> position{};
-  /// s in N·m²: the force at distance r ≫ √ε is s/r². Negative repels.
-  T strength = T(1);
-  bool enabled = true;
-};
-
-template <class T>
-struct point_forces {
-  static constexpr force_effect effect = force_effect::force;
-  /// Points held inline, so the kernel's loop bound is small and known.
-  static constexpr std::size_t max_points = 8;
-
-  std::array<point_force<T>, max_points> points{};
-  /// How many of `points` exist (enabled or not).
-  std::size_t count = 0;
-  /// ε in m²: the softening length squared. Must be > 0.
-  T softening = T(0.05);
-
-  /// Adds a point and returns its index; a ninth point is refused.
-  std::size_t add(const vec3<T>& position, T strength) {
-    detail::require(count < max_points, error_code::capacity_exceeded,
-                    "point_forces: all 8 points are in use");
-    detail::require_finite(position, "point_forces: position is not finite");
-    detail::require_finite(strength, "point_forces: strength is not finite");
-    points[count] = {position, strength, true};
-    return count++;
-  }
-
-  void validate() const {
-    detail::require(count <= max_points, error_code::capacity_exceeded, "point_forces: count exceeds 8");
-    detail::require_finite(softening, "point_forces: softening is not finite");
-    detail::require(softening > T(0), error_code::invalid_parameter,
-                    "point_forces: softening must be positive (the force is infinite at the point without it)");
-    for (std::size_t i = 0; i < count; ++i) {
-      detail::require_finite(points[i].position, "point_forces: a position is not finite", std::uint32_t(i));
-      detail::require_finite(points[i].strength, "point_forces: a strength is not finite", std::uint32_t(i));
-    }
-  }
-
-  template <int W>
-  vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
-                            const particle_lanes<T, W>&) const noexcept {
-    vec3_batch<T, W> f = vec3_batch<T, W>::broadcast({});
-    for (std::size_t i = 0; i < count; ++i) {
-      if (!points[i].enabled) continue;
-      const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
-      // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
-      // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
-      const batch<T, W> inverse_r = rsqrt(length_squared(d) + softening);
-      f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
-    }
-    return f;
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/point_forces.hpp ----
-// ---- begin impulse/particles/springs.hpp ----
-// impulse/particles/springs.hpp — damped springs between pairs of particles.
-//
-// Hooke's law plus damping along the spring (Witkin & Baraff, "Physically
-// Based Modeling", SIGGRAPH 2001 course, "Particle system dynamics", §4):
-//     f_a = −[k·(|d| − L) + c·(Δv·d̂)]·d̂,   f_b = −f_a,   d = x_a − x_b, Δv = v_a − v_b.
-// Damping acts only along d̂, so a spinning pair is not slowed. A spring is
-// not lane-parallel (it reads two arbitrary particles), so it runs as its own
-// gather/scatter pass over the whole system at every integrator stage: RK4
-// with springs evaluates them four times a step, which is what gives it RK4's
-// stability limit (docs/particles.md lists the limit per integrator).
-
-
-
-namespace impulse::particles {
-
-template <class T>
-struct spring {
-  std::uint32_t a = 0, b = 0;  ///< particle indices
-  T rest_length = T(1);        ///< L, m, ≥ 0
-  T stiffness = T(100);        ///< k, N/m, ≥ 0
-  T damping = T(0);            ///< c, N·s/m, ≥ 0
-};
-
-template <class T>
-struct springs {
-  static constexpr force_effect effect = force_effect::pairwise;
-
-  std::vector<spring<T>> list;
-
-  /// Adds a spring between particles a and b; indices are checked against the
-  /// system at the next step. Returns the spring's index.
-  std::size_t add(std::uint32_t a, std::uint32_t b, T rest_length, T stiffness, T damping = T(0)) {
-    const spring<T> s{a, b, rest_length, stiffness, damping};
-    check(s, std::uint32_t(list.size()));
-    list.push_back(s);
-    return list.size() - 1;
-  }
-
-  void validate() const {
-    for (std::size_t i = 0; i < list.size(); ++i) check(list[i], std::uint32_t(i));
-  }
-  /// The indices refer to live particles (0 ≤ a, b < count).
-  void validate_indices(std::size_t count) const {
-    for (std::size_t i = 0; i < list.size(); ++i)
-      detail::require(list[i].a < count && list[i].b < count, error_code::out_of_range,
-                      "springs: a spring names a particle that does not exist", std::uint32_t(i));
-  }
-
-  /// Adds each spring's force, divided by its particle's mass, to acc.
-  /// Positions, velocities and accelerations are three columns (x | y | z)
-  /// of `stride` values each.
-  void accumulate(const T* position, const T* velocity, const T* inverse_mass,
-                  std::size_t stride, T* acc) const noexcept {
-    for (const spring<T>& s : list) {
-      const vec3<T> d = column_vec(position, stride, s.a) - column_vec(position, stride, s.b);
-      const T length = impulse::length(d);
-      // Coincident endpoints have no direction to push along; the spring
-      // does nothing until they separate (a rest length of 0 is then exact).
-      if (!(length > T(0))) continue;
-      const vec3<T> u = d / length;
-      const vec3<T> dv = column_vec(velocity, stride, s.a) - column_vec(velocity, stride, s.b);
-      const vec3<T> f = u * -(s.stiffness * (length - s.rest_length) + s.damping * dot(dv, u));
-      add_to(acc, stride, s.a, f * inverse_mass[s.a]);
-      add_to(acc, stride, s.b, f * -inverse_mass[s.b]);
-    }
-  }
-
-  /// After particles were moved (index i now at remap[i], or no_object when
-  /// it died): follows the moves and drops springs that lost an end.
-  void remap(const std::uint32_t* new_index) {
-    std::size_t kept = 0;
-    for (spring<T> s : list) {
-      s.a = new_index[s.a];
-      s.b = new_index[s.b];
-      if (s.a != no_object && s.b != no_object) list[kept++] = s;
-    }
-    list.resize(kept);
-  }
-
- private:
-  static void check(const spring<T>& s, std::uint32_t index) {
-    detail::require(std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping),
-                    error_code::non_finite, "springs: a parameter is not finite", index);
-    detail::require(s.rest_length >= T(0) && s.stiffness >= T(0) && s.damping >= T(0),
-                    error_code::invalid_parameter,
-                    "springs: rest length, stiffness and damping must be non-negative", index);
-    detail::require(s.a != s.b, error_code::invalid_parameter, "springs: both ends are the same particle",
-                    index);
-  }
-  static vec3<T> column_vec(const T* p, std::size_t stride, std::uint32_t i) noexcept {
-    return {p[i], p[stride + i], p[2 * stride + i]};
-  }
-  static void add_to(T* p, std::size_t stride, std::uint32_t i, const vec3<T>& f) noexcept {
-    p[i] += f.x;
-    p[stride + i] += f.y;
-    p[2 * stride + i] += f.z;
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/springs.hpp ----
-// ---- begin impulse/particles/wind.hpp ----
-// impulse/particles/wind.hpp — wind as drag toward a moving air velocity.
-//
-// F = k·(w_i − v): a particle is dragged toward the local air velocity w_i,
-// so a flake at rest is pushed along and a flake moving with the air feels
-// nothing (Stokes drag in the air's frame). Each particle sees its own steady
-// gust, w_i = w·(1 + σ·r_i), with r_i ∈ [−1, 1) fixed per particle (hashed
-// from its serial number when it was added): the same particle always feels
-// the same wind, on every run and every batch width, and neighbouring flakes
-// drift apart instead of moving as a sheet.
-
-
-namespace impulse::particles {
-
-template <class T>
-struct wind {
-  static constexpr force_effect effect = force_effect::force;
-  static constexpr bool uses_variation = true;
-
-  /// Air velocity w, m/s.
-  vec3<T> velocity{T(1), T(0), T(0)};
-  /// k in N·s/m (kg/s), ≥ 0: how strongly a particle is carried along.
-  T coefficient = T(0.5);
-  /// σ, dimensionless in [0, 1]: the spread of the per-particle gust; 0 gives
-  /// every particle the same wind.
-  T variation = T(0.3);
-
-  void validate() const {
-    detail::require_finite(velocity, "wind: velocity is not finite");
-    detail::require_finite(coefficient, "wind: coefficient is not finite");
-    detail::require_finite(variation, "wind: variation is not finite");
-    detail::require(coefficient >= T(0), error_code::invalid_parameter, "wind: coefficient is negative");
-    detail::require(variation >= T(0) && variation <= T(1), error_code::invalid_parameter,
-                    "wind: variation is outside [0, 1]");
-  }
-
-  template <int W>
-  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>& v,
-                            const particle_lanes<T, W>& p) const noexcept {
-    const batch<T, W> gust = (p.variation * variation + T(1)) * coefficient;
-    return vec3_batch<T, W>::broadcast(velocity) * gust - v * coefficient;
-  }
-};
-
-}  // namespace impulse::particles
-// ---- end impulse/particles/wind.hpp ----
-// ---- end impulse/particles.hpp ----
-// ---- begin impulse/shapes.hpp ----
-// impulse/shapes.hpp — the shape module: sphere, box, capsule, convex_hull, plane,
-// triangle_mesh, with support functions, bounds and exact mass properties.
 
 // ---- begin impulse/shapes/convex_hull.hpp ----
 // impulse/shapes/convex_hull.hpp — a convex polyhedron, built as the hull of a point cloud.
@@ -10708,6 +9523,1276 @@ mass_properties<T> mass_properties_of(const convex_hull<T>& hull, T density) {
 
 }  // namespace impulse
 // ---- end impulse/shapes/convex_hull.hpp ----
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  std::vector<contact_point<T>> below;
+  const std::span<const vec3<T>> vertices = a.vertices();
+  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
+    const vec3<T> x = apply(pose_a, vertices[k]);
+    const T height = dot(p.normal, x) + p.offset;
+    if (height <= margin) below.push_back({x - p.normal * (height * T(0.5)), -height, k});
+  }
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  reduce_to_four(std::span<const contact_point<T>>(below), m.normal, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  std::uint32_t face = 0;
+  T highest = -std::numeric_limits<T>::infinity();
+  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
+    const T d = b.plane(f).distance(centre);
+    if (d > highest) highest = d, face = f;
+  }
+  contact_manifold<T> m;
+  if (highest - a.radius > margin) return m;  // a face's plane separates them
+  // Outside: the hull's point nearest the centre.
+  gjk_result<T> g;
+  if (highest > T(0))
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
+            .result;
+  if (highest <= T(0) || g.overlapping) {
+    // Inside (or on the surface, where GJK finds no direction): out through
+    // the nearest face.
+    const vec3<T> n = b.plane(face).normal;
+    m.normal = apply_direction(pose_b, -n);
+    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
+    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
+    return m;
+  }
+  if (g.distance - a.radius > margin) return m;
+  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
+  m.normal = apply_direction(pose_b, n);
+  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/hull.hpp ----
+// ---- end impulse/narrowphase.hpp ----
+// ---- begin impulse/particles.hpp ----
+// impulse/particles.hpp — the particle module: particle_system, its forces
+// (gravity, drag, point_forces, wind, springs), plane colliders and emitters.
+// A particles-only program includes this and never parses rigid-body code.
+
+// ---- begin impulse/particles/drag.hpp ----
+// impulse/particles/drag.hpp — viscous (linear) drag, F = −k·v.
+//
+// Linear drag is the low-Reynolds-number law (Stokes): right for snow, dust
+// and smoke at the speeds a particle effect has, and it keeps the
+// projectile-with-drag problem in closed form for the tests. A heavier
+// particle slows less, since the force is divided by its mass.
+
+// ---- begin impulse/particles/force.hpp ----
+// impulse/particles/force.hpp — what a particle force policy is.
+//
+// A particle system is compiled for a list of force policies
+// (particle_system<Config, gravity, drag, point_forces>); only the listed ones
+// exist in its kernel. Each policy is a class template over the scalar with
+// runtime parameters as public data members, so a program changes them
+// between steps like any struct; the system checks them with validate() at
+// the start of every step and refuses to step on a bad value.
+//
+// A force states how it enters the motion:
+//  - acceleration: the same for every mass (gravity), added as is;
+//  - force: newtons, multiplied by each particle's inverse mass;
+//  - pairwise: between pairs of particles (springs), evaluated by a separate
+//    gather/scatter pass over the whole system at every integrator stage.
+// The first two are evaluated lane-parallel on a batch by evaluate(x, v, p).
+
+
+
+
+namespace impulse::particles {
+
+enum class force_effect { acceleration, force, pairwise };
+
+/// Per-particle inputs a force may read besides position and velocity.
+template <scalar_type T, int W>
+struct particle_lanes {
+  /// A fixed number in [-1, 1) per particle, hashed from its serial number
+  /// when it was added (wind uses it for a deterministic per-particle gust).
+  batch<T, W> variation;
+};
+
+/// True when the force reads particle_lanes::variation, so the system stores
+/// and loads that column only for force lists that need it.
+template <class F>
+constexpr bool uses_variation() {
+  if constexpr (requires { F::uses_variation; }) return F::uses_variation;
+  else return false;
+}
+
+/// A particle force policy instantiated for scalar T, evaluated W lanes at a time.
+template <class F, class T, int W>
+concept particle_force =
+    requires(const F& f) {
+      { F::effect } -> std::convertible_to<force_effect>;
+      f.validate();
+    } &&
+    (F::effect == force_effect::pairwise ||
+     requires(const F& f, const vec3_batch<T, W>& x, const particle_lanes<T, W>& p) {
+       { f.evaluate(x, x, p) } -> std::same_as<vec3_batch<T, W>>;
+     });
+
+namespace detail {
+
+/// The checks the validate() functions share: each reports with a message
+/// naming the parameter, before anything has been changed.
+inline void require(bool ok, error_code code, const char* message,
+                    std::uint32_t object = no_object) {
+  if (!ok) impulse::detail::report_error(code, message, object);
+}
+template <scalar_type T>
+void require_finite(T value, const char* message, std::uint32_t object = no_object) {
+  require(std::isfinite(value), error_code::non_finite, message, object);
+}
+template <scalar_type T>
+void require_finite(const vec3<T>& value, const char* message, std::uint32_t object = no_object) {
+  require(is_finite(value), error_code::non_finite, message, object);
+}
+
+}  // namespace detail
+}  // namespace impulse::particles
+// ---- end impulse/particles/force.hpp ----
+
+namespace impulse::particles {
+
+template <class T>
+struct drag {
+  static constexpr force_effect effect = force_effect::force;
+
+  /// k in N·s/m (kg/s), ≥ 0. With mass 1 kg a velocity decays as e^(−k·t).
+  T coefficient = T(0.1);
+
+  void validate() const {
+    detail::require_finite(coefficient, "drag: coefficient is not finite");
+    detail::require(coefficient >= T(0), error_code::invalid_parameter,
+                    "drag: coefficient is negative (it would feed energy in)");
+  }
+
+  template <int W>
+  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>& v,
+                            const particle_lanes<T, W>&) const noexcept {
+    return v * -coefficient;
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/drag.hpp ----
+// ---- begin impulse/particles/emitter.hpp ----
+// impulse/particles/emitter.hpp — a source that keeps a stream of particles coming.
+//
+// An emitter adds `rate` particles per second, each placed uniformly in a box
+// around `position`, with a velocity drawn uniformly in `velocity` ±
+// `velocity_spread` (per axis) and a lifetime drawn uniformly in
+// `lifetime` ± `lifetime_spread`. Emission carries its fraction over between
+// steps, so 30 particles/s at dt = 1/120 gives one particle every fourth step,
+// not none. Its generator is seeded, so a run is the same every time.
+//
+// Particles whose age reaches their lifetime die at the end of a step and
+// their slots are reused by the next emissions: a snowfall of rate r and
+// lifetime L holds about r·L particles, and runs for ever in the capacity the
+// system was created with. Emissions that do not fit are dropped and counted.
+
+
+
+namespace impulse::particles {
+
+template <class T>
+struct emitter {
+  vec3<T> position{};
+  /// Half extents of the box particles appear in, m (0 for a point source).
+  vec3<T> half_extents{};
+  vec3<T> velocity{};
+  /// Per-axis half-range of the initial velocity, m/s.
+  vec3<T> velocity_spread{};
+  /// Particles per second, ≥ 0.
+  T rate = T(100);
+  /// Lifetime, s, > 0; each particle gets lifetime ± lifetime_spread.
+  T lifetime = T(5);
+  T lifetime_spread = T(0);
+  /// Mass of each particle, kg, > 0.
+  T mass = T(1);
+  bool enabled = true;
+  /// Generator state; set it to choose a different but repeatable stream.
+  lcg32 random{12345};
+
+  /// Fraction of a particle owed from the previous steps, in [0, 1).
+  T owed = T(0);
+  /// Particles that were due but found the system full.
+  std::uint64_t dropped = 0;
+
+  void validate(std::uint32_t index = no_object) const {
+    using detail::require;
+    const bool finite = is_finite(position) && is_finite(half_extents) && is_finite(velocity) &&
+                        is_finite(velocity_spread) && std::isfinite(rate) && std::isfinite(lifetime) &&
+                        std::isfinite(lifetime_spread) && std::isfinite(mass) && std::isfinite(owed);
+    require(finite, error_code::non_finite, "emitter: a parameter is not finite", index);
+    require(min_component(half_extents) >= T(0) && min_component(velocity_spread) >= T(0),
+            error_code::invalid_parameter, "emitter: half extents and velocity spread must be non-negative",
+            index);
+    require(rate >= T(0), error_code::invalid_parameter, "emitter: rate is negative", index);
+    require(mass > T(0), error_code::non_positive_mass, "emitter: mass must be positive", index);
+    require(lifetime > T(0) && lifetime_spread >= T(0) && lifetime_spread < lifetime,
+            error_code::invalid_parameter,
+            "emitter: lifetime must be positive and larger than its spread", index);
+  }
+
+  /// Position, velocity and lifetime of the next particle.
+  struct draw {
+    vec3<T> position, velocity;
+    T lifetime;
+  };
+  draw next() noexcept {
+    auto signed_unit = [this] { return random.template uniform<T>(T(-1), T(1)); };
+    draw d;
+    d.position = position + mul(half_extents, vec3<T>{signed_unit(), signed_unit(), signed_unit()});
+    d.velocity = velocity + mul(velocity_spread, vec3<T>{signed_unit(), signed_unit(), signed_unit()});
+    d.lifetime = lifetime + lifetime_spread * signed_unit();
+    return d;
+  }
+
+  /// How many particles are due after dt seconds; keeps the remainder.
+  std::size_t due(T dt) noexcept {
+    if (!enabled) return 0;
+    const T total = owed + rate * dt;
+    const auto whole = static_cast<std::size_t>(total);
+    owed = total - T(whole);
+    return whole;
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/emitter.hpp ----
+// ---- begin impulse/particles/fwd.hpp ----
+// impulse/particles/fwd.hpp — the particle module's names.
+
+namespace impulse::particles {
+
+template <class T> struct gravity;
+template <class T> struct drag;
+template <class T> struct point_forces;
+template <class T> struct wind;
+template <class T> struct springs;
+template <class T> struct plane_collider;
+template <class T> struct emitter;
+template <class Config, template <class> class... Forces>
+class particle_system;
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/fwd.hpp ----
+// ---- begin impulse/particles/gravity.hpp ----
+// impulse/particles/gravity.hpp — uniform gravity, an acceleration.
+
+
+namespace impulse::particles {
+
+template <class T>
+struct gravity {
+  static constexpr force_effect effect = force_effect::acceleration;
+
+  /// m/s², the same for every particle whatever its mass.
+  vec3<T> acceleration{T(0), T(-9.81), T(0)};
+
+  void validate() const { detail::require_finite(acceleration, "gravity: acceleration is not finite"); }
+
+  template <int W>
+  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>&,
+                            const particle_lanes<T, W>&) const noexcept {
+    return vec3_batch<T, W>::broadcast(acceleration);
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/gravity.hpp ----
+// ---- begin impulse/particles/particle_system.hpp ----
+// impulse/particles/particle_system.hpp — particles in SIMD batches, stepped by
+// one fused pass.
+//
+//   struct snow_config : impulse::default_config {};
+//   impulse::particle_system<snow_config, gravity, wind> snow{10'000};
+//   snow.add_plane(plane_collider<float>::half_space({0, 1, 0}, 0, 0, 1));
+//   snow.add_emitter({.position = {0, 20, 0}, .half_extents = {10, 0, 10}, .rate = 500});
+//   snow.step(1.0f / 60);
+//
+// Storage is structure-of-arrays: one 64-byte-aligned column per component
+// (x, y, z, vx, vy, vz, inverse mass, and the per-particle wind variation,
+// age and lifetime when the configuration uses them), each padded to whole
+// batches of W lanes. A step loads a batch into registers, runs the
+// configured integrator over it with the force list evaluated at every stage,
+// resolves the planes, ages it and stores it: every byte is read and written
+// once per step whatever the integrator, so RK4 moves the bytes Euler moves.
+//
+// Springs couple particles across batches, so a force list that contains them
+// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
+// stage sweeps all batches and then the springs. The same integrator code
+// runs both paths.
+//
+// Indices are positions in the columns. Killing a particle, or its death by
+// age, moves the last particle into its slot, so the columns stay dense and
+// the kernel never spends lanes on the dead; a spring follows the particle
+// it is attached to.
+
+#include <tuple>
+
+// ---- begin impulse/particles/plane_collider.hpp ----
+// impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
+//
+// A plane is n·x + d ≥ 0 on its free side. An infinite plane is a half-space:
+// a particle found behind it after the move is projected back onto it, which
+// is exact at any speed because the whole space behind is solid. A finite
+// rectangle is a thin board, solid from both sides: the segment a particle
+// travelled this step is tested against it (a swept test), so a particle fast
+// enough to cross the board within one step is still stopped. In both cases
+// the contact then
+//  - reflects the normal velocity with restitution e, only if the particle is
+//    moving into the plane (one that already separates keeps its speed), and
+//  - scales the tangential velocity by (1 − μ), a per-contact friction loss
+//    (the model of DESIGN.md's `particles` scene, not Coulomb's law: a
+//    particle lying on a plane loses that fraction every step).
+
+
+
+namespace impulse::particles {
+
+template <class T>
+struct plane_collider {
+  /// Unit normal pointing to the free side.
+  vec3<T> normal{T(0), T(1), T(0)};
+  /// d in n·x + d ≥ 0, m: the plane is at distance −d from the origin along n.
+  T offset = T(0);
+  /// e ∈ [0, 1]: the normal speed after a bounce over the speed before.
+  T restitution = T(0.5);
+  /// μ ∈ [0, 1]: the fraction of tangential velocity removed at each contact.
+  T friction = T(0.2);
+
+  /// A finite rectangle instead of a half-space: centred at `center` (on the
+  /// plane), spanning ±half_u along axis_u and ±half_v along normal × axis_u.
+  bool finite = false;
+  vec3<T> center{};
+  vec3<T> axis_u{T(1), T(0), T(0)};
+  T half_u = T(0), half_v = T(0);
+
+  /// The half-space n·x + d ≥ 0.
+  static plane_collider half_space(const vec3<T>& n, T d, T restitution, T friction) {
+    plane_collider p;
+    p.normal = n;
+    p.offset = d;
+    p.restitution = restitution;
+    p.friction = friction;
+    return p;
+  }
+  /// A two-sided rectangle; axis_u must be a unit vector perpendicular to n.
+  static plane_collider rectangle(const vec3<T>& center, const vec3<T>& n, const vec3<T>& axis_u,
+                                  T half_u, T half_v, T restitution, T friction) {
+    plane_collider p = half_space(n, -dot(n, center), restitution, friction);
+    p.finite = true;
+    p.center = center;
+    p.axis_u = axis_u;
+    p.half_u = half_u;
+    p.half_v = half_v;
+    return p;
+  }
+
+  /// Signed distance n·x + d, m: negative behind the plane.
+  T distance(const vec3<T>& x) const noexcept { return dot(normal, x) + offset; }
+
+  /// How far behind the plane rounding can leave a particle at x that was
+  /// just projected onto it, m: s = n·x + d and x − s·n each round every
+  /// term once, ~8ε·(|x| + |d|); this is twice that, plus 16ε of headroom
+  /// near the origin. "No particle behind a plane" means distance(x) ≥ −rounding_at(x).
+  T rounding_at(const vec3<T>& x) const noexcept {
+    return T(16) * scalar_traits<T>::epsilon * (T(1) + std::abs(offset) + max_component(abs(x)));
+  }
+
+  void validate(std::uint32_t index = no_object) const {
+    using detail::require;
+    const T tolerance = scalar_traits<T>::unit_tolerance;
+    detail::require_finite(normal, "plane_collider: normal is not finite", index);
+    detail::require_finite(offset, "plane_collider: offset is not finite", index);
+    require(length_squared(normal) > scalar_traits<T>::zero_length_squared, error_code::degenerate_shape,
+            "plane_collider: normal has zero length", index);
+    require(std::abs(length(normal) - T(1)) <= tolerance, error_code::not_normalized,
+            "plane_collider: normal is not a unit vector", index);
+    require(restitution >= T(0) && restitution <= T(1), error_code::invalid_parameter,
+            "plane_collider: restitution is outside [0, 1]", index);
+    require(friction >= T(0) && friction <= T(1), error_code::invalid_parameter,
+            "plane_collider: friction is outside [0, 1]", index);
+    if (!finite) return;
+    detail::require_finite(center, "plane_collider: center is not finite", index);
+    detail::require_finite(axis_u, "plane_collider: axis_u is not finite", index);
+    require(std::isfinite(half_u) && std::isfinite(half_v) && half_u > T(0) && half_v > T(0),
+            error_code::degenerate_shape, "plane_collider: a rectangle's half extents must be positive",
+            index);
+    require(std::abs(length(axis_u) - T(1)) <= tolerance &&
+                std::abs(dot(axis_u, normal)) <= tolerance,
+            error_code::not_normalized, "plane_collider: axis_u is not a unit vector in the plane", index);
+    require(std::abs(dot(normal, center) + offset) <= tolerance * (T(1) + length(center)),
+            error_code::invalid_parameter, "plane_collider: center is not on the plane", index);
+  }
+};
+
+namespace detail {
+
+/// Velocity after contact with a plane of unit normal n (facing the particle)
+/// in the lanes of `touching`. Always inlined: as a call, its vector
+/// arguments go through memory (GCC 12 outlines it otherwise).
+template <class T, int W>
+[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
+                    const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
+  const batch<T, W> vn = dot(v, n);
+  const vec3_batch<T, W> tangential = v - n * vn;
+  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
+  const batch<T, W> vn_after = select(touching & (vn < zero), vn * -plane.restitution, vn);
+  const batch<T, W> keep = select(touching, batch<T, W>::broadcast(T(1) - plane.friction),
+                                  batch<T, W>::broadcast(T(1)));
+  v = tangential * keep + n * vn_after;
+}
+
+/// Half-space: lanes behind are projected onto the plane. Returns whether any was.
+template <class T, int W>
+bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
+                        vec3_batch<T, W>& v) noexcept {
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
+  const batch<T, W> s = dot(x, n) + plane.offset;
+  const batch<T, W> zero = batch<T, W>::broadcast(T(0));
+  const batch_mask<T, W> behind = s < zero;
+  if (none(behind)) return false;
+  x = x - n * select(behind, s, zero);
+  plane_response(plane, behind, n, v);
+  return true;
+}
+
+/// plane_collider::rounding_at for each lane.
+template <class T, int W>
+batch<T, W> rounding_at(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  const batch<T, W> largest = max(max(abs(x.x), abs(x.y)), abs(x.z));
+  return (largest + (T(1) + std::abs(plane.offset))) * (T(16) * scalar_traits<T>::epsilon);
+}
+
+template <class T, int W>
+batch<T, W> distance(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  return dot(x, vec3_batch<T, W>::broadcast(plane.normal)) + plane.offset;
+}
+
+/// Lanes behind the half-space by more than rounding.
+template <class T, int W>
+batch_mask<T, W> behind_half_space(const plane_collider<T>& plane, const vec3_batch<T, W>& x) noexcept {
+  return distance(plane, x) < -rounding_at(plane, x);
+}
+
+/// Moves the lanes of `lanes_in` onto the line where planes a and b meet:
+/// x' = x − α·n_a − β·n_b with n_a·x' + d_a = 0 = n_b·x' + d_b, i.e.
+/// α = (s_a − c·s_b)/(1 − c²), β = (s_b − c·s_a)/(1 − c²), c = n_a·n_b.
+/// The point of a crease nearest to a particle driven into it.
+template <class T, int W>
+void project_onto_crease(const plane_collider<T>& a, const plane_collider<T>& b, batch_mask<T, W> lanes_in,
+                         vec3_batch<T, W>& x) noexcept {
+  const T c = dot(a.normal, b.normal);
+  const T inverse = T(1) / (T(1) - c * c);
+  const batch<T, W> s_a = distance(a, x), s_b = distance(b, x);
+  const batch<T, W> alpha = (s_a - s_b * c) * inverse, beta = (s_b - s_a * c) * inverse;
+  const vec3_batch<T, W> moved = x - vec3_batch<T, W>::broadcast(a.normal) * alpha -
+                                 vec3_batch<T, W>::broadcast(b.normal) * beta;
+  x = {select(lanes_in, moved.x, x.x), select(lanes_in, moved.y, x.y), select(lanes_in, moved.z, x.z)};
+}
+
+/// Rectangle: lanes whose move x0 -> x crossed it within its extent are put
+/// back on the side they came from, just off the surface, and respond.
+template <class T, int W>
+void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x0,
+                       vec3_batch<T, W>& x, vec3_batch<T, W>& v) noexcept {
+  using lanes = batch<T, W>;
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
+  const lanes zero = lanes::broadcast(T(0));
+  const lanes s0 = dot(x0, n) + plane.offset;
+  const lanes s1 = dot(x, n) + plane.offset;
+  // From the front, arriving on or behind the plane; or from behind, arriving
+  // in front. A particle exactly on the plane counts as in front.
+  const batch_mask<T, W> crossed = ((s0 >= zero) & (s1 < zero)) | ((s0 < zero) & (s1 >= zero));
+  if (none(crossed)) return;
+  const lanes t = select(crossed, s0 / (s0 - s1), zero);
+  vec3_batch<T, W> p = x0 + (x - x0) * t;
+  p = p - n * (dot(p, n) + plane.offset);  // onto the plane, to rounding
+  const vec3_batch<T, W> r = p - vec3_batch<T, W>::broadcast(plane.center);
+  const vec3<T> axis_v = cross(plane.normal, plane.axis_u);
+  const batch_mask<T, W> inside = (abs(dot(r, vec3_batch<T, W>::broadcast(plane.axis_u))) <= lanes::broadcast(plane.half_u)) &
+                                  (abs(dot(r, vec3_batch<T, W>::broadcast(axis_v))) <= lanes::broadcast(plane.half_v));
+  const batch_mask<T, W> hit = crossed & inside;
+  if (none(hit)) return;
+  // The side it came from, and a skin that keeps it strictly on that side:
+  // 16 roundings of the largest coordinate on the board, so that the next
+  // step's s0 has the right sign however far the particle then moves.
+  const lanes side = select(s0 >= zero, lanes::broadcast(T(1)), lanes::broadcast(T(-1)));
+  const vec3_batch<T, W> n_side = n * side;
+  const T skin = T(16) * scalar_traits<T>::epsilon *
+                 (T(1) + max_component(abs(plane.center)) + plane.half_u + plane.half_v);
+  const vec3_batch<T, W> placed = p + n_side * skin;
+  x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
+  plane_response(plane, hit, n_side, v);
+}
+
+}  // namespace detail
+}  // namespace impulse::particles
+// ---- end impulse/particles/plane_collider.hpp ----
+
+namespace impulse::particles {
+
+/// Batch width of a configuration's particle systems: Config::particle_width
+/// when it sets one, else the widest the target compiles for.
+template <class Config>
+inline constexpr int particle_width_of = [] {
+  if constexpr (requires { Config::particle_width; }) return int(Config::particle_width);
+  else return native_width<typename Config::scalar>;
+}();
+
+/// Whether particles age and die: Config::particle_lifetime, default true.
+/// Without it the age and lifetime columns do not exist and a step moves
+/// 12 fewer bytes per float particle.
+template <class Config>
+inline constexpr bool particle_lifetime_of = [] {
+  if constexpr (requires { Config::particle_lifetime; }) return bool(Config::particle_lifetime);
+  else return true;
+}();
+
+/// Read-only view of three columns as vectors.
+template <class T>
+struct vec3_columns {
+  std::span<const T> x, y, z;
+  [[nodiscard]] std::size_t size() const noexcept { return x.size(); }
+  vec3<T> operator[](std::size_t i) const noexcept { return {x[i], y[i], z[i]}; }
+};
+
+template <class Config, template <class> class... Forces>
+class particle_system {
+ public:
+  using config = Config;
+  using scalar = typename Config::scalar;
+  using integrator = typename Config::integrator;
+  static constexpr int width = particle_width_of<Config>;
+  static constexpr bool has_lifetime = particle_lifetime_of<Config>;
+
+  static_assert(scalar_type<scalar>, "impulse particle_system: Config::scalar must be float or double");
+  static_assert(batch_width<scalar, width>,
+                "impulse particle_system: Config::particle_width must be 1, 2, 4, 8 or 16 and at most 64 bytes");
+  static_assert(integrator_policy<integrator>,
+                "impulse particle_system: Config::integrator must be an integrator policy");
+  static_assert((particle_force<Forces<scalar>, scalar, width> && ...),
+                "impulse particle_system: every force must state its effect, validate() and evaluate(x, v, p)");
+  static_assert(((Forces<scalar>::effect == force_effect::pairwise ? 1 : 0) + ... + 0) <= 1,
+                "impulse particle_system: at most one pairwise force (springs) in the list");
+
+ private:
+  using T = scalar;
+  using lanes = batch<T, width>;
+  using state = vec3_batch<T, width>;
+  template <class F>
+  static constexpr bool is_pairwise = F::effect == force_effect::pairwise;
+  static constexpr bool has_pairwise = (is_pairwise<Forces<T>> || ...);
+  static constexpr bool needs_inverse_mass = ((Forces<T>::effect != force_effect::acceleration) || ...);
+  static constexpr bool needs_variation = (uses_variation<Forces<T>>() || ...);
+
+ public:
+  /// A system that holds up to `capacity` particles, with each force's
+  /// default parameters.
+  explicit particle_system(std::size_t capacity)
+    requires(sizeof...(Forces) > 0)
+      : particle_system(capacity, Forces<T>{}...) {}
+  /// A system that holds up to `capacity` particles, with the forces' parameters.
+  explicit particle_system(std::size_t capacity, Forces<T>... forces)
+      : forces_(std::move(forces)...),
+        capacity_(capacity),
+        stride_((capacity + width - 1) / width * width),
+        x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
+        inverse_mass_(stride_),
+        variation_(needs_variation ? stride_ : 0),
+        age_(has_lifetime ? stride_ : 0),
+        lifetime_(has_lifetime ? stride_ : 0) {
+    if (capacity == 0 || capacity > std::size_t(std::numeric_limits<std::uint32_t>::max()))
+      impulse::detail::report_error(error_code::invalid_parameter,
+                                    "particle_system: capacity must be between 1 and 2^32 - 1");
+    died_batches_.reserve(stride_ / width);
+  }
+
+  // ---- particles --------------------------------------------------------------
+
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
+  [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
+
+  /// Adds a particle and returns its index. Lifetime in s (has_lifetime only);
+  /// an infinite lifetime never dies.
+  std::uint32_t add(const vec3<T>& position, const vec3<T>& velocity = {}, T mass = T(1),
+                    T lifetime = std::numeric_limits<T>::infinity()) {
+    check_particle(position, velocity, mass, no_object);
+    detail::require(lifetime > T(0), error_code::invalid_parameter,
+                    "particle_system: lifetime must be positive (infinity for none)");
+    detail::require(size_ < capacity_, error_code::capacity_exceeded,
+                    "particle_system: add() on a full system (capacity reached)");
+    const std::size_t i = size_++;
+    write(i, position, velocity, T(1) / mass, lifetime);
+    return std::uint32_t(i);
+  }
+
+  /// Adds `count` particles drawn from the emitter's distribution now, as far
+  /// as they fit; returns how many were added.
+  std::size_t emit(emitter<T>& source, std::size_t count) {
+    source.validate();
+    return emit_unchecked(source, count);
+  }
+
+  /// Removes particle i; the last particle takes its index.
+  void kill(std::uint32_t i) {
+    check_index(i);
+    begin_removals();
+    remove(i);
+    end_removals();
+  }
+
+  /// Removes every particle (forces, planes and emitters stay).
+  void clear() noexcept {
+    size_ = 0;
+    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).list.clear();
+  }
+
+  [[nodiscard]] vec3<T> position(std::uint32_t i) const { check_index(i); return {x_[i], y_[i], z_[i]}; }
+  [[nodiscard]] vec3<T> velocity(std::uint32_t i) const { check_index(i); return {vx_[i], vy_[i], vz_[i]}; }
+  [[nodiscard]] T mass(std::uint32_t i) const { check_index(i); return T(1) / inverse_mass_[i]; }
+  [[nodiscard]] T age(std::uint32_t i) const requires has_lifetime { check_index(i); return age_[i]; }
+  [[nodiscard]] T lifetime(std::uint32_t i) const requires has_lifetime { check_index(i); return lifetime_[i]; }
+
+  void set_position(std::uint32_t i, const vec3<T>& p) {
+    check_index(i);
+    detail::require_finite(p, "particle_system: position is not finite", i);
+    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
+  }
+  void set_velocity(std::uint32_t i, const vec3<T>& v) {
+    check_index(i);
+    detail::require_finite(v, "particle_system: velocity is not finite", i);
+    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
+  }
+  void set_mass(std::uint32_t i, T m) {
+    check_index(i);
+    check_mass(m, i);
+    inverse_mass_[i] = T(1) / m;
+  }
+
+  [[nodiscard]] vec3_columns<T> positions() const noexcept { return {column(x_), column(y_), column(z_)}; }
+  [[nodiscard]] vec3_columns<T> velocities() const noexcept { return {column(vx_), column(vy_), column(vz_)}; }
+  [[nodiscard]] std::span<const T> inverse_masses() const noexcept { return column(inverse_mass_); }
+  [[nodiscard]] std::span<const T> ages() const noexcept requires has_lifetime { return column(age_); }
+  [[nodiscard]] std::span<const T> lifetimes() const noexcept requires has_lifetime { return column(lifetime_); }
+
+  // ---- forces, planes, emitters ---------------------------------------------------
+
+  /// The parameters of force F (one of the system's force list).
+  template <template <class> class F>
+  F<T>& force() noexcept { return std::get<F<T>>(forces_); }
+  template <template <class> class F>
+  const F<T>& force() const noexcept { return std::get<F<T>>(forces_); }
+
+  /// Adds a plane; it must be valid now, and is checked again at every step.
+  std::uint32_t add_plane(const plane_collider<T>& plane) {
+    plane.validate(std::uint32_t(planes_.size()));
+    planes_.push_back(plane);
+    return std::uint32_t(planes_.size() - 1);
+  }
+  /// Removes every plane.
+  void clear_planes() noexcept { planes_.clear(); }
+  std::span<plane_collider<T>> planes() noexcept { return planes_; }
+  std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
+
+  std::uint32_t add_emitter(const emitter<T>& source) {
+    source.validate(std::uint32_t(emitters_.size()));
+    emitters_.push_back(source);
+    return std::uint32_t(emitters_.size() - 1);
+  }
+  std::span<emitter<T>> emitters() noexcept { return emitters_; }
+  std::span<const emitter<T>> emitters() const noexcept { return emitters_; }
+
+  /// Simulated time, s: the sum of the steps taken.
+  [[nodiscard]] double time() const noexcept { return time_; }
+
+  // ---- stepping ---------------------------------------------------------------------
+
+  /// Advances every particle by dt seconds: forces and integration, planes,
+  /// ageing and death, then emission. Every parameter is checked first; on a
+  /// bad one nothing moves.
+  void step(T dt) {
+    validate(dt);
+    prepare_planes();
+    if (size_ != 0) {
+      fill_padding();
+      if constexpr (has_pairwise) step_staged(dt);
+      else step_fused(dt);
+      if constexpr (has_lifetime) remove_dead();
+    }
+    for (emitter<T>& source : emitters_) emit_unchecked(source, source.due(dt));
+    time_ += double(dt);
+  }
+
+ private:
+  // ---- the kernel -----------------------------------------------------------------
+
+  /// Pointers to one batch's slice of every column.
+  struct slice {
+    T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
+  };
+  /// Which columns exist is known at compile time, so this has no branches.
+  slice at(std::size_t first) noexcept {
+    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
+            vy_.data() + first, vz_.data() + first, inverse_mass_.data() + first, nullptr, nullptr, nullptr};
+    if constexpr (needs_variation) s.variation = variation_.data() + first;
+    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
+    return s;
+  }
+
+  /// Acceleration of a batch: the accelerations as they are plus the forces
+  /// over the mass. Only the listed forces are compiled in.
+  state acceleration(const state& x, const state& v, const lanes& inverse_mass,
+                     const particle_lanes<T, width>& p) const noexcept {
+    state accel{}, force{};
+    bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
+    auto add = [&]<class F>(const F& f) {
+      if constexpr (F::effect == force_effect::acceleration) {
+        accel = have_accel ? accel + f.evaluate(x, v, p) : f.evaluate(x, v, p);
+        have_accel = true;
+      } else if constexpr (F::effect == force_effect::force) {
+        force = have_force ? force + f.evaluate(x, v, p) : f.evaluate(x, v, p);
+        have_force = true;
+      }
+    };
+    std::apply([&](const auto&... f) { (add(f), ...); }, forces_);
+    if (!have_force) return have_accel ? accel : state::broadcast({});
+    return have_accel ? accel + force * inverse_mass : force * inverse_mass;
+  }
+
+  lanes load_inverse_mass(const slice& s) const noexcept {
+    if constexpr (needs_inverse_mass) return lanes::load(s.inverse_mass);
+    else return lanes::broadcast(T(1));
+  }
+  particle_lanes<T, width> load_lanes(const slice& s) const noexcept {
+    if constexpr (needs_variation) return {lanes::load(s.variation)};
+    else return {lanes::broadcast(T(0))};
+  }
+
+  /// Planes, then age: the part of a step after integration. x0 is where the
+  /// batch started the step. Records the batch if a particle in it died.
+  void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v, T dt) {
+    if (!planes_.empty()) collide(x0, x, v);
+    x.store(s.x, s.y, s.z);
+    v.store(s.vx, s.vy, s.vz);
+    if constexpr (has_lifetime) {
+      const lanes age = lanes::load(s.age) + dt;
+      age.store(s.age);
+      if (any(age >= lanes::load(s.lifetime))) died_batches_.push_back(first / width);
+    }
+  }
+
+  void collide(const state& x0, state& x, state& v) const noexcept {
+    for (const plane_collider<T>& plane : planes_)
+      if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+    // Moving a lane out of plane k along n_k lowers its distance to plane j
+    // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
+    // checked before k (risky_[k]). The floor and its walls meet at right
+    // angles, so most contacts skip the check below.
+    bool check = false;
+    for (std::size_t k = 0; k < planes_.size(); ++k)
+      if (!planes_[k].finite && detail::collide_half_space(planes_[k], x, v)) check |= risky_[k] != 0;
+    if (!check) return;
+    // Projecting onto one half-space can push a particle back behind another
+    // that meets it at an acute angle (a crease). Cyclic projection would
+    // converge there only geometrically, by cos² of the angle per sweep, so
+    // a lane still behind plane a while on or behind plane b is moved
+    // straight onto the line where the two meet.
+    bool residual = false;
+    for (std::size_t a = 0; a < planes_.size(); ++a) {
+      if (planes_[a].finite) continue;
+      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
+      if (none(behind_a)) continue;
+      residual = true;
+      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
+        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
+        const batch_mask<T, width> on_b =
+            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
+        const batch_mask<T, width> in_crease = behind_a & on_b;
+        if (none(in_crease)) continue;
+        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
+        behind_a = behind_a & !in_crease;
+      }
+    }
+    if (!residual) return;  // the common case: one sweep settled every lane
+    // Three or more planes meeting at a corner can still leave a lane
+    // behind one: it goes back to where it started the step, which was
+    // inside, and stops there. "No particle behind a plane" holds always.
+    const lanes zero = lanes::broadcast(T(0));
+    batch_mask<T, width> behind = zero < zero, was_behind = behind;
+    for (const plane_collider<T>& plane : planes_)
+      if (!plane.finite) {
+        behind = behind | detail::behind_half_space(plane, x);
+        was_behind = was_behind | detail::behind_half_space(plane, x0);
+      }
+    const batch_mask<T, width> revert = behind & !was_behind;
+    if (none(revert)) return;
+    x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
+    v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
+  }
+
+  void step_fused(T dt) {
+    const std::size_t used = padded(size_);
+    for (std::size_t first = 0; first < used; first += width) {
+      const slice s = at(first);
+      const state x0 = state::load(s.x, s.y, s.z);
+      state x = x0;
+      state v = state::load(s.vx, s.vy, s.vz);
+      const lanes inverse_mass = load_inverse_mass(s);
+      const particle_lanes<T, width> p = load_lanes(s);
+      integrator::step(x, v, dt, [&](const state& xs, const state& vs) {
+        return acceleration(xs, vs, inverse_mass, p);
+      });
+      finish_batch(s, first, x0, x, v, dt);
+    }
+  }
+
+  void step_staged(T dt) requires has_pairwise {
+    const std::size_t used = padded(size_);
+    pool_.resize(3, stride_, used);
+    using whole = impulse::detail::pooled_state<T>;
+    whole x(pool_), v(pool_);
+    copy_columns(x.data(), x_, y_, z_, used);
+    copy_columns(v.data(), vx_, vy_, vz_, used);
+    const auto& pairwise = std::get<pairwise_index()>(forces_);
+    integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
+      whole a(pool_);
+      for (std::size_t first = 0; first < used; first += width) {
+        const slice s = at(first);
+        const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
+        acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+            a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+      }
+      pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
+      return a;
+    });
+    for (std::size_t first = 0; first < used; first += width) {
+      const slice s = at(first);
+      const state x0 = state::load(s.x, s.y, s.z);
+      state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
+      finish_batch(s, first, x0, xb, vb, dt);
+    }
+  }
+
+  state load_from(const T* columns, std::size_t first) const noexcept {
+    return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
+  }
+  void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
+                    std::size_t used) const noexcept {
+    for (std::size_t i = 0; i < used; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
+  }
+
+  static constexpr std::size_t pairwise_index() {
+    std::size_t index = 0, i = 0;
+    ((is_pairwise<Forces<T>> ? (index = i, ++i) : ++i), ...);
+    return index;
+  }
+
+  /// Which pairs of half-spaces can form a crease (not parallel, where
+  /// 1 − c² would vanish and one projection settles both anyway), and which
+  /// planes can push a lane behind an earlier one. Planes can be edited
+  /// between steps, so this is redone (k² dot products) each step.
+  void prepare_planes() {
+    const std::size_t k = planes_.size();
+    crease_.assign(k * k, 0);
+    risky_.assign(k, 0);
+    for (std::size_t a = 0; a < k; ++a)
+      for (std::size_t b = 0; b < k; ++b) {
+        if (a == b || planes_[a].finite || planes_[b].finite) continue;
+        const T c = dot(planes_[a].normal, planes_[b].normal);
+        crease_[a * k + b] = std::abs(c) < T(1) - T(1e-3);
+        if (b < a && c < T(0)) risky_[a] = 1;
+      }
+  }
+
+  // ---- storage upkeep -----------------------------------------------------------
+
+  std::size_t padded(std::size_t n) const noexcept { return (n + width - 1) / width * width; }
+
+  /// The lanes past the last particle in its batch are computed with it and
+  /// thrown away. They hold copies of the last particle, so they stay finite
+  /// and cost nothing special; they never die (infinite lifetime).
+  void fill_padding() noexcept {
+    const std::size_t last = size_ - 1;
+    for (std::size_t i = size_; i < padded(size_); ++i) {
+      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
+      if constexpr (has_lifetime) lifetime_[i] = std::numeric_limits<T>::infinity();
+    }
+  }
+
+  std::array<aligned_array<T>*, 10> all_columns() noexcept {
+    return {&x_, &y_, &z_, &vx_, &vy_, &vz_, &inverse_mass_, &variation_, &age_, &lifetime_};
+  }
+  /// The columns this configuration stores.
+  std::span<aligned_array<T>*> columns() noexcept {
+    columns_ = all_columns();
+    std::size_t n = 0;
+    for (aligned_array<T>* c : columns_)
+      if (c->size() != 0) columns_[n++] = c;
+    return {columns_.data(), n};
+  }
+
+  void write(std::size_t i, const vec3<T>& p, const vec3<T>& v, T inverse_mass, T lifetime) noexcept {
+    x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
+    vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
+    inverse_mass_[i] = inverse_mass;
+    if constexpr (needs_variation) variation_[i] = hash_signed_unit<T>(serial_);
+    ++serial_;
+    if constexpr (has_lifetime) age_[i] = T(0), lifetime_[i] = lifetime;
+  }
+
+  std::size_t emit_unchecked(emitter<T>& source, std::size_t count) {
+    const std::size_t room = capacity_ - size_, fit = count < room ? count : room;
+    for (std::size_t k = 0; k < fit; ++k) {
+      const auto d = source.next();
+      write(size_++, d.position, d.velocity, T(1) / source.mass, d.lifetime);
+    }
+    source.dropped += count - fit;
+    return fit;
+  }
+
+  // Removal keeps the columns dense: the last particle moves into the hole.
+  // With springs, origin_ records which original particle each slot holds
+  // so that the springs can be re-pointed once, after all the moves.
+  void begin_removals() {
+    if constexpr (has_pairwise) {
+      origin_.resize(size_);
+      for (std::size_t i = 0; i < size_; ++i) origin_[i] = std::uint32_t(i);
+      removed_from_ = size_;
+    }
+  }
+  void remove(std::size_t i) noexcept {
+    const std::size_t last = --size_;
+    if (i != last)
+      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
+    if constexpr (has_pairwise) origin_[i] = origin_[last];
+  }
+  void end_removals() {
+    if constexpr (has_pairwise) {
+      remap_.assign(removed_from_, no_object);
+      for (std::size_t i = 0; i < size_; ++i) remap_[origin_[i]] = std::uint32_t(i);
+      std::get<pairwise_index()>(forces_).remap(remap_.data());
+    }
+  }
+
+  /// Particles whose age reached their lifetime this step. Batches are
+  /// visited from the end so that the particle moved into a hole is always
+  /// one already known to be alive.
+  void remove_dead() requires has_lifetime {
+    if (died_batches_.empty()) return;
+    begin_removals();
+    for (auto b = died_batches_.rbegin(); b != died_batches_.rend(); ++b)
+      for (int lane = width - 1; lane >= 0; --lane) {
+        const std::size_t i = *b * width + std::size_t(lane);
+        if (i < size_ && age_[i] >= lifetime_[i]) remove(i);
+      }
+    end_removals();
+    died_batches_.clear();
+  }
+
+  // ---- checks ---------------------------------------------------------------------
+
+  void check_index(std::uint32_t i) const {
+    detail::require(i < size_, error_code::out_of_range, "particle_system: no particle has this index", i);
+  }
+  static void check_mass(T mass, std::uint32_t i) {
+    detail::require_finite(mass, "particle_system: mass is not finite", i);
+    detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
+  }
+  static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
+    detail::require_finite(p, "particle_system: position is not finite", i);
+    detail::require_finite(v, "particle_system: velocity is not finite", i);
+    check_mass(mass, i);
+  }
+
+  void validate(T dt) const {
+    detail::require(std::isfinite(dt) && dt > T(0), error_code::invalid_parameter,
+                    "particle_system: step() needs a finite, positive dt");
+    std::apply([](const auto&... f) { (f.validate(), ...); }, forces_);
+    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).validate_indices(size_);
+    for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
+    for (std::size_t i = 0; i < emitters_.size(); ++i) emitters_[i].validate(std::uint32_t(i));
+  }
+
+  std::span<const T> column(const aligned_array<T>& c) const noexcept { return {c.data(), size_}; }
+
+  std::tuple<Forces<T>...> forces_;
+  std::size_t capacity_, stride_, size_ = 0;
+  aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
+  std::vector<plane_collider<T>> planes_;
+  std::vector<unsigned char> crease_, risky_;
+  std::vector<emitter<T>> emitters_;
+  std::vector<std::size_t> died_batches_;
+  std::array<aligned_array<T>*, 10> columns_{};
+  std::vector<std::uint32_t> origin_, remap_;
+  std::size_t removed_from_ = 0;
+  impulse::detail::buffer_pool<T> pool_;
+  std::uint32_t serial_ = 0;
+  double time_ = 0;
+};
+
+}  // namespace impulse::particles
+
+namespace impulse {
+using particles::particle_system;
+}  // namespace impulse
+// ---- end impulse/particles/particle_system.hpp ----
+// ---- begin impulse/particles/point_forces.hpp ----
+// impulse/particles/point_forces.hpp — attractors and repellers with softened
+// inverse-square fall-off.
+//
+// Each point pulls a particle at x with F = s·d / (|d|² + ε)^(3/2), d = p − x:
+// inverse-square at distances well beyond √ε, and bounded (|F| ≤ 0.385·s/ε) at
+// the point itself, where the bare law is infinite and a particle passing
+// through would be flung out at whatever speed the step happened to sample.
+// s > 0 attracts, s < 0 repels. Points can be moved, re-signed and switched
+// off between steps; the kernel loops over the active ones only.
+
+
+
+namespace impulse::particles {
+
+template <class T>
+struct point_force {
+  vec3<T> position{};
+  /// s in N·m²: the force at distance r ≫ √ε is s/r². Negative repels.
+  T strength = T(1);
+  bool enabled = true;
+};
+
+template <class T>
+struct point_forces {
+  static constexpr force_effect effect = force_effect::force;
+  /// Points held inline, so the kernel's loop bound is small and known.
+  static constexpr std::size_t max_points = 8;
+
+  std::array<point_force<T>, max_points> points{};
+  /// How many of `points` exist (enabled or not).
+  std::size_t count = 0;
+  /// ε in m²: the softening length squared. Must be > 0.
+  T softening = T(0.05);
+
+  /// Adds a point and returns its index; a ninth point is refused.
+  std::size_t add(const vec3<T>& position, T strength) {
+    detail::require(count < max_points, error_code::capacity_exceeded,
+                    "point_forces: all 8 points are in use");
+    detail::require_finite(position, "point_forces: position is not finite");
+    detail::require_finite(strength, "point_forces: strength is not finite");
+    points[count] = {position, strength, true};
+    return count++;
+  }
+
+  void validate() const {
+    detail::require(count <= max_points, error_code::capacity_exceeded, "point_forces: count exceeds 8");
+    detail::require_finite(softening, "point_forces: softening is not finite");
+    detail::require(softening > T(0), error_code::invalid_parameter,
+                    "point_forces: softening must be positive (the force is infinite at the point without it)");
+    for (std::size_t i = 0; i < count; ++i) {
+      detail::require_finite(points[i].position, "point_forces: a position is not finite", std::uint32_t(i));
+      detail::require_finite(points[i].strength, "point_forces: a strength is not finite", std::uint32_t(i));
+    }
+  }
+
+  template <int W>
+  vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
+                            const particle_lanes<T, W>&) const noexcept {
+    vec3_batch<T, W> f = vec3_batch<T, W>::broadcast({});
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!points[i].enabled) continue;
+      const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
+      // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
+      // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
+      const batch<T, W> inverse_r = rsqrt(length_squared(d) + softening);
+      f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+    }
+    return f;
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/point_forces.hpp ----
+// ---- begin impulse/particles/springs.hpp ----
+// impulse/particles/springs.hpp — damped springs between pairs of particles.
+//
+// Hooke's law plus damping along the spring (Witkin & Baraff, "Physically
+// Based Modeling", SIGGRAPH 2001 course, "Particle system dynamics", §4):
+//     f_a = −[k·(|d| − L) + c·(Δv·d̂)]·d̂,   f_b = −f_a,   d = x_a − x_b, Δv = v_a − v_b.
+// Damping acts only along d̂, so a spinning pair is not slowed. A spring is
+// not lane-parallel (it reads two arbitrary particles), so it runs as its own
+// gather/scatter pass over the whole system at every integrator stage: RK4
+// with springs evaluates them four times a step, which is what gives it RK4's
+// stability limit (docs/particles.md lists the limit per integrator).
+
+
+
+namespace impulse::particles {
+
+template <class T>
+struct spring {
+  std::uint32_t a = 0, b = 0;  ///< particle indices
+  T rest_length = T(1);        ///< L, m, ≥ 0
+  T stiffness = T(100);        ///< k, N/m, ≥ 0
+  T damping = T(0);            ///< c, N·s/m, ≥ 0
+};
+
+template <class T>
+struct springs {
+  static constexpr force_effect effect = force_effect::pairwise;
+
+  std::vector<spring<T>> list;
+
+  /// Adds a spring between particles a and b; indices are checked against the
+  /// system at the next step. Returns the spring's index.
+  std::size_t add(std::uint32_t a, std::uint32_t b, T rest_length, T stiffness, T damping = T(0)) {
+    const spring<T> s{a, b, rest_length, stiffness, damping};
+    check(s, std::uint32_t(list.size()));
+    list.push_back(s);
+    return list.size() - 1;
+  }
+
+  void validate() const {
+    for (std::size_t i = 0; i < list.size(); ++i) check(list[i], std::uint32_t(i));
+  }
+  /// The indices refer to live particles (0 ≤ a, b < count).
+  void validate_indices(std::size_t count) const {
+    for (std::size_t i = 0; i < list.size(); ++i)
+      detail::require(list[i].a < count && list[i].b < count, error_code::out_of_range,
+                      "springs: a spring names a particle that does not exist", std::uint32_t(i));
+  }
+
+  /// Adds each spring's force, divided by its particle's mass, to acc.
+  /// Positions, velocities and accelerations are three columns (x | y | z)
+  /// of `stride` values each.
+  void accumulate(const T* position, const T* velocity, const T* inverse_mass,
+                  std::size_t stride, T* acc) const noexcept {
+    for (const spring<T>& s : list) {
+      const vec3<T> d = column_vec(position, stride, s.a) - column_vec(position, stride, s.b);
+      const T length = impulse::length(d);
+      // Coincident endpoints have no direction to push along; the spring
+      // does nothing until they separate (a rest length of 0 is then exact).
+      if (!(length > T(0))) continue;
+      const vec3<T> u = d / length;
+      const vec3<T> dv = column_vec(velocity, stride, s.a) - column_vec(velocity, stride, s.b);
+      const vec3<T> f = u * -(s.stiffness * (length - s.rest_length) + s.damping * dot(dv, u));
+      add_to(acc, stride, s.a, f * inverse_mass[s.a]);
+      add_to(acc, stride, s.b, f * -inverse_mass[s.b]);
+    }
+  }
+
+  /// After particles were moved (index i now at remap[i], or no_object when
+  /// it died): follows the moves and drops springs that lost an end.
+  void remap(const std::uint32_t* new_index) {
+    std::size_t kept = 0;
+    for (spring<T> s : list) {
+      s.a = new_index[s.a];
+      s.b = new_index[s.b];
+      if (s.a != no_object && s.b != no_object) list[kept++] = s;
+    }
+    list.resize(kept);
+  }
+
+ private:
+  static void check(const spring<T>& s, std::uint32_t index) {
+    detail::require(std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping),
+                    error_code::non_finite, "springs: a parameter is not finite", index);
+    detail::require(s.rest_length >= T(0) && s.stiffness >= T(0) && s.damping >= T(0),
+                    error_code::invalid_parameter,
+                    "springs: rest length, stiffness and damping must be non-negative", index);
+    detail::require(s.a != s.b, error_code::invalid_parameter, "springs: both ends are the same particle",
+                    index);
+  }
+  static vec3<T> column_vec(const T* p, std::size_t stride, std::uint32_t i) noexcept {
+    return {p[i], p[stride + i], p[2 * stride + i]};
+  }
+  static void add_to(T* p, std::size_t stride, std::uint32_t i, const vec3<T>& f) noexcept {
+    p[i] += f.x;
+    p[stride + i] += f.y;
+    p[2 * stride + i] += f.z;
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/springs.hpp ----
+// ---- begin impulse/particles/wind.hpp ----
+// impulse/particles/wind.hpp — wind as drag toward a moving air velocity.
+//
+// F = k·(w_i − v): a particle is dragged toward the local air velocity w_i,
+// so a flake at rest is pushed along and a flake moving with the air feels
+// nothing (Stokes drag in the air's frame). Each particle sees its own steady
+// gust, w_i = w·(1 + σ·r_i), with r_i ∈ [−1, 1) fixed per particle (hashed
+// from its serial number when it was added): the same particle always feels
+// the same wind, on every run and every batch width, and neighbouring flakes
+// drift apart instead of moving as a sheet.
+
+
+namespace impulse::particles {
+
+template <class T>
+struct wind {
+  static constexpr force_effect effect = force_effect::force;
+  static constexpr bool uses_variation = true;
+
+  /// Air velocity w, m/s.
+  vec3<T> velocity{T(1), T(0), T(0)};
+  /// k in N·s/m (kg/s), ≥ 0: how strongly a particle is carried along.
+  T coefficient = T(0.5);
+  /// σ, dimensionless in [0, 1]: the spread of the per-particle gust; 0 gives
+  /// every particle the same wind.
+  T variation = T(0.3);
+
+  void validate() const {
+    detail::require_finite(velocity, "wind: velocity is not finite");
+    detail::require_finite(coefficient, "wind: coefficient is not finite");
+    detail::require_finite(variation, "wind: variation is not finite");
+    detail::require(coefficient >= T(0), error_code::invalid_parameter, "wind: coefficient is negative");
+    detail::require(variation >= T(0) && variation <= T(1), error_code::invalid_parameter,
+                    "wind: variation is outside [0, 1]");
+  }
+
+  template <int W>
+  vec3_batch<T, W> evaluate(const vec3_batch<T, W>&, const vec3_batch<T, W>& v,
+                            const particle_lanes<T, W>& p) const noexcept {
+    const batch<T, W> gust = (p.variation * variation + T(1)) * coefficient;
+    return vec3_batch<T, W>::broadcast(velocity) * gust - v * coefficient;
+  }
+};
+
+}  // namespace impulse::particles
+// ---- end impulse/particles/wind.hpp ----
+// ---- end impulse/particles.hpp ----
+// ---- begin impulse/shapes.hpp ----
+// impulse/shapes.hpp — the shape module: sphere, box, capsule, convex_hull, plane,
+// triangle_mesh, with support functions, bounds and exact mass properties.
+
 // ---- begin impulse/shapes/fwd.hpp ----
 // impulse/shapes/fwd.hpp — the shape module's names.
 
