@@ -7213,11 +7213,11 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 //
 // Faces are preferred: an edge pair wins only if its separation exceeds
 // the best face's by 5 % of the latter's size plus 1 % of the smaller
-// box's least half extent, and B's face wins over A's by the same rule. Without the bias,
-// two faces resting on each other would hop between near-equal axes from
-// step to step, and their contact points and ids with them (Catto, "Robust
-// Contact Creation for Physics Simulations", GDC 2013, and Box2D's
-// b_ClipPolygons make the same choice).
+// box's least half extent, and B's face wins over A's by the same rule.
+// Without the bias, two faces resting on each other would hop between
+// near-equal axes from step to step, and their contact points and ids with
+// them (Catto, "Robust Contact Creation for Physics Simulations", GDC 2013,
+// biases the choice the same way).
 //
 // All of it is done in A's frame, so that two boxes far from the origin
 // lose no more precision than their distance from each other costs.
