@@ -13,6 +13,7 @@
 
 #include "impulse/broadphase.hpp"
 #include "impulse/core/random.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -23,10 +24,7 @@ static_assert(broadphase::broad_phase<basic_brute_force<float>, float>);
 static_assert(broadphase::broad_phase<basic_brute_force<double>, double>);
 static_assert(broadphase::broad_phase_policy<broadphase::brute_force>);
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
 
 }  // namespace
 

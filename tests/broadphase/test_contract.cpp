@@ -10,6 +10,7 @@
 #include "impulse/broadphase.hpp"
 
 #include "../error_code_of.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -17,10 +18,7 @@ using namespace impulse;
 using namespace impulse::broadphase;
 using impulse::test::error_code_of;
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
 
 template <class BroadPhase>
 using scalar_of = std::remove_cvref_t<decltype(std::declval<BroadPhase>().box(proxy_id{}).lower.x)>;

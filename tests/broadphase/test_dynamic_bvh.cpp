@@ -19,6 +19,7 @@
 
 #include "../error_code_of.hpp"
 #include "against_brute_force.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -31,10 +32,7 @@ static_assert(broadphase::broad_phase<basic_dynamic_bvh<double>, double>);
 static_assert(broadphase_policy<broadphase::dynamic_bvh>);
 static_assert(std::is_default_constructible_v<broadphase::dynamic_bvh::type<float>>);
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
 
 template <class T>
 std::vector<proxy_pair> pairs_of(const basic_dynamic_bvh<T>& bp) {

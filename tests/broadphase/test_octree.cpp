@@ -14,6 +14,7 @@
 
 #include "../error_code_of.hpp"
 #include "against_brute_force.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -26,10 +27,7 @@ static_assert(broadphase::broad_phase<basic_octree<float>, float>);
 static_assert(broadphase::broad_phase<basic_octree<double>, double>);
 static_assert(broadphase_policy<broadphase::octree>);
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
 
 template <class T>
 T edge_of(const aabb<T>& b) {

@@ -16,6 +16,7 @@
 
 #include "../error_code_of.hpp"
 #include "against_brute_force.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -30,10 +31,7 @@ static_assert(broadphase::broad_phase<basic_spatial_hash<float>, float>);
 static_assert(broadphase::broad_phase<basic_spatial_hash<double>, double>);
 static_assert(broadphase_policy<broadphase::spatial_hash>);
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
 
 std::uint64_t key(proxy_id id) { return (std::uint64_t(id.index) << 32) | id.generation; }
 

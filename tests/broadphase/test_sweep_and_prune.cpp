@@ -12,6 +12,8 @@
 #include "impulse/core/random.hpp"
 
 #include "against_brute_force.hpp"
+#include "../error_code_of.hpp"
+#include "cube.hpp"
 
 namespace {
 
@@ -23,10 +25,8 @@ static_assert(broadphase::broad_phase<basic_sweep_and_prune<double>, double>);
 static_assert(broadphase::broad_phase_policy<broadphase::sweep_and_prune>);
 static_assert(broadphase::check_broad_phase<basic_sweep_and_prune<float>, float>());
 
-template <class T>
-aabb<T> cube(T x, T y, T z, T half) {
-  return aabb<T>::from_center_half_extents({x, y, z}, vec3<T>::splat(half));
-}
+using test::cube;
+using impulse::test::error_code_of;
 
 }  // namespace
 
@@ -206,4 +206,15 @@ TEST_CASE_TEMPLATE("boxes added one at a time and many at once give the same pai
                      reference.pairs().end()));
   }
   CHECK(reference.pairs().size() > 50);
+}
+
+TEST_CASE_TEMPLATE("regions of no boxes are refused", T, float, double) {
+  CHECK(error_code_of([] { basic_sweep_and_prune<T>{0}; }) == error_code::invalid_parameter);
+  // One box a region is allowed: every box its own region, as far as the
+  // grid can cut (no cell thinner than twice the mean box).
+  basic_sweep_and_prune<T> bp{1};
+  for (int i = 0; i < 50; ++i) bp.create(cube<T>(T(3 * i), 0, 0, T(0.5)), 0);
+  bp.update();
+  CHECK(bp.region_count() >= 25);
+  CHECK(bp.pairs().empty());
 }

@@ -61,13 +61,6 @@ struct gjk_result {
   int iterations = 0;
 };
 
-/// A shape's support point in world space: the point of the shape at `pose`
-/// farthest along the world direction d.
-template <class Shape, scalar_type T>
-vec3<T> world_support(const Shape& shape, const transform<T>& pose, const vec3<T>& d) noexcept {
-  return apply(pose, shape.support(inverse_rotate(pose.rotation, d)));
-}
-
 /// A convex shape seen as a core grown by a radius: a sphere is its centre
 /// grown by its radius, a capsule its segment; any other shape is its own
 /// core, grown by nothing.
@@ -96,6 +89,7 @@ template <scalar_type T>
 vec3<T> core_support(const capsule<T>& c, const vec3<T>& d) noexcept {
   return {T(0), d.y < T(0) ? -c.half_height : c.half_height, T(0)};
 }
+/// The core's support point in world space, along the world direction d.
 template <class Shape, scalar_type T>
 vec3<T> world_core_support(const Shape& shape, const transform<T>& pose, const vec3<T>& d) noexcept {
   return apply(pose, core_support(shape, inverse_rotate(pose.rotation, d)));
