@@ -4,8 +4,10 @@
 // by separating axes and clipping (narrowphase/box_box.hpp), the closest
 // point on a triangle by Voronoi regions (narrowphase/triangle.hpp), the
 // distance between any two convex shapes by GJK (narrowphase/gjk.hpp),
-// their penetration when they overlap by EPA (narrowphase/epa.hpp), and
-// convex hulls against planes and spheres (narrowphase/hull.hpp).
+// their penetration when they overlap by EPA (narrowphase/epa.hpp),
+// convex hulls against planes and spheres (narrowphase/hull.hpp), and
+// hulls against hulls and boxes by separating axes and clipping
+// (narrowphase/hull_hull.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
@@ -13,5 +15,6 @@
 #include "narrowphase/epa.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/hull.hpp"
+#include "narrowphase/hull_hull.hpp"
 #include "narrowphase/manifold.hpp"
 #include "narrowphase/triangle.hpp"

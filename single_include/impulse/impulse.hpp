@@ -6568,8 +6568,10 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 // by separating axes and clipping (narrowphase/box_box.hpp), the closest
 // point on a triangle by Voronoi regions (narrowphase/triangle.hpp), the
 // distance between any two convex shapes by GJK (narrowphase/gjk.hpp),
-// their penetration when they overlap by EPA (narrowphase/epa.hpp), and
-// convex hulls against planes and spheres (narrowphase/hull.hpp).
+// their penetration when they overlap by EPA (narrowphase/epa.hpp),
+// convex hulls against planes and spheres (narrowphase/hull.hpp), and
+// hulls against hulls and boxes by separating axes and clipping
+// (narrowphase/hull_hull.hpp).
 
 // ---- begin impulse/narrowphase/analytic.hpp ----
 // impulse/narrowphase/analytic.hpp — closed-form pair tests between
@@ -7233,6 +7235,94 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 // sides), 4 bits each. While the same features touch, the ids repeat.
 
 
+// ---- begin impulse/narrowphase/detail/clipping.hpp ----
+// impulse/narrowphase/detail/clipping.hpp — what the face contacts of box–box
+// and of the general polyhedra share: cutting the incident face down to the
+// reference face (Sutherland–Hodgman), and keeping four points of the patch
+// that stay the same points while the faces rest on each other.
+
+
+
+namespace impulse::narrowphase::detail {
+
+/// Room for `size` values: on the stack up to N (a collision hull's usual
+/// size, so that a resting pair allocates nothing per step), on the heap
+/// past that.
+template <class U, std::size_t N>
+class scratch_buffer {
+ public:
+  explicit scratch_buffer(std::size_t size) {
+    if (size > N) large_.resize(size);
+  }
+  [[nodiscard]] U* data() noexcept { return large_.empty() ? small_.data() : large_.data(); }
+  U& operator[](std::size_t i) noexcept { return data()[i]; }
+
+ private:
+  std::array<U, N> small_;
+  std::vector<U> large_;
+};
+
+/// Keeps the part of the convex polygon `in` where dot(w, x) <= limit, in
+/// `out`, which must have room for count + 1 points (Sutherland–Hodgman,
+/// one plane). Returns how many points it wrote.
+template <scalar_type T>
+int clip(const vec3<T>* in, int count, const vec3<T>& w, T limit, vec3<T>* out) noexcept {
+  int kept = 0;
+  for (int k = 0; k < count; ++k) {
+    const vec3<T>& p = in[k];
+    const vec3<T>& q = in[(k + 1) % count];
+    const T dp = dot(w, p) - limit, dq = dot(w, q) - limit;
+    if (dp <= T(0)) out[kept++] = p;
+    if ((dp <= T(0)) != (dq <= T(0))) out[kept++] = p + (q - p) * (dp / (dp - dq));
+  }
+  return kept;
+}
+
+/// A point of a clipped patch and its height above the reference face
+/// (negative: below it, overlapping).
+template <scalar_type T>
+struct patch_point {
+  vec3<T> x;
+  T separation;
+};
+
+/// Chooses at most four of the patch's points, one per quarter of the patch
+/// (split along the reference face's unit axes u and v through the patch's
+/// centre): the one farthest from the centre, so that the four span the
+/// patch, except that the deepest point of all is kept in its quarter.
+/// `chosen[q]` is the index of quarter q's point, or −1; the quarter is the
+/// point's feature id. The quarter, not the clipping history: when a box
+/// rests on a box of its size, their corners jitter across each other's
+/// edges from step to step, and each corner of the patch is now an incident
+/// corner, now the crossing of two edges, now a reference corner; its
+/// quarter stays the same. An offset within 1 % of the patch's size counts
+/// as negative, so that the two ends of a line of contact do not toss
+/// between quarters across it.
+template <scalar_type T>
+void choose_by_quarter(const patch_point<T>* points, int count, const vec3<T>& u, const vec3<T>& v,
+                       int chosen[4]) noexcept {
+  vec3<T> centre{};
+  for (int c = 0; c < count; ++c) centre += points[c].x;
+  centre /= T(count);
+  T spread = T(0);
+  for (int c = 0; c < count; ++c)
+    spread = std::max(spread, std::max(std::abs(dot(points[c].x - centre, u)), std::abs(dot(points[c].x - centre, v))));
+  const T dead_band = T(0.01) * spread;
+  const auto quarter = [&](const vec3<T>& x) {
+    return int(dot(x - centre, u) > dead_band) | (int(dot(x - centre, v) > dead_band) << 1);
+  };
+  int deepest = 0;
+  for (int q = 0; q < 4; ++q) chosen[q] = -1;
+  for (int c = 0; c < count; ++c) {
+    if (points[c].separation < points[deepest].separation) deepest = c;
+    int& slot = chosen[quarter(points[c].x)];
+    if (slot < 0 || length_squared(points[c].x - centre) > length_squared(points[slot].x - centre)) slot = c;
+  }
+  chosen[quarter(points[deepest].x)] = deepest;
+}
+
+}  // namespace impulse::narrowphase::detail
+// ---- end impulse/narrowphase/detail/clipping.hpp ----
 
 namespace impulse::narrowphase {
 
@@ -7250,21 +7340,6 @@ template <scalar_type T>
 T projected_radius(const oriented_box<T>& b, const vec3<T>& L) noexcept {
   return b.half.x * std::abs(dot(L, b.axis[0])) + b.half.y * std::abs(dot(L, b.axis[1])) +
          b.half.z * std::abs(dot(L, b.axis[2]));
-}
-
-/// Keeps the part of the convex polygon `in` where dot(w, x) <= limit, in
-/// `out` (Sutherland–Hodgman, one plane).
-template <scalar_type T>
-int clip(const vec3<T>* in, int count, const vec3<T>& w, T limit, vec3<T>* out) noexcept {
-  int kept = 0;
-  for (int k = 0; k < count; ++k) {
-    const vec3<T>& p = in[k];
-    const vec3<T>& q = in[(k + 1) % count];
-    const T dp = dot(w, p) - limit, dq = dot(w, q) - limit;
-    if (dp <= T(0)) out[kept++] = p;
-    if ((dp <= T(0)) != (dq <= T(0))) out[kept++] = p + (q - p) * (dp / (dp - dq));
-  }
-  return kept;
 }
 
 }  // namespace detail
@@ -7377,49 +7452,24 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
     count = detail::clip(polygon, count, sides[side].w, sides[side].limit, scratch);
     std::copy(scratch, scratch + count, polygon);
   }
-  // The points below the reference face (plus the margin), and the centre
-  // of the patch they make.
-  struct candidate {
-    vec3<T> x;
-    T separation;
-  } below[8];
+  // The points below the reference face (plus the margin), one kept per
+  // quarter of the patch they make.
+  detail::patch_point<T> below[8];
   int found = 0;
-  vec3<T> centre{};
   for (int c = 0; c < count; ++c) {
     const T separation = dot(n, polygon[c] - face_centre);
-    if (separation > margin) continue;
-    below[found++] = {polygon[c], separation};
-    centre += polygon[c];
+    if (separation <= margin) below[found++] = {polygon[c], separation};
   }
   if (found == 0) return m;
-  centre /= T(found);
-  // One point per quarter of the patch (split along the reference face's
-  // axes through its centre): the one farthest from the centre, except
-  // that the deepest of all is kept in its quarter. An offset within 1 %
-  // of the patch's size counts as negative, so that the two ends of a line
-  // of contact do not toss between quarters across it.
-  T spread = T(0);
-  for (int c = 0; c < found; ++c)
-    spread = std::max(spread, std::max(std::abs(dot(below[c].x - centre, ref.axis[u])),
-                                       std::abs(dot(below[c].x - centre, ref.axis[v]))));
-  const T dead_band = T(0.01) * spread;
-  const auto quarter = [&](const vec3<T>& x) {
-    return int(dot(x - centre, ref.axis[u]) > dead_band) | (int(dot(x - centre, ref.axis[v]) > dead_band) << 1);
-  };
-  int chosen[4] = {-1, -1, -1, -1}, deepest = 0;
-  for (int c = 0; c < found; ++c) {
-    if (below[c].separation < below[deepest].separation) deepest = c;
-    int& slot = chosen[quarter(below[c].x)];
-    if (slot < 0 || length_squared(below[c].x - centre) > length_squared(below[slot].x - centre)) slot = c;
-  }
-  chosen[quarter(below[deepest].x)] = deepest;
+  int chosen[4];
+  detail::choose_by_quarter(below, found, ref.axis[u], ref.axis[v], chosen);
   const std::uint32_t faces = (std::uint32_t(reference_is_b) << 13) |
                               (std::uint32_t(2 * r + int(ref_positive)) << 10) |
                               (std::uint32_t(2 * k + int(inc_positive)) << 7);
   m.normal = apply_direction(pose_a, reference_is_b ? -n : n);
   for (int q = 0; q < 4; ++q) {
     if (chosen[q] < 0) continue;
-    const candidate& c = below[chosen[q]];
+    const detail::patch_point<T>& c = below[chosen[q]];
     m.add({apply(pose_a, c.x - n * (c.separation * T(0.5))), -c.separation, faces | std::uint32_t(q)});
   }
   return m;
@@ -9525,13 +9575,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
                             const transform<T>& pose_b, T margin = T(0)) {
   const detail::world_plane<T> p = detail::in_world(b, pose_b);
   const std::span<const vec3<T>> vertices = a.vertices();
-  // The candidates on the stack for a hull of up to 64 vertices (a
-  // collision hull's usual size), so that a hull resting on the ground
-  // allocates nothing per step; on the heap past that.
-  std::array<contact_point<T>, 64> small;
-  std::vector<contact_point<T>> large;
-  if (vertices.size() > small.size()) large.resize(vertices.size());
-  contact_point<T>* below = vertices.size() > small.size() ? large.data() : small.data();
+  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
   std::size_t count = 0;
   for (std::uint32_t k = 0; k < vertices.size(); ++k) {
     const vec3<T> x = apply(pose_a, vertices[k]);
@@ -9540,7 +9584,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
   }
   contact_manifold<T> m;
   m.normal = -p.normal;
-  reduce_to_four(std::span<const contact_point<T>>(below, count), m.normal, m);
+  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
   return m;
 }
 
@@ -9591,6 +9635,308 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/hull.hpp ----
+// ---- begin impulse/narrowphase/hull_hull.hpp ----
+// impulse/narrowphase/hull_hull.hpp — convex polyhedra against each other:
+// hull–hull and box–hull, by the separating axis test and clipping.
+//
+// The method of box_box.hpp, for polyhedra of any shape (Gregorius, "The
+// Separating Axis Test between Convex Polyhedra", GDC 2013). Two convex
+// polyhedra are apart if and only if a face normal of one, or the cross
+// product of an edge of each, separates them. Every face of each is tried
+// against the other's support point, and every pair of edges whose arcs on
+// the Gauss map cross: an edge is the arc between the normals of its two
+// faces, and two edges build a face of the Minkowski difference A − B,
+// whose normal is a candidate axis, only if A's arc crosses the arc of B's
+// negated normals. The test costs a few dot products and drops nearly all
+// pairs. Any axis farther apart than the margin ends the test at once.
+//
+// The rest is as for two boxes: faces are preferred over edges, and A's
+// face over B's, unless clearly worse (5 % plus 1 % of the smaller
+// polyhedron's least half extent); a face contact clips the incident face
+// (the other polyhedron's face most opposed to the reference normal) to
+// the reference face's side planes (Sutherland–Hodgman) and keeps one point
+// per quarter of the patch; an edge contact is one point midway between
+// the closest points of the two edges. If the clipped patch is empty (the
+// bias chose a face that only an edge touches), the edge contact is used.
+//
+// All of it runs in A's frame, so that two polyhedra far from the origin
+// lose no more precision than their distance from each other costs. B's
+// vertices and face planes are carried into that frame once; for up to 64
+// of each they are kept on the stack, so a resting pair allocates nothing.
+//
+// Feature ids. A face contact: bits 0–1 the quarter of the patch, bits
+// 2–15 the incident face, bits 16–29 the reference face, bit 30 set when
+// the reference face is B's. An edge contact: bit 31 set, then A's edge in
+// bits 15–29 and B's in bits 0–14. (Indices are cut to those widths: ids
+// need only differ between the features of one pair.)
+//
+// A box enters as a polyhedron with 8 vertices, 6 faces and 12 edges
+// (box_polyhedron, below): box–box itself stays with box_box.hpp, whose
+// axes and supports are closed forms.
+
+
+
+namespace impulse::narrowphase {
+
+namespace detail {
+
+/// A box seen as a convex_hull: the same vertices(), face(f), plane(f) and
+/// edges(), built from the half extents without allocating. Vertex i has
+/// the sign of x in bit 0, of y in bit 1 and of z in bit 2 (set: +); face
+/// 2·axis + 1 is the face on the axis' positive side, 2·axis its negative.
+template <scalar_type T>
+class box_polyhedron {
+ public:
+  using face_plane = typename convex_hull<T>::face_plane;
+
+  explicit box_polyhedron(const box<T>& b) noexcept {
+    const vec3<T> h = b.half_extents;
+    for (std::uint32_t i = 0; i < 8; ++i)
+      vertices_[i] = {(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z};
+    for (int axis = 0; axis < 3; ++axis) {
+      vec3<T> n{};
+      n[axis] = T(1);
+      planes_[std::size_t(2 * axis)] = {-n, -h[axis]};
+      planes_[std::size_t(2 * axis + 1)] = {n, -h[axis]};
+    }
+    least_half_extent_ = min_component(h);
+  }
+
+  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
+  [[nodiscard]] std::size_t face_count() const noexcept { return 6; }
+  [[nodiscard]] std::span<const std::uint32_t> face(std::size_t f) const noexcept { return topology.faces[f]; }
+  [[nodiscard]] const face_plane& plane(std::size_t f) const noexcept { return planes_[f]; }
+  [[nodiscard]] std::span<const hull_edge> edges() const noexcept { return topology.edges; }
+  [[nodiscard]] T least_half_extent() const noexcept { return least_half_extent_; }
+
+ private:
+  struct topology_tables {
+    std::array<std::array<std::uint32_t, 4>, 6> faces;
+    std::array<hull_edge, 12> edges;
+  };
+  // Each face counter-clockwise seen from outside; each edge once, with the
+  // face whose boundary runs a -> b and the one whose boundary runs b -> a.
+  static constexpr topology_tables make_topology() noexcept {
+    topology_tables t{{{{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}}}, {}};
+    // Each edge is run a -> b by one face and b -> a by the other: the one
+    // that runs it from the lower index names it, the other is found after.
+    std::size_t count = 0;
+    for (std::uint32_t f = 0; f < 6; ++f)
+      for (std::size_t k = 0; k < 4; ++k)
+        if (t.faces[f][k] < t.faces[f][(k + 1) % 4]) t.edges[count++] = {t.faces[f][k], t.faces[f][(k + 1) % 4], f, 0};
+    for (std::uint32_t f = 0; f < 6; ++f)
+      for (std::size_t k = 0; k < 4; ++k)
+        for (hull_edge& e : t.edges)
+          if (e.a == t.faces[f][(k + 1) % 4] && e.b == t.faces[f][k]) e.face_ba = f;
+    return t;
+  }
+  static constexpr topology_tables topology = make_topology();
+
+  std::array<vec3<T>, 8> vertices_;
+  std::array<face_plane, 6> planes_;
+  T least_half_extent_;
+};
+
+template <scalar_type T>
+T least_half_extent(const convex_hull<T>& hull) noexcept {
+  const aabb<T> bounds = hull.local_aabb();
+  return min_component(bounds.upper - bounds.lower) * T(0.5);
+}
+template <scalar_type T>
+T least_half_extent(const box_polyhedron<T>& b) noexcept {
+  return b.least_half_extent();
+}
+
+/// Whether the arc between the unit normals a and b and the arc between c
+/// and d cross on the unit sphere (both shorter than half a circle): c and
+/// d lie on opposite sides of the plane through a and b, a and b on
+/// opposite sides of the plane through c and d, and the two arcs lie in the
+/// same hemisphere.
+template <scalar_type T>
+bool arcs_cross(const vec3<T>& a, const vec3<T>& b, const vec3<T>& c, const vec3<T>& d) noexcept {
+  const vec3<T> b_x_a = cross(b, a), d_x_c = cross(d, c);
+  const T cba = dot(c, b_x_a), dba = dot(d, b_x_a), adc = dot(a, d_x_c), bdc = dot(b, d_x_c);
+  return cba * dba < T(0) && adc * bdc < T(0) && cba * bdc > T(0);
+}
+
+/// The separating axis test and the contact of two polyhedra, each with the
+/// interface of convex_hull (vertices, faces, planes, edges).
+template <class PA, class PB, scalar_type T>
+contact_manifold<T> collide_polyhedra(const PA& a, const transform<T>& pose_a, const PB& b, const transform<T>& pose_b,
+                                      T margin) {
+  using face_plane = typename convex_hull<T>::face_plane;
+  const transform<T> relative = inverse_mul(pose_a, pose_b);  // B in A's frame
+  const std::span<const vec3<T>> va = a.vertices();
+  // B's vertices and face planes in A's frame.
+  const std::span<const vec3<T>> b_local = b.vertices();
+  scratch_buffer<vec3<T>, 64> vb(b_local.size());
+  for (std::size_t i = 0; i < b_local.size(); ++i) vb[i] = apply(relative, b_local[i]);
+  scratch_buffer<face_plane, 64> planes_b(b.face_count());
+  for (std::size_t f = 0; f < b.face_count(); ++f) {
+    const vec3<T> n = rotate(relative.rotation, b.plane(f).normal);
+    planes_b[f] = {n, b.plane(f).offset - dot(n, relative.position)};
+  }
+  const auto lowest = [](const vec3<T>* points, std::size_t count, const vec3<T>& n) {
+    T low = dot(n, points[0]);
+    for (std::size_t i = 1; i < count; ++i) low = std::min(low, dot(n, points[i]));
+    return low;
+  };
+  contact_manifold<T> m;
+
+  struct best {
+    T separation = -std::numeric_limits<T>::infinity();
+    std::size_t index = 0;
+    std::size_t other = 0;
+    vec3<T> axis{};
+  } face_a, face_b, edge;
+  for (std::size_t f = 0; f < a.face_count(); ++f) {
+    const face_plane& p = a.plane(f);
+    const T s = lowest(vb.data(), b_local.size(), p.normal) + p.offset;
+    if (s > margin) return m;
+    if (s > face_a.separation) face_a = {s, f, 0, p.normal};
+  }
+  for (std::size_t f = 0; f < b.face_count(); ++f) {
+    const face_plane& p = planes_b[f];
+    const T s = lowest(va.data(), va.size(), p.normal) + p.offset;
+    if (s > margin) return m;
+    if (s > face_b.separation) face_b = {s, f, 0, p.normal};
+  }
+  // Edge pairs that build a face of A − B; the axis points away from A's
+  // inside (the mean of its vertices).
+  vec3<T> inside_a{};
+  for (const vec3<T>& v : va) inside_a += v;
+  inside_a /= T(va.size());
+  const std::span<const hull_edge> edges_a = a.edges(), edges_b = b.edges();
+  for (std::size_t i = 0; i < edges_a.size(); ++i) {
+    const hull_edge& ea = edges_a[i];
+    const vec3<T> n1 = a.plane(ea.face_ab).normal, n2 = a.plane(ea.face_ba).normal;
+    const vec3<T> pa = va[ea.a], da = va[ea.b] - pa;
+    for (std::size_t j = 0; j < edges_b.size(); ++j) {
+      const hull_edge& eb = edges_b[j];
+      if (!arcs_cross(n1, n2, -planes_b[eb.face_ab].normal, -planes_b[eb.face_ba].normal)) continue;
+      const vec3<T> pb = vb[eb.a], db = vb[eb.b] - pb;
+      vec3<T> L = cross(da, db);
+      // Edges within about 0.06° of parallel: their axis is a face axis
+      // already tested, and its direction is rounding noise.
+      const T l2 = length_squared(L);
+      if (!(l2 > T(1e-6) * length_squared(da) * length_squared(db))) continue;
+      L /= std::sqrt(l2);
+      if (dot(L, pa - inside_a) < T(0)) L = -L;
+      const T s = dot(L, pb - pa);
+      if (s > margin) return m;
+      if (s > edge.separation) edge = {s, i, j, L};
+    }
+  }
+
+  const T tolerance = T(0.01) * std::min(least_half_extent(a), least_half_extent(b));
+  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const bool prefer_b = clearly_better(face_b.separation, face_a.separation);
+  const best& preferred = prefer_b ? face_b : face_a;
+
+  const auto edge_contact = [&] {
+    const hull_edge& ea = edges_a[edge.index];
+    const hull_edge& eb = edges_b[edge.other];
+    const segment_closest<T> c = closest_points_of_segments(va[ea.a], va[ea.b], vb[eb.a], vb[eb.b]);
+    const T depth = -dot(c.on_second - c.on_first, edge.axis);
+    m.normal = apply_direction(pose_a, edge.axis);
+    const std::uint32_t feature =
+        (1u << 31) | ((std::uint32_t(edge.index) & 0x7fffu) << 15) | (std::uint32_t(edge.other) & 0x7fffu);
+    m.add({apply(pose_a, (c.on_first + c.on_second) * T(0.5)), depth, feature});
+    return m;
+  };
+  const bool have_edge = edge.separation > -std::numeric_limits<T>::infinity();
+  if (have_edge && clearly_better(edge.separation, preferred.separation)) return edge_contact();
+
+  // Face against face, in A's frame: the face of `face` as the reference,
+  // the incident face clipped to it. False if nothing is left below it.
+  const auto face_contact = [&](const best& face, bool reference_is_b) {
+    const vec3<T> n = face.axis;  // out of the reference polyhedron
+    const std::span<const std::uint32_t> ref_face = reference_is_b ? b.face(face.index) : a.face(face.index);
+    const vec3<T>* ref_vertices = reference_is_b ? vb.data() : va.data();
+    const T ref_offset = reference_is_b ? planes_b[face.index].offset : a.plane(face.index).offset;
+    // The incident face: of the faces at the other polyhedron's deepest
+    // vertex (its support along −n), the one most opposed to n. Most
+    // opposed over all faces would do for a resting pair, but on a deep
+    // overlap it can be a face off to the side, which clips to nothing.
+    const vec3<T>* inc_vertices = reference_is_b ? va.data() : vb.data();
+    const std::size_t inc_vertex_count = reference_is_b ? va.size() : b_local.size();
+    std::uint32_t deepest = 0;
+    for (std::uint32_t i = 1; i < inc_vertex_count; ++i)
+      if (dot(n, inc_vertices[i]) < dot(n, inc_vertices[deepest])) deepest = i;
+    std::size_t k = 0;
+    T most_opposed = std::numeric_limits<T>::infinity();
+    const std::size_t incident_faces = reference_is_b ? a.face_count() : b.face_count();
+    for (std::size_t f = 0; f < incident_faces; ++f) {
+      const std::span<const std::uint32_t> polygon = reference_is_b ? a.face(f) : b.face(f);
+      if (std::find(polygon.begin(), polygon.end(), deepest) == polygon.end()) continue;
+      const T c = dot(n, reference_is_b ? a.plane(f).normal : planes_b[f].normal);
+      if (c < most_opposed) most_opposed = c, k = f;
+    }
+    const std::span<const std::uint32_t> inc_face = reference_is_b ? a.face(k) : b.face(k);
+    // Clipping a convex polygon by a plane adds at most one point.
+    const std::size_t room = inc_face.size() + ref_face.size() + 1;
+    scratch_buffer<vec3<T>, 64> first(room), second(room);
+    vec3<T>* polygon = first.data();
+    vec3<T>* scratch = second.data();
+    int count = int(inc_face.size());
+    for (std::size_t c = 0; c < inc_face.size(); ++c) polygon[c] = inc_vertices[inc_face[c]];
+    for (std::size_t c = 0; c < ref_face.size() && count > 0; ++c) {
+      const vec3<T> p = ref_vertices[ref_face[c]], q = ref_vertices[ref_face[(c + 1) % ref_face.size()]];
+      const vec3<T> w = cross(q - p, n);  // out of the face, across its edge pq
+      count = clip(polygon, count, w, dot(w, p), scratch);
+      std::swap(polygon, scratch);
+    }
+    scratch_buffer<patch_point<T>, 64> below(std::size_t(count) + 1);
+    int found = 0;
+    for (int c = 0; c < count; ++c) {
+      const T separation = dot(n, polygon[std::size_t(c)]) + ref_offset;
+      if (separation <= margin) below[std::size_t(found++)] = {polygon[std::size_t(c)], separation};
+    }
+    if (found == 0) return false;
+    const vec3<T> u = normalize(ref_vertices[ref_face[1]] - ref_vertices[ref_face[0]]);
+    int chosen[4];
+    choose_by_quarter(below.data(), found, u, cross(n, u), chosen);
+    const std::uint32_t faces = (std::uint32_t(reference_is_b) << 30) | ((std::uint32_t(face.index) & 0x3fffu) << 16) |
+                                ((std::uint32_t(k) & 0x3fffu) << 2);
+    m.normal = apply_direction(pose_a, reference_is_b ? -n : n);
+    for (int q = 0; q < 4; ++q) {
+      if (chosen[q] < 0) continue;
+      const patch_point<T>& c = below[std::size_t(chosen[q])];
+      m.add({apply(pose_a, c.x - n * (c.separation * T(0.5))), -c.separation, faces | std::uint32_t(q)});
+    }
+    return true;
+  };
+  if (face_contact(preferred, prefer_b)) return m;
+  // The bias chose a face that clips to nothing: a deep overlap whose least
+  // penetration is along another axis. Take that axis.
+  const best& other = prefer_b ? face_a : face_b;
+  if (have_edge && edge.separation >= other.separation) return edge_contact();
+  if (face_contact(other, !prefer_b)) return m;
+  return have_edge ? edge_contact() : m;
+}
+
+}  // namespace detail
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return detail::collide_polyhedra(a, pose_a, b, pose_b, margin);
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return detail::collide_polyhedra(detail::box_polyhedron<T>(a), pose_a, b, pose_b, margin);
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const box<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return detail::collide_polyhedra(a, pose_a, detail::box_polyhedron<T>(b), pose_b, margin);
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/hull_hull.hpp ----
 // ---- end impulse/narrowphase.hpp ----
 // ---- begin impulse/particles.hpp ----
 // impulse/particles.hpp — the particle module: particle_system, its forces

@@ -19,16 +19,10 @@ namespace {
 using namespace impulse;
 using narrowphase::collide;
 using test::at;
+using test::ids_of;
 
 template <class T>
-constexpr T tolerance = sizeof(T) == 4 ? T(2e-5) : T(1e-12);
-
-template <class T>
-std::set<std::uint32_t> ids_of(const contact_manifold<T>& m) {
-  std::set<std::uint32_t> ids;
-  for (const auto& p : m.contacts()) ids.insert(p.feature);
-  return ids;
-}
+constexpr T tolerance = test::contact_tolerance<T>;
 
 template <class T>
 bool finite(const contact_manifold<T>& m) {
@@ -95,20 +89,9 @@ TEST_CASE_TEMPLATE("a wide box on a small one is clipped to the small one's face
 }
 
 TEST_CASE_TEMPLATE("two boxes crossing edge to edge touch at one point", T, float, double) {
-  // A turned 45° about z (its top is an edge along z), B turned 45° about x
-  // (its bottom is an edge along x), B above: the edges cross at x = z = 0,
-  // 1 cm into each other.
   const box<T> cube{vec3<T>::splat(T(0.5))};
-  const T reach = T(0.5) * std::sqrt(T(2));
-  const transform<T> pa = at<T>({}, quat<T>::from_axis_angle(vec3<T>::unit_z(), T(0.785398163397448)));
-  const transform<T> pb =
-      at<T>({0, 2 * reach - T(0.01), 0}, quat<T>::from_axis_angle(vec3<T>::unit_x(), T(0.785398163397448)));
-  const auto m = collide(cube, pa, cube, pb);
-  REQUIRE(m.count == 1);
-  CHECK(length(m.normal - vec3<T>::unit_y()) <= tolerance<T> * 10);
-  CHECK(m.points[0].depth == doctest::Approx(0.01).epsilon(tolerance<T> * 1000));
-  CHECK(length(m.points[0].position - vec3<T>{0, reach - T(0.005), 0}) <= tolerance<T> * 10);
-  CHECK((m.points[0].feature & (1u << 15)) != 0);
+  const test::crossing_edges<T> pair;
+  pair.check(collide(cube, pair.a, cube, pair.b), 1u << 15);
 }
 
 TEST_CASE_TEMPLATE("a box resting on a box keeps the same four ids step after step", T, float, double) {

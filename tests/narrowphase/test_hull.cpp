@@ -22,13 +22,11 @@ using test::at;
 using test::random_rotation;
 
 template <class T>
-constexpr T tolerance = sizeof(T) == 4 ? T(2e-5) : T(1e-12);
+constexpr T tolerance = test::contact_tolerance<T>;
 
 template <class T>
 convex_hull<T> cube_hull(T half) {
-  std::vector<vec3<T>> corners;
-  for (int k = 0; k < 8; ++k) corners.push_back({(k & 1) ? half : -half, (k & 2) ? half : -half, (k & 4) ? half : -half});
-  return convex_hull<T>::from_points(corners);
+  return convex_hull<T>::from_points(test::box_corners(vec3<T>::splat(half)));
 }
 
 }  // namespace

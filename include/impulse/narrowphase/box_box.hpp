@@ -51,6 +51,7 @@
 #include "../math/transform.hpp"
 #include "../shapes/box.hpp"
 #include "analytic.hpp"
+#include "detail/clipping.hpp"
 #include "manifold.hpp"
 
 namespace impulse::narrowphase {
@@ -69,21 +70,6 @@ template <scalar_type T>
 T projected_radius(const oriented_box<T>& b, const vec3<T>& L) noexcept {
   return b.half.x * std::abs(dot(L, b.axis[0])) + b.half.y * std::abs(dot(L, b.axis[1])) +
          b.half.z * std::abs(dot(L, b.axis[2]));
-}
-
-/// Keeps the part of the convex polygon `in` where dot(w, x) <= limit, in
-/// `out` (Sutherland–Hodgman, one plane).
-template <scalar_type T>
-int clip(const vec3<T>* in, int count, const vec3<T>& w, T limit, vec3<T>* out) noexcept {
-  int kept = 0;
-  for (int k = 0; k < count; ++k) {
-    const vec3<T>& p = in[k];
-    const vec3<T>& q = in[(k + 1) % count];
-    const T dp = dot(w, p) - limit, dq = dot(w, q) - limit;
-    if (dp <= T(0)) out[kept++] = p;
-    if ((dp <= T(0)) != (dq <= T(0))) out[kept++] = p + (q - p) * (dp / (dp - dq));
-  }
-  return kept;
 }
 
 }  // namespace detail
@@ -196,49 +182,24 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
     count = detail::clip(polygon, count, sides[side].w, sides[side].limit, scratch);
     std::copy(scratch, scratch + count, polygon);
   }
-  // The points below the reference face (plus the margin), and the centre
-  // of the patch they make.
-  struct candidate {
-    vec3<T> x;
-    T separation;
-  } below[8];
+  // The points below the reference face (plus the margin), one kept per
+  // quarter of the patch they make.
+  detail::patch_point<T> below[8];
   int found = 0;
-  vec3<T> centre{};
   for (int c = 0; c < count; ++c) {
     const T separation = dot(n, polygon[c] - face_centre);
-    if (separation > margin) continue;
-    below[found++] = {polygon[c], separation};
-    centre += polygon[c];
+    if (separation <= margin) below[found++] = {polygon[c], separation};
   }
   if (found == 0) return m;
-  centre /= T(found);
-  // One point per quarter of the patch (split along the reference face's
-  // axes through its centre): the one farthest from the centre, except
-  // that the deepest of all is kept in its quarter. An offset within 1 %
-  // of the patch's size counts as negative, so that the two ends of a line
-  // of contact do not toss between quarters across it.
-  T spread = T(0);
-  for (int c = 0; c < found; ++c)
-    spread = std::max(spread, std::max(std::abs(dot(below[c].x - centre, ref.axis[u])),
-                                       std::abs(dot(below[c].x - centre, ref.axis[v]))));
-  const T dead_band = T(0.01) * spread;
-  const auto quarter = [&](const vec3<T>& x) {
-    return int(dot(x - centre, ref.axis[u]) > dead_band) | (int(dot(x - centre, ref.axis[v]) > dead_band) << 1);
-  };
-  int chosen[4] = {-1, -1, -1, -1}, deepest = 0;
-  for (int c = 0; c < found; ++c) {
-    if (below[c].separation < below[deepest].separation) deepest = c;
-    int& slot = chosen[quarter(below[c].x)];
-    if (slot < 0 || length_squared(below[c].x - centre) > length_squared(below[slot].x - centre)) slot = c;
-  }
-  chosen[quarter(below[deepest].x)] = deepest;
+  int chosen[4];
+  detail::choose_by_quarter(below, found, ref.axis[u], ref.axis[v], chosen);
   const std::uint32_t faces = (std::uint32_t(reference_is_b) << 13) |
                               (std::uint32_t(2 * r + int(ref_positive)) << 10) |
                               (std::uint32_t(2 * k + int(inc_positive)) << 7);
   m.normal = apply_direction(pose_a, reference_is_b ? -n : n);
   for (int q = 0; q < 4; ++q) {
     if (chosen[q] < 0) continue;
-    const candidate& c = below[chosen[q]];
+    const detail::patch_point<T>& c = below[chosen[q]];
     m.add({apply(pose_a, c.x - n * (c.separation * T(0.5))), -c.separation, faces | std::uint32_t(q)});
   }
   return m;

@@ -14,17 +14,16 @@
 // face's index: it holds while the sphere rolls across one face.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <vector>
 
 #include "../math/transform.hpp"
 #include "../shapes/convex_hull.hpp"
 #include "../shapes/plane.hpp"
 #include "../shapes/sphere.hpp"
 #include "analytic.hpp"
+#include "detail/clipping.hpp"
 #include "gjk.hpp"
 #include "manifold.hpp"
 
@@ -35,13 +34,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
                             const transform<T>& pose_b, T margin = T(0)) {
   const detail::world_plane<T> p = detail::in_world(b, pose_b);
   const std::span<const vec3<T>> vertices = a.vertices();
-  // The candidates on the stack for a hull of up to 64 vertices (a
-  // collision hull's usual size), so that a hull resting on the ground
-  // allocates nothing per step; on the heap past that.
-  std::array<contact_point<T>, 64> small;
-  std::vector<contact_point<T>> large;
-  if (vertices.size() > small.size()) large.resize(vertices.size());
-  contact_point<T>* below = vertices.size() > small.size() ? large.data() : small.data();
+  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
   std::size_t count = 0;
   for (std::uint32_t k = 0; k < vertices.size(); ++k) {
     const vec3<T> x = apply(pose_a, vertices[k]);
@@ -50,7 +43,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
   }
   contact_manifold<T> m;
   m.normal = -p.normal;
-  reduce_to_four(std::span<const contact_point<T>>(below, count), m.normal, m);
+  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
   return m;
 }
 
