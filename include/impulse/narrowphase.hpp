@@ -7,11 +7,13 @@
 // their penetration when they overlap by EPA (narrowphase/epa.hpp),
 // convex hulls against planes and spheres (narrowphase/hull.hpp), and
 // hulls against hulls and boxes by separating axes and clipping
-// (narrowphase/hull_hull.hpp).
+// (narrowphase/hull_hull.hpp), and capsules against boxes and hulls
+// (narrowphase/capsule_polyhedron.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
 #include "narrowphase/box_box.hpp"
+#include "narrowphase/capsule_polyhedron.hpp"
 #include "narrowphase/epa.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/hull.hpp"

@@ -6571,7 +6571,8 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 // their penetration when they overlap by EPA (narrowphase/epa.hpp),
 // convex hulls against planes and spheres (narrowphase/hull.hpp), and
 // hulls against hulls and boxes by separating axes and clipping
-// (narrowphase/hull_hull.hpp).
+// (narrowphase/hull_hull.hpp), and capsules against boxes and hulls
+// (narrowphase/capsule_polyhedron.hpp).
 
 // ---- begin impulse/narrowphase/analytic.hpp ----
 // impulse/narrowphase/analytic.hpp — closed-form pair tests between
@@ -7477,632 +7478,33 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/box_box.hpp ----
-// ---- begin impulse/narrowphase/epa.hpp ----
-// impulse/narrowphase/epa.hpp — how deep two overlapping convex shapes
-// are, and along which normal: the expanding polytope algorithm.
+// ---- begin impulse/narrowphase/capsule_polyhedron.hpp ----
+// impulse/narrowphase/capsule_polyhedron.hpp — a capsule against a box or a
+// convex hull.
 //
-// When the shapes overlap, the origin lies inside their Minkowski
-// difference A − B, and the shortest translation of B that separates them
-// is the point of the boundary of A − B nearest the origin. EPA (van den
-// Bergen 2001; Ericson §9.5.4) grows a polytope inside A − B from GJK's last
-// simplex: it takes the polytope's face nearest the origin, asks for the
-// support point of A − B along that face's normal, and, if the point lies
-// beyond the face, adds it (removing the faces it sees and joining the
-// horizon they leave to it). When the support point is no farther than the
-// face (to a relative tolerance), the face is on the boundary: its normal is
-// the contact normal (from A into B: moving B along it by the depth
-// separates them), its distance from the origin the depth, and the
-// origin's projection on it, in barycentric weights of its three support
-// points, gives the deepest point of each shape.
+// A capsule is a segment (its core) grown by its radius. Everything runs in
+// the polyhedron's frame:
 //
-// GJK may stop with fewer than four points (the origin on a face, an edge
-// or a vertex of its simplex): the simplex is first blown up to a
-// tetrahedron by support points along directions it does not yet span. If
-// the origin is then not strictly inside (the shapes only touch), the depth
-// is the nearest face's distance, about 0.
+// - Core outside the polyhedron: GJK (gjk.hpp) gives the distance d from
+//   the segment and the closest points; the shapes touch if d is within
+//   the radius plus the margin, along the normal from the core's closest
+//   point to the polyhedron's. If that normal is within about 2.6° of a
+//   face's and the segment lies along that face (within about 2.9°), the
+//   capsule rests on it: the segment is clipped to the face's side planes
+//   and each end below the face plus the radius and margin is a point, so
+//   that a capsule lying on a box stands on two points, not one. Else one
+//   point, midway between the two surfaces.
+// - Core inside or through it (GJK finds them overlapping): the separating
+//   axis test between the segment and the polyhedron (its face normals,
+//   and the cross products of the segment with each of its edges), faces
+//   preferred as in box_box.hpp; a face clips the segment as above, an
+//   edge gives one point.
 //
-// Spheres and capsules enter as their cores grown by their radii (see
-// gjk.hpp): when the cores are apart, the depth is the radii less the gap
-// and the normal lies along the gap, with no EPA at all; when they overlap,
-// EPA works on the cores (polytopes, on which it ends exactly) and the radii
-// are added after.
-//
-// Termination: the support point within 1e-6 (float) or 1e-10 (double) of
-// the face, relative to its distance plus 1 m, or 128 iterations. The
-// arithmetic runs in double, as in GJK. Against the least penetration over
-// the fifteen separating axes of two boxes (the exact depth for convex
-// polyhedra), the worst error over about 1 880 random overlapping pairs was
-// 1.1e-6 in float and 1.3e-15 in double, in at most 19 iterations.
-
-
-// ---- begin impulse/narrowphase/gjk.hpp ----
-// impulse/narrowphase/gjk.hpp — the distance and the closest points between
-// any two convex shapes, known only by their support functions.
-//
-// GJK (Gilbert, Johnson and Keerthi, 1988) looks for the point of the
-// Minkowski difference A − B nearest the origin: that point's length is the
-// distance between the shapes, and the support points that make it give the
-// closest point on each. It keeps a simplex (a point, a segment, a triangle
-// or a tetrahedron) of support points of A − B, finds the point v of the
-// simplex nearest the origin, drops the vertices that do not make v, and
-// adds the support point w of A − B along −v, until w brings v no closer.
-//
-// The nearest point of each simplex comes from its Voronoi regions: of a
-// segment by its one parameter, of a triangle by closest_point_on_triangle
-// (triangle.hpp), of a tetrahedron by its faces that the origin lies
-// outside of (Ericson, "Real-Time Collision Detection", §5.1.6, §9.5).
-//
-// Termination (van den Bergen, "Collision Detection in Interactive 3D
-// Environments", 2003, §4.3): v is the answer, to a relative tolerance ε,
-// once |v|² − v·w ≤ ε·|v|², that is once the support plane along −v is
-// within ε·|v| of v. ε is 1e-6 in float and 1e-12 in double. It never
-// cycles: a step that does not bring v strictly closer, or a w already in
-// the simplex, ends the search with the best v found, and so does the
-// iteration cap (64). When the origin lies in the simplex (a tetrahedron
-// containing it, or v shorter than the rounding of the shapes' size), the
-// shapes overlap: the distance is 0 and EPA (epa.hpp) says how deep.
-//
-// Spheres and capsules are handled as their cores (a point, a segment)
-// grown by their radii: GJK runs between the cores, which are polytopes it
-// ends on exactly in a few iterations, and the radii are subtracted after
-// (as Bullet and Jolt do with their convex radius). On a curved support
-// function GJK would converge only linearly, its points crowding into
-// slivers; that path is still tested, with a ball known only by its
-// support function (worst error over about 5 850 random pairs, relative to
-// 1 m plus the distance: 1.2e-6 in float, 4e-11 in double, up to 57
-// iterations). The simplex arithmetic runs in double even for float shapes
-// (their support points stay float): the nearest point of a sliver
-// triangle amplifies rounding by the inverse of its thinness, and worked in
-// float, distances between 1 m shapes came out up to 3e-5 m wrong.
-
-
-// ---- begin impulse/narrowphase/triangle.hpp ----
-// impulse/narrowphase/triangle.hpp — the point of a triangle closest to a
-// given point, and which of its seven Voronoi regions that point is in.
-//
-// The regions of a triangle abc: its three vertices, its three edges and
-// its face. The test walks them in order of cost (Ericson, "Real-Time
-// Collision Detection", §5.1.5): a vertex region is decided by two dot
-// products, an edge region by the sign of one barycentric coordinate of the
-// projection (a triple product written as differences of dot products),
-// and what is left is the face. The region is what a mesh contact needs to
-// know: a hit on an edge or a vertex shared with a neighbouring triangle is
-// a candidate for the internal-edge fix that keeps objects from snagging on
-// a flat mesh.
-//
-// A degenerate triangle (its corners on one line, or all at one point) has
-// no face: its closest point is then the nearest on its three edges, and the
-// region says which edge or vertex that was.
-
-
-
-namespace impulse::narrowphase {
-
-enum class triangle_region : std::uint8_t { vertex_a, vertex_b, vertex_c, edge_ab, edge_bc, edge_ca, face };
-
-template <scalar_type T>
-struct triangle_point {
-  vec3<T> point{};
-  triangle_region region = triangle_region::face;
-  vec3<T> barycentric{};  ///< weights of a, b, c: point = a·x + b·y + c·z, each in [0, 1], summing to 1
-};
-
-template <scalar_type T>
-triangle_point<T> closest_point_on_triangle(const vec3<T>& p, const vec3<T>& a, const vec3<T>& b,
-                                            const vec3<T>& c) noexcept {
-  const vec3<T> ab = b - a, ac = c - a, ap = p - a;
-  const T d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= T(0) && d2 <= T(0)) return {a, triangle_region::vertex_a, {T(1), T(0), T(0)}};
-
-  const vec3<T> bp = p - b;
-  const T d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= T(0) && d4 <= d3) return {b, triangle_region::vertex_b, {T(0), T(1), T(0)}};
-
-  const vec3<T> cp = p - c;
-  const T d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= T(0) && d5 <= d6) return {c, triangle_region::vertex_c, {T(0), T(0), T(1)}};
-
-  // The face's area (twice, squared) decides whether there is a face at all.
-  const T area2 = length_squared(cross(ab, ac));
-  const T scale = length_squared(ab) * length_squared(ac);
-  if (!(area2 > T(64) * scalar_traits<T>::epsilon * scale) || !(scale > T(0))) {
-    // Degenerate: the nearest of the three edges.
-    const auto on_edge = [&](const vec3<T>& from, const vec3<T>& to) {
-      return detail::closest_point_on_segment(from, to, p);
-    };
-    const vec3<T> candidates[3] = {on_edge(a, b), on_edge(b, c), on_edge(c, a)};
-    int best = 0;
-    for (int k = 1; k < 3; ++k)
-      if (length_squared(candidates[k] - p) < length_squared(candidates[best] - p)) best = k;
-    const vec3<T>& q = candidates[best];
-    // Its weights along that edge (the vertex regions were taken above, so
-    // the point lies strictly between the edge's ends or they coincide).
-    const vec3<T>& from = best == 0 ? a : best == 1 ? b : c;
-    const vec3<T>& to = best == 0 ? b : best == 1 ? c : a;
-    const T length2 = length_squared(to - from);
-    const T t = length2 > T(0) ? dot(q - from, to - from) / length2 : T(0);
-    vec3<T> weights{};
-    weights[best] = T(1) - t;
-    weights[(best + 1) % 3] = t;
-    const triangle_region edges[3] = {triangle_region::edge_ab, triangle_region::edge_bc, triangle_region::edge_ca};
-    return {q, edges[best], weights};
-  }
-
-  const T vc = d1 * d4 - d3 * d2;
-  if (vc <= T(0) && d1 >= T(0) && d3 <= T(0)) {
-    const T t = d1 / (d1 - d3);
-    return {a + ab * t, triangle_region::edge_ab, {T(1) - t, t, T(0)}};
-  }
-  const T vb = d5 * d2 - d1 * d6;
-  if (vb <= T(0) && d2 >= T(0) && d6 <= T(0)) {
-    const T t = d2 / (d2 - d6);
-    return {a + ac * t, triangle_region::edge_ca, {T(1) - t, T(0), t}};
-  }
-  const T va = d3 * d6 - d5 * d4;
-  if (va <= T(0) && (d4 - d3) >= T(0) && (d5 - d6) >= T(0)) {
-    const T t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {b + (c - b) * t, triangle_region::edge_bc, {T(0), T(1) - t, t}};
-  }
-  const T inverse = T(1) / (va + vb + vc);
-  const T v = vb * inverse, w = vc * inverse;
-  return {a + ab * v + ac * w, triangle_region::face, {T(1) - v - w, v, w}};
-}
-
-}  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/triangle.hpp ----
-
-namespace impulse::narrowphase {
-
-template <scalar_type T>
-struct gjk_result {
-  T distance = T(0);  ///< m; 0 when the shapes overlap or touch
-  vec3<T> on_a{};     ///< world: the point of A nearest B (when apart)
-  vec3<T> on_b{};     ///< world: the point of B nearest A
-  bool overlapping = false;
-  int iterations = 0;
-};
-
-/// A convex shape seen as a core grown by a radius: a sphere is its centre
-/// grown by its radius, a capsule its segment; any other shape is its own
-/// core, grown by nothing.
-template <scalar_type T, class Shape>
-constexpr T core_radius(const Shape&) noexcept {
-  return T(0);
-}
-template <scalar_type T>
-constexpr T core_radius(const sphere<T>& s) noexcept {
-  return s.radius;
-}
-template <scalar_type T>
-constexpr T core_radius(const capsule<T>& c) noexcept {
-  return c.radius;
-}
-/// The core's support point along d, in the shape's frame.
-template <class Shape, scalar_type T>
-vec3<T> core_support(const Shape& shape, const vec3<T>& d) noexcept {
-  return shape.support(d);
-}
-template <scalar_type T>
-vec3<T> core_support(const sphere<T>&, const vec3<T>&) noexcept {
-  return {};
-}
-template <scalar_type T>
-vec3<T> core_support(const capsule<T>& c, const vec3<T>& d) noexcept {
-  return {T(0), d.y < T(0) ? -c.half_height : c.half_height, T(0)};
-}
-/// The core's support point in world space, along the world direction d.
-template <class Shape, scalar_type T>
-vec3<T> world_core_support(const Shape& shape, const transform<T>& pose, const vec3<T>& d) noexcept {
-  return apply(pose, core_support(shape, inverse_rotate(pose.rotation, d)));
-}
-
-namespace detail {
-
-/// A simplex of support points of A − B, each with the points of A and B
-/// that made it.
-template <scalar_type T>
-struct simplex {
-  vec3<T> w[4], a[4], b[4];
-  T weight[4]{};  ///< of the nearest point, after `reduce`
-  int size = 0;
-
-  void keep(std::initializer_list<int> which) noexcept {
-    int n = 0;
-    vec3<T> w2[4], a2[4], b2[4];
-    for (const int k : which) w2[n] = w[k], a2[n] = a[k], b2[n] = b[k], ++n;
-    for (int k = 0; k < n; ++k) w[k] = w2[k], a[k] = a2[k], b[k] = b2[k];
-    size = n;
-  }
-
-  /// Replaces the simplex by its smallest face holding the point nearest
-  /// the origin, sets the weights of that point, and returns it; or, when
-  /// the origin lies inside a tetrahedron, returns the origin, keeping all
-  /// four.
-  vec3<T> reduce() noexcept {
-    switch (size) {
-      case 1:
-        weight[0] = T(1);
-        return w[0];
-      case 2: {
-        const vec3<T> d = w[1] - w[0];
-        const T length2 = length_squared(d);
-        const T t = length2 > T(0) ? -dot(w[0], d) / length2 : T(0);
-        if (t <= T(0)) {
-          keep({0});
-          weight[0] = T(1);
-          return w[0];
-        }
-        if (t >= T(1)) {
-          keep({1});
-          weight[0] = T(1);
-          return w[0];
-        }
-        weight[0] = T(1) - t, weight[1] = t;
-        return w[0] + d * t;
-      }
-      case 3:
-        return reduce_triangle(0, 1, 2);
-      default:
-        return reduce_tetrahedron();
-    }
-  }
-
-  vec3<T> reduce_triangle(int i, int j, int k) noexcept {
-    const triangle_point<T> p = closest_point_on_triangle(vec3<T>{}, w[i], w[j], w[k]);
-    const T u = p.barycentric.x, v = p.barycentric.y, s = p.barycentric.z;
-    switch (p.region) {
-      case triangle_region::vertex_a: keep({i}); weight[0] = T(1); break;
-      case triangle_region::vertex_b: keep({j}); weight[0] = T(1); break;
-      case triangle_region::vertex_c: keep({k}); weight[0] = T(1); break;
-      case triangle_region::edge_ab: keep({i, j}); weight[0] = u, weight[1] = v; break;
-      case triangle_region::edge_bc: keep({j, k}); weight[0] = v, weight[1] = s; break;
-      case triangle_region::edge_ca: keep({i, k}); weight[0] = u, weight[1] = s; break;
-      case triangle_region::face: keep({i, j, k}); weight[0] = u, weight[1] = v, weight[2] = s; break;
-    }
-    return p.point;
-  }
-
-  /// Whether the origin lies on the other side of the plane through p, q, r
-  /// from the fourth point s.
-  static bool outside(const vec3<T>& p, const vec3<T>& q, const vec3<T>& r, const vec3<T>& s) noexcept {
-    const vec3<T> n = cross(q - p, r - p);
-    return dot(-p, n) * dot(s - p, n) < T(0);
-  }
-
-  vec3<T> reduce_tetrahedron() noexcept {
-    constexpr int faces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
-    // A sliver (the new point nearly in the plane of the old triangle, as
-    // GJK's points crowd together on a curved surface) cannot tell the
-    // origin's side of its faces from rounding: every face is tried, and
-    // the origin is never taken to be inside it.
-    T scale = T(0);
-    for (int k = 1; k < 4; ++k) scale = std::max(scale, length_squared(w[k] - w[0]));
-    const T volume = dot(cross(w[1] - w[0], w[2] - w[0]), w[3] - w[0]);
-    const bool sliver = !(std::abs(volume) > T(1e-6) * scale * std::sqrt(scale));
-    T best = std::numeric_limits<T>::infinity();
-    simplex nearest = *this;
-    vec3<T> point{};
-    bool any = false;
-    for (const auto& f : faces) {
-      if (!sliver && !outside(w[f[0]], w[f[1]], w[f[2]], w[f[3]])) continue;
-      simplex face = *this;
-      const vec3<T> q = face.reduce_triangle(f[0], f[1], f[2]);
-      if (length_squared(q) < best) best = length_squared(q), nearest = face, point = q, any = true;
-    }
-    if (!any) return {};  // inside every face: the origin is in the tetrahedron
-    *this = nearest;
-    return point;
-  }
-};
-
-}  // namespace detail
-
-namespace detail {
-
-template <scalar_type T>
-vec3<double> wide(const vec3<T>& x) noexcept {
-  return {double(x.x), double(x.y), double(x.z)};
-}
-template <scalar_type T>
-vec3<T> narrow(const vec3<double>& x) noexcept {
-  return {T(x.x), T(x.y), T(x.z)};
-}
-
-/// GJK's answer and its last simplex (on overlap, the start of EPA).
-template <scalar_type T>
-struct gjk_state {
-  gjk_result<T> result;
-  simplex<double> last;
-};
-
-template <class A, class B, scalar_type T>
-gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) noexcept {
-  // The simplex arithmetic runs in double whatever T is (see above).
-  using R = double;
-  const auto wide = [](const vec3<T>& x) { return detail::wide(x); };
-  const auto narrow = [](const vec3<R>& x) { return detail::narrow<T>(x); };
-  constexpr R relative = sizeof(T) < sizeof(R) ? R(1e-6) : R(1e-12);
-  constexpr int max_iterations = 64;
-  detail::simplex<R> s;
-  gjk_result<T> result;
-  // Start from the centres' offset: its support point is usually close.
-  vec3<R> v = wide(pose_a.position) - wide(pose_b.position);
-  if (!(length_squared(v) > R(0))) v = vec3<R>::unit_x();
-  R best = std::numeric_limits<R>::infinity();
-  detail::simplex<R> best_simplex;
-  vec3<R> best_v = v;
-  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
-    result.iterations = iteration;
-    const vec3<R> sa = wide(world_core_support(a, pose_a, narrow(-v)));
-    const vec3<R> sb = wide(world_core_support(b, pose_b, narrow(v)));
-    const vec3<R> w = sa - sb;
-    if (s.size > 0) {
-      // Close enough: the support plane along −v is within ε·|v| of v.
-      if (length_squared(v) - dot(v, w) <= relative * length_squared(v)) break;
-      bool repeated = false;
-      for (int k = 0; k < s.size; ++k) repeated = repeated || s.w[k] == w;
-      if (repeated) break;
-    }
-    s.w[s.size] = w, s.a[s.size] = sa, s.b[s.size] = sb, ++s.size;
-    const vec3<R> next = s.reduce();
-    const R length2 = length_squared(next);
-    // Overlap: the origin in the simplex, or v down to the rounding of the
-    // points (in T) that make it.
-    R size = R(0);
-    for (int k = 0; k < s.size; ++k) size = std::max(size, length_squared(s.w[k]));
-    const R rounding = R(4) * R(scalar_traits<T>::epsilon);
-    if (s.size == 4 || length2 <= rounding * rounding * size) {
-      result.overlapping = true;
-      result.distance = T(0);
-      return {result, s};
-    }
-    if (!(length2 < best)) break;  // no progress: keep the best so far
-    best = length2, best_simplex = s, best_v = next;
-    v = next;
-  }
-  // The closest points from the weights of the best simplex.
-  vec3<R> on_a{}, on_b{};
-  for (int k = 0; k < best_simplex.size; ++k) {
-    on_a += best_simplex.a[k] * best_simplex.weight[k];
-    on_b += best_simplex.b[k] * best_simplex.weight[k];
-  }
-  result.on_a = narrow(on_a);
-  result.on_b = narrow(on_b);
-  result.distance = T(length(best_v));
-  return {result, best_simplex};
-}
-
-}  // namespace detail
-
-/// The distance and closest points between shape a at pose_a and shape b at
-/// pose_b, both convex with a `support(direction)` in their own frame: GJK
-/// between their cores, less the radii.
-template <class A, class B, scalar_type T>
-gjk_result<T> gjk_distance(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) noexcept {
-  gjk_result<T> r = detail::run_gjk(a, pose_a, b, pose_b).result;
-  const T ra = core_radius<T>(a), rb = core_radius<T>(b);
-  if (r.overlapping || ra + rb == T(0)) return r;
-  if (r.distance <= ra + rb) {
-    r.overlapping = true;
-    r.distance = T(0);
-    return r;
-  }
-  const vec3<T> n = (r.on_b - r.on_a) / r.distance;
-  r.on_a += n * ra;
-  r.on_b -= n * rb;
-  r.distance -= ra + rb;
-  return r;
-}
-
-}  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/gjk.hpp ----
-
-namespace impulse::narrowphase {
-
-template <scalar_type T>
-struct epa_result {
-  bool penetrating = false;  ///< false: the shapes are apart (see gjk_distance)
-  T depth = T(0);            ///< m, ≥ 0
-  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, from A into B
-  vec3<T> on_a{};            ///< world: A's point deepest inside B
-  vec3<T> on_b{};            ///< world: B's point deepest inside A
-  int iterations = 0;
-};
-
-namespace detail {
-
-/// The polytope EPA grows: support points of A − B (with the points of A
-/// and B that made them) and triangular faces wound outwards.
-struct polytope {
-  struct vertex {
-    vec3<double> w, a, b;
-  };
-  struct face {
-    int v[3];
-    vec3<double> normal;  ///< unit, outwards
-    double distance;      ///< of its plane from the origin (≥ 0 while the origin is inside)
-    bool live;
-  };
-  std::vector<vertex> vertices;
-  std::vector<face> faces;
-
-  /// Adds face i, j, k, wound so that its normal points away from `inside`.
-  bool add_face(int i, int j, int k, const vec3<double>& inside) {
-    vec3<double> n = cross(vertices[j].w - vertices[i].w, vertices[k].w - vertices[i].w);
-    const double length2 = length_squared(n);
-    if (!(length2 > 0.0)) return false;
-    n = n / std::sqrt(length2);
-    if (dot(n, vertices[i].w - inside) < 0.0) {
-      std::swap(j, k);
-      n = -n;
-    }
-    faces.push_back({{i, j, k}, n, dot(n, vertices[i].w), true});
-    return true;
-  }
-};
-
-}  // namespace detail
-
-/// The penetration of shape a at pose_a and shape b at pose_b, both convex
-/// with a `support(direction)` in their own frame.
-template <class A, class B, scalar_type T>
-epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) {
-  using detail::narrow;
-  using detail::wide;
-  epa_result<T> result;
-  const T ra = core_radius<T>(a), rb = core_radius<T>(b);
-  // The cores' answer, grown by the radii: A's deepest point lies a radius
-  // beyond its core along the normal, B's a radius before its own.
-  const auto grown = [&](epa_result<T> r) {
-    r.depth += ra + rb;
-    r.on_a += r.normal * ra;
-    r.on_b -= r.normal * rb;
-    return r;
-  };
-  const detail::gjk_state<T> gjk = detail::run_gjk(a, pose_a, b, pose_b);
-  if (!gjk.result.overlapping) {
-    // Cores apart: the shapes overlap if the radii bridge the gap, along the
-    // line between the cores' closest points.
-    const T gap = gjk.result.distance;
-    if (gap > ra + rb) return result;
-    if (gap > T(0)) {
-      result.penetrating = true;
-      result.normal = (gjk.result.on_b - gjk.result.on_a) / gap;
-      result.on_a = gjk.result.on_a;
-      result.on_b = gjk.result.on_b;
-      result.depth = -gap;
-      return grown(result);
-    }
-  }
-  result.penetrating = true;
-
-  detail::polytope poly;
-  const auto support = [&](const vec3<double>& d) {
-    const vec3<double> sa = wide(world_core_support(a, pose_a, narrow<T>(d)));
-    const vec3<double> sb = wide(world_core_support(b, pose_b, narrow<T>(-d)));
-    return detail::polytope::vertex{sa - sb, sa, sb};
-  };
-  for (int k = 0; k < gjk.last.size; ++k) poly.vertices.push_back({gjk.last.w[k], gjk.last.a[k], gjk.last.b[k]});
-
-  // Blow the simplex up to a tetrahedron: support points along directions
-  // it does not span yet (the axes, then normals of what it has).
-  double scale = 0.0;
-  for (const auto& v : poly.vertices) scale = std::max(scale, length(v.w));
-  const double tiny = 1e-9 * std::max(scale, 1e-30);
-  const vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  if (poly.vertices.empty()) poly.vertices.push_back(support(axes[0]));
-  for (int k = 0; poly.vertices.size() < 2 && k < 6; ++k) {
-    const auto v = support(axes[k]);
-    if (length(v.w - poly.vertices[0].w) > tiny) poly.vertices.push_back(v);
-  }
-  if (poly.vertices.size() == 2) {
-    const vec3<double> d = poly.vertices[1].w - poly.vertices[0].w;
-    const vec3<double> e = any_perpendicular(normalize_or(d, vec3<double>::unit_x()));
-    const vec3<double> f = cross(normalize_or(d, vec3<double>::unit_x()), e);
-    for (const vec3<double>& dir : {e, -e, f, -f}) {
-      const auto v = support(dir);
-      if (length(cross(v.w - poly.vertices[0].w, d)) > tiny * length(d)) {
-        poly.vertices.push_back(v);
-        break;
-      }
-    }
-  }
-  if (poly.vertices.size() == 3) {
-    const vec3<double> n = cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w);
-    for (const vec3<double>& dir : {n, -n}) {
-      const auto v = support(normalize_or(dir, vec3<double>::unit_y()));
-      if (std::abs(dot(v.w - poly.vertices[0].w, normalize_or(n, vec3<double>::unit_y()))) > tiny) {
-        poly.vertices.push_back(v);
-        break;
-      }
-    }
-  }
-  if (poly.vertices.size() < 4) {
-    // The difference of the cores is flat (two points, a point and a
-    // segment, two segments): they touch at the origin, and the normal is
-    // any direction across the flat set (its sign arbitrary).
-    vec3<double> n = vec3<double>::unit_y();
-    if (poly.vertices.size() == 3)
-      n = normalize_or(cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w), n);
-    else if (poly.vertices.size() == 2)
-      n = any_perpendicular(normalize_or(poly.vertices[1].w - poly.vertices[0].w, vec3<double>::unit_x()));
-    result.normal = narrow<T>(n);
-    result.on_a = narrow<T>(poly.vertices[0].a);
-    result.on_b = result.on_a;
-    return grown(result);
-  }
-  const vec3<double> inside =
-      (poly.vertices[0].w + poly.vertices[1].w + poly.vertices[2].w + poly.vertices[3].w) * 0.25;
-  poly.add_face(0, 1, 2, inside);
-  poly.add_face(0, 3, 1, inside);
-  poly.add_face(0, 2, 3, inside);
-  poly.add_face(1, 3, 2, inside);
-
-  constexpr double relative = sizeof(T) < sizeof(double) ? 1e-6 : 1e-10;
-  constexpr int max_iterations = 128;
-  std::vector<std::pair<int, int>> horizon;
-  int nearest = -1;
-  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
-    result.iterations = iteration;
-    nearest = -1;
-    for (int f = 0; f < int(poly.faces.size()); ++f)
-      if (poly.faces[f].live && (nearest < 0 || poly.faces[f].distance < poly.faces[nearest].distance)) nearest = f;
-    if (nearest < 0) break;
-    const detail::polytope::face closest = poly.faces[nearest];
-    const auto v = support(closest.normal);
-    if (dot(closest.normal, v.w) - closest.distance <= relative * (1.0 + std::abs(closest.distance))) break;
-    // Remove the faces the new point sees; their unshared edges are the
-    // horizon, joined to the new point.
-    const int added = int(poly.vertices.size());
-    poly.vertices.push_back(v);
-    horizon.clear();
-    for (auto& f : poly.faces) {
-      if (!f.live || dot(f.normal, v.w - poly.vertices[f.v[0]].w) <= 0.0) continue;
-      f.live = false;
-      for (int e = 0; e < 3; ++e) {
-        const std::pair<int, int> edge{f.v[e], f.v[(e + 1) % 3]};
-        const auto twin = std::find(horizon.begin(), horizon.end(), std::pair<int, int>{edge.second, edge.first});
-        if (twin != horizon.end())
-          horizon.erase(twin);
-        else
-          horizon.push_back(edge);
-      }
-    }
-    for (const auto& [i, j] : horizon) poly.add_face(i, j, added, inside);
-  }
-  if (nearest < 0) return grown(result);
-  // The origin's projection on the nearest face, in its barycentric weights.
-  const detail::polytope::face& f = poly.faces[nearest];
-  const auto& p0 = poly.vertices[f.v[0]];
-  const auto& p1 = poly.vertices[f.v[1]];
-  const auto& p2 = poly.vertices[f.v[2]];
-  const triangle_point<double> q = closest_point_on_triangle(f.normal * f.distance, p0.w, p1.w, p2.w);
-  const vec3<double> on_a = p0.a * q.barycentric.x + p1.a * q.barycentric.y + p2.a * q.barycentric.z;
-  const vec3<double> on_b = p0.b * q.barycentric.x + p1.b * q.barycentric.y + p2.b * q.barycentric.z;
-  result.depth = T(std::max(f.distance, 0.0));
-  result.normal = narrow<T>(f.normal);
-  result.on_a = narrow<T>(on_a);
-  result.on_b = narrow<T>(on_b);
-  return grown(result);
-}
-
-}  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/epa.hpp ----
-// ---- begin impulse/narrowphase/hull.hpp ----
-// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
-//
-// A hull against a plane: each vertex below the plane's surface plus the
-// margin is a candidate (its id the vertex's index), and four are kept
-// (reduce_to_four), as for a box.
-//
-// A sphere against a hull, in the hull's frame: the face whose plane lies
-// farthest above the centre decides. If even that plane is below it, the
-// centre is inside the hull and the way out is through that face: the depth
-// is the radius plus how far the centre is below it. Otherwise the point of
-// the hull nearest the centre comes from GJK between the centre and the
-// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
-// that point lies within the radius plus the margin. The feature id is that
-// face's index: it holds while the sphere rolls across one face.
+// Feature ids: a face contact (2·face + the segment's end, 0 from the end
+// at −half_height, 1 from the other), an edge contact bit 31 and the edge,
+// a single point from GJK bit 30 and the face whose normal is closest to
+// the contact normal. While a capsule rolls or rests on one face, its ids
+// hold.
 
 
 // ---- begin impulse/shapes/convex_hull.hpp ----
@@ -9567,74 +8969,387 @@ mass_properties<T> mass_properties_of(const convex_hull<T>& hull, T density) {
 
 }  // namespace impulse
 // ---- end impulse/shapes/convex_hull.hpp ----
+// ---- begin impulse/narrowphase/gjk.hpp ----
+// impulse/narrowphase/gjk.hpp — the distance and the closest points between
+// any two convex shapes, known only by their support functions.
+//
+// GJK (Gilbert, Johnson and Keerthi, 1988) looks for the point of the
+// Minkowski difference A − B nearest the origin: that point's length is the
+// distance between the shapes, and the support points that make it give the
+// closest point on each. It keeps a simplex (a point, a segment, a triangle
+// or a tetrahedron) of support points of A − B, finds the point v of the
+// simplex nearest the origin, drops the vertices that do not make v, and
+// adds the support point w of A − B along −v, until w brings v no closer.
+//
+// The nearest point of each simplex comes from its Voronoi regions: of a
+// segment by its one parameter, of a triangle by closest_point_on_triangle
+// (triangle.hpp), of a tetrahedron by its faces that the origin lies
+// outside of (Ericson, "Real-Time Collision Detection", §5.1.6, §9.5).
+//
+// Termination (van den Bergen, "Collision Detection in Interactive 3D
+// Environments", 2003, §4.3): v is the answer, to a relative tolerance ε,
+// once |v|² − v·w ≤ ε·|v|², that is once the support plane along −v is
+// within ε·|v| of v. ε is 1e-6 in float and 1e-12 in double. It never
+// cycles: a step that does not bring v strictly closer, or a w already in
+// the simplex, ends the search with the best v found, and so does the
+// iteration cap (64). When the origin lies in the simplex (a tetrahedron
+// containing it, or v shorter than the rounding of the shapes' size), the
+// shapes overlap: the distance is 0 and EPA (epa.hpp) says how deep.
+//
+// Spheres and capsules are handled as their cores (a point, a segment)
+// grown by their radii: GJK runs between the cores, which are polytopes it
+// ends on exactly in a few iterations, and the radii are subtracted after
+// (as Bullet and Jolt do with their convex radius). On a curved support
+// function GJK would converge only linearly, its points crowding into
+// slivers; that path is still tested, with a ball known only by its
+// support function (worst error over about 5 850 random pairs, relative to
+// 1 m plus the distance: 1.2e-6 in float, 4e-11 in double, up to 57
+// iterations). The simplex arithmetic runs in double even for float shapes
+// (their support points stay float): the nearest point of a sliver
+// triangle amplifies rounding by the inverse of its thinness, and worked in
+// float, distances between 1 m shapes came out up to 3e-5 m wrong.
+
+
+// ---- begin impulse/narrowphase/triangle.hpp ----
+// impulse/narrowphase/triangle.hpp — the point of a triangle closest to a
+// given point, and which of its seven Voronoi regions that point is in.
+//
+// The regions of a triangle abc: its three vertices, its three edges and
+// its face. The test walks them in order of cost (Ericson, "Real-Time
+// Collision Detection", §5.1.5): a vertex region is decided by two dot
+// products, an edge region by the sign of one barycentric coordinate of the
+// projection (a triple product written as differences of dot products),
+// and what is left is the face. The region is what a mesh contact needs to
+// know: a hit on an edge or a vertex shared with a neighbouring triangle is
+// a candidate for the internal-edge fix that keeps objects from snagging on
+// a flat mesh.
+//
+// A degenerate triangle (its corners on one line, or all at one point) has
+// no face: its closest point is then the nearest on its three edges, and the
+// region says which edge or vertex that was.
+
+
+
+namespace impulse::narrowphase {
+
+enum class triangle_region : std::uint8_t { vertex_a, vertex_b, vertex_c, edge_ab, edge_bc, edge_ca, face };
+
+template <scalar_type T>
+struct triangle_point {
+  vec3<T> point{};
+  triangle_region region = triangle_region::face;
+  vec3<T> barycentric{};  ///< weights of a, b, c: point = a·x + b·y + c·z, each in [0, 1], summing to 1
+};
+
+template <scalar_type T>
+triangle_point<T> closest_point_on_triangle(const vec3<T>& p, const vec3<T>& a, const vec3<T>& b,
+                                            const vec3<T>& c) noexcept {
+  const vec3<T> ab = b - a, ac = c - a, ap = p - a;
+  const T d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= T(0) && d2 <= T(0)) return {a, triangle_region::vertex_a, {T(1), T(0), T(0)}};
+
+  const vec3<T> bp = p - b;
+  const T d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= T(0) && d4 <= d3) return {b, triangle_region::vertex_b, {T(0), T(1), T(0)}};
+
+  const vec3<T> cp = p - c;
+  const T d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= T(0) && d5 <= d6) return {c, triangle_region::vertex_c, {T(0), T(0), T(1)}};
+
+  // The face's area (twice, squared) decides whether there is a face at all.
+  const T area2 = length_squared(cross(ab, ac));
+  const T scale = length_squared(ab) * length_squared(ac);
+  if (!(area2 > T(64) * scalar_traits<T>::epsilon * scale) || !(scale > T(0))) {
+    // Degenerate: the nearest of the three edges.
+    const auto on_edge = [&](const vec3<T>& from, const vec3<T>& to) {
+      return detail::closest_point_on_segment(from, to, p);
+    };
+    const vec3<T> candidates[3] = {on_edge(a, b), on_edge(b, c), on_edge(c, a)};
+    int best = 0;
+    for (int k = 1; k < 3; ++k)
+      if (length_squared(candidates[k] - p) < length_squared(candidates[best] - p)) best = k;
+    const vec3<T>& q = candidates[best];
+    // Its weights along that edge (the vertex regions were taken above, so
+    // the point lies strictly between the edge's ends or they coincide).
+    const vec3<T>& from = best == 0 ? a : best == 1 ? b : c;
+    const vec3<T>& to = best == 0 ? b : best == 1 ? c : a;
+    const T length2 = length_squared(to - from);
+    const T t = length2 > T(0) ? dot(q - from, to - from) / length2 : T(0);
+    vec3<T> weights{};
+    weights[best] = T(1) - t;
+    weights[(best + 1) % 3] = t;
+    const triangle_region edges[3] = {triangle_region::edge_ab, triangle_region::edge_bc, triangle_region::edge_ca};
+    return {q, edges[best], weights};
+  }
+
+  const T vc = d1 * d4 - d3 * d2;
+  if (vc <= T(0) && d1 >= T(0) && d3 <= T(0)) {
+    const T t = d1 / (d1 - d3);
+    return {a + ab * t, triangle_region::edge_ab, {T(1) - t, t, T(0)}};
+  }
+  const T vb = d5 * d2 - d1 * d6;
+  if (vb <= T(0) && d2 >= T(0) && d6 <= T(0)) {
+    const T t = d2 / (d2 - d6);
+    return {a + ac * t, triangle_region::edge_ca, {T(1) - t, T(0), t}};
+  }
+  const T va = d3 * d6 - d5 * d4;
+  if (va <= T(0) && (d4 - d3) >= T(0) && (d5 - d6) >= T(0)) {
+    const T t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {b + (c - b) * t, triangle_region::edge_bc, {T(0), T(1) - t, t}};
+  }
+  const T inverse = T(1) / (va + vb + vc);
+  const T v = vb * inverse, w = vc * inverse;
+  return {a + ab * v + ac * w, triangle_region::face, {T(1) - v - w, v, w}};
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/triangle.hpp ----
 
 namespace impulse::narrowphase {
 
 template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  const detail::world_plane<T> p = detail::in_world(b, pose_b);
-  const std::span<const vec3<T>> vertices = a.vertices();
-  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
-  std::size_t count = 0;
-  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
-    const vec3<T> x = apply(pose_a, vertices[k]);
-    const T height = dot(p.normal, x) + p.offset;
-    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
-  }
-  contact_manifold<T> m;
-  m.normal = -p.normal;
-  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
-  return m;
+struct gjk_result {
+  T distance = T(0);  ///< m; 0 when the shapes overlap or touch
+  vec3<T> on_a{};     ///< world: the point of A nearest B (when apart)
+  vec3<T> on_b{};     ///< world: the point of B nearest A
+  bool overlapping = false;
+  int iterations = 0;
+};
+
+/// A convex shape seen as a core grown by a radius: a sphere is its centre
+/// grown by its radius, a capsule its segment; any other shape is its own
+/// core, grown by nothing.
+template <scalar_type T, class Shape>
+constexpr T core_radius(const Shape&) noexcept {
+  return T(0);
+}
+template <scalar_type T>
+constexpr T core_radius(const sphere<T>& s) noexcept {
+  return s.radius;
+}
+template <scalar_type T>
+constexpr T core_radius(const capsule<T>& c) noexcept {
+  return c.radius;
+}
+/// The core's support point along d, in the shape's frame.
+template <class Shape, scalar_type T>
+vec3<T> core_support(const Shape& shape, const vec3<T>& d) noexcept {
+  return shape.support(d);
+}
+template <scalar_type T>
+vec3<T> core_support(const sphere<T>&, const vec3<T>&) noexcept {
+  return {};
+}
+template <scalar_type T>
+vec3<T> core_support(const capsule<T>& c, const vec3<T>& d) noexcept {
+  return {T(0), d.y < T(0) ? -c.half_height : c.half_height, T(0)};
+}
+/// The core's support point in world space, along the world direction d.
+template <class Shape, scalar_type T>
+vec3<T> world_core_support(const Shape& shape, const transform<T>& pose, const vec3<T>& d) noexcept {
+  return apply(pose, core_support(shape, inverse_rotate(pose.rotation, d)));
 }
 
+namespace detail {
+
+/// A simplex of support points of A − B, each with the points of A and B
+/// that made it.
 template <scalar_type T>
-contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
-}
+struct simplex {
+  vec3<T> w[4], a[4], b[4];
+  T weight[4]{};  ///< of the nearest point, after `reduce`
+  int size = 0;
+
+  void keep(std::initializer_list<int> which) noexcept {
+    int n = 0;
+    vec3<T> w2[4], a2[4], b2[4];
+    for (const int k : which) w2[n] = w[k], a2[n] = a[k], b2[n] = b[k], ++n;
+    for (int k = 0; k < n; ++k) w[k] = w2[k], a[k] = a2[k], b[k] = b2[k];
+    size = n;
+  }
+
+  /// Replaces the simplex by its smallest face holding the point nearest
+  /// the origin, sets the weights of that point, and returns it; or, when
+  /// the origin lies inside a tetrahedron, returns the origin, keeping all
+  /// four.
+  vec3<T> reduce() noexcept {
+    switch (size) {
+      case 1:
+        weight[0] = T(1);
+        return w[0];
+      case 2: {
+        const vec3<T> d = w[1] - w[0];
+        const T length2 = length_squared(d);
+        const T t = length2 > T(0) ? -dot(w[0], d) / length2 : T(0);
+        if (t <= T(0)) {
+          keep({0});
+          weight[0] = T(1);
+          return w[0];
+        }
+        if (t >= T(1)) {
+          keep({1});
+          weight[0] = T(1);
+          return w[0];
+        }
+        weight[0] = T(1) - t, weight[1] = t;
+        return w[0] + d * t;
+      }
+      case 3:
+        return reduce_triangle(0, 1, 2);
+      default:
+        return reduce_tetrahedron();
+    }
+  }
+
+  vec3<T> reduce_triangle(int i, int j, int k) noexcept {
+    const triangle_point<T> p = closest_point_on_triangle(vec3<T>{}, w[i], w[j], w[k]);
+    const T u = p.barycentric.x, v = p.barycentric.y, s = p.barycentric.z;
+    switch (p.region) {
+      case triangle_region::vertex_a: keep({i}); weight[0] = T(1); break;
+      case triangle_region::vertex_b: keep({j}); weight[0] = T(1); break;
+      case triangle_region::vertex_c: keep({k}); weight[0] = T(1); break;
+      case triangle_region::edge_ab: keep({i, j}); weight[0] = u, weight[1] = v; break;
+      case triangle_region::edge_bc: keep({j, k}); weight[0] = v, weight[1] = s; break;
+      case triangle_region::edge_ca: keep({i, k}); weight[0] = u, weight[1] = s; break;
+      case triangle_region::face: keep({i, j, k}); weight[0] = u, weight[1] = v, weight[2] = s; break;
+    }
+    return p.point;
+  }
+
+  /// Whether the origin lies on the other side of the plane through p, q, r
+  /// from the fourth point s.
+  static bool outside(const vec3<T>& p, const vec3<T>& q, const vec3<T>& r, const vec3<T>& s) noexcept {
+    const vec3<T> n = cross(q - p, r - p);
+    return dot(-p, n) * dot(s - p, n) < T(0);
+  }
+
+  vec3<T> reduce_tetrahedron() noexcept {
+    constexpr int faces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+    // A sliver (the new point nearly in the plane of the old triangle, as
+    // GJK's points crowd together on a curved surface) cannot tell the
+    // origin's side of its faces from rounding: every face is tried, and
+    // the origin is never taken to be inside it.
+    T scale = T(0);
+    for (int k = 1; k < 4; ++k) scale = std::max(scale, length_squared(w[k] - w[0]));
+    const T volume = dot(cross(w[1] - w[0], w[2] - w[0]), w[3] - w[0]);
+    const bool sliver = !(std::abs(volume) > T(1e-6) * scale * std::sqrt(scale));
+    T best = std::numeric_limits<T>::infinity();
+    simplex nearest = *this;
+    vec3<T> point{};
+    bool any = false;
+    for (const auto& f : faces) {
+      if (!sliver && !outside(w[f[0]], w[f[1]], w[f[2]], w[f[3]])) continue;
+      simplex face = *this;
+      const vec3<T> q = face.reduce_triangle(f[0], f[1], f[2]);
+      if (length_squared(q) < best) best = length_squared(q), nearest = face, point = q, any = true;
+    }
+    if (!any) return {};  // inside every face: the origin is in the tetrahedron
+    *this = nearest;
+    return point;
+  }
+};
+
+}  // namespace detail
+
+namespace detail {
 
 template <scalar_type T>
-contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
-  std::uint32_t face = 0;
-  T highest = -std::numeric_limits<T>::infinity();
-  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
-    const T d = b.plane(f).distance(centre);
-    if (d > highest) highest = d, face = f;
-  }
-  contact_manifold<T> m;
-  if (highest - a.radius > margin) return m;  // a face's plane separates them
-  // Outside: the hull's point nearest the centre.
-  gjk_result<T> g;
-  if (highest > T(0))
-    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
-            .result;
-  if (highest <= T(0) || g.overlapping) {
-    // Inside (or on the surface, where GJK finds no direction): out through
-    // the nearest face.
-    const vec3<T> n = b.plane(face).normal;
-    m.normal = apply_direction(pose_b, -n);
-    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
-    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
-    return m;
-  }
-  if (g.distance - a.radius > margin) return m;
-  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
-  m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
-  return m;
+vec3<double> wide(const vec3<T>& x) noexcept {
+  return {double(x.x), double(x.y), double(x.z)};
+}
+template <scalar_type T>
+vec3<T> narrow(const vec3<double>& x) noexcept {
+  return {T(x.x), T(x.y), T(x.z)};
 }
 
+/// GJK's answer and its last simplex (on overlap, the start of EPA).
 template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
+struct gjk_state {
+  gjk_result<T> result;
+  simplex<double> last;
+};
+
+template <class A, class B, scalar_type T>
+gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) noexcept {
+  // The simplex arithmetic runs in double whatever T is (see above).
+  using R = double;
+  const auto wide = [](const vec3<T>& x) { return detail::wide(x); };
+  const auto narrow = [](const vec3<R>& x) { return detail::narrow<T>(x); };
+  constexpr R relative = sizeof(T) < sizeof(R) ? R(1e-6) : R(1e-12);
+  constexpr int max_iterations = 64;
+  detail::simplex<R> s;
+  gjk_result<T> result;
+  // Start from the centres' offset: its support point is usually close.
+  vec3<R> v = wide(pose_a.position) - wide(pose_b.position);
+  if (!(length_squared(v) > R(0))) v = vec3<R>::unit_x();
+  R best = std::numeric_limits<R>::infinity();
+  detail::simplex<R> best_simplex;
+  vec3<R> best_v = v;
+  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
+    result.iterations = iteration;
+    const vec3<R> sa = wide(world_core_support(a, pose_a, narrow(-v)));
+    const vec3<R> sb = wide(world_core_support(b, pose_b, narrow(v)));
+    const vec3<R> w = sa - sb;
+    if (s.size > 0) {
+      // Close enough: the support plane along −v is within ε·|v| of v.
+      if (length_squared(v) - dot(v, w) <= relative * length_squared(v)) break;
+      bool repeated = false;
+      for (int k = 0; k < s.size; ++k) repeated = repeated || s.w[k] == w;
+      if (repeated) break;
+    }
+    s.w[s.size] = w, s.a[s.size] = sa, s.b[s.size] = sb, ++s.size;
+    const vec3<R> next = s.reduce();
+    const R length2 = length_squared(next);
+    // Overlap: the origin in the simplex, or v down to the rounding of the
+    // points (in T) that make it.
+    R size = R(0);
+    for (int k = 0; k < s.size; ++k) size = std::max(size, length_squared(s.w[k]));
+    const R rounding = R(4) * R(scalar_traits<T>::epsilon);
+    if (s.size == 4 || length2 <= rounding * rounding * size) {
+      result.overlapping = true;
+      result.distance = T(0);
+      return {result, s};
+    }
+    if (!(length2 < best)) break;  // no progress: keep the best so far
+    best = length2, best_simplex = s, best_v = next;
+    v = next;
+  }
+  // The closest points from the weights of the best simplex.
+  vec3<R> on_a{}, on_b{};
+  for (int k = 0; k < best_simplex.size; ++k) {
+    on_a += best_simplex.a[k] * best_simplex.weight[k];
+    on_b += best_simplex.b[k] * best_simplex.weight[k];
+  }
+  result.on_a = narrow(on_a);
+  result.on_b = narrow(on_b);
+  result.distance = T(length(best_v));
+  return {result, best_simplex};
+}
+
+}  // namespace detail
+
+/// The distance and closest points between shape a at pose_a and shape b at
+/// pose_b, both convex with a `support(direction)` in their own frame: GJK
+/// between their cores, less the radii.
+template <class A, class B, scalar_type T>
+gjk_result<T> gjk_distance(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) noexcept {
+  gjk_result<T> r = detail::run_gjk(a, pose_a, b, pose_b).result;
+  const T ra = core_radius<T>(a), rb = core_radius<T>(b);
+  if (r.overlapping || ra + rb == T(0)) return r;
+  if (r.distance <= ra + rb) {
+    r.overlapping = true;
+    r.distance = T(0);
+    return r;
+  }
+  const vec3<T> n = (r.on_b - r.on_a) / r.distance;
+  r.on_a += n * ra;
+  r.on_b -= n * rb;
+  r.distance -= ra + rb;
+  return r;
 }
 
 }  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/hull.hpp ----
+// ---- end impulse/narrowphase/gjk.hpp ----
 // ---- begin impulse/narrowphase/hull_hull.hpp ----
 // impulse/narrowphase/hull_hull.hpp — convex polyhedra against each other:
 // hull–hull and box–hull, by the separating axis test and clipping.
@@ -9937,6 +9652,470 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/hull_hull.hpp ----
+
+namespace impulse::narrowphase {
+
+namespace detail {
+
+/// The capsule against the polyhedron `poly` (with the interface of
+/// convex_hull), which GJK sees as `shape`: the normal from the capsule
+/// into the polyhedron.
+template <class Poly, class Shape, scalar_type T>
+contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transform<T>& pose_c, const Poly& poly,
+                                               const Shape& shape, const transform<T>& pose_p, T margin) {
+  using face_plane = typename convex_hull<T>::face_plane;
+  const transform<T> relative = inverse_mul(pose_p, pose_c);  // the capsule in the polyhedron's frame
+  const vec3<T> axis = rotate(relative.rotation, vec3<T>::unit_y());
+  const vec3<T> p0 = relative.position - axis * c.half_height, p1 = relative.position + axis * c.half_height;
+  const T r = c.radius;
+  contact_manifold<T> m;
+
+  // The segment clipped to face f's side planes; each end within reach of
+  // the face a point. False if none is.
+  const auto face_contact = [&](std::size_t f) {
+    const face_plane& plane = poly.plane(f);
+    const std::span<const std::uint32_t> polygon = poly.face(f);
+    const std::span<const vec3<T>> vertices = poly.vertices();
+    T t0 = T(0), t1 = T(1);  // the kept part of p0 + (p1 − p0)·t
+    const vec3<T> d = p1 - p0;
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const vec3<T> a = vertices[polygon[k]], b = vertices[polygon[(k + 1) % polygon.size()]];
+      const vec3<T> w = cross(b - a, plane.normal);  // out of the face, across its edge ab
+      const T at0 = dot(w, p0 - a), slope = dot(w, d);
+      if (slope == T(0)) {
+        if (at0 > T(0)) return false;
+        continue;
+      }
+      const T t = -at0 / slope;
+      if (slope > T(0)) t1 = std::min(t1, t);
+      else t0 = std::max(t0, t);
+    }
+    if (t0 > t1) return false;
+    m.normal = apply_direction(pose_p, -plane.normal);
+    const T ends[2] = {t0, t1};
+    for (std::uint32_t e = 0; e < 2; ++e) {
+      if (e == 1 && t1 - t0 <= T(0)) break;  // one point where the kept part is a point
+      const vec3<T> x = p0 + d * ends[e];
+      const T height = plane.distance(x);
+      if (height - r > margin) continue;
+      m.add({apply(pose_p, x - plane.normal * ((r + height) * T(0.5))), r - height, std::uint32_t(2 * f) | e});
+    }
+    return !m.empty();
+  };
+  // The face whose normal is closest to n.
+  const auto nearest_face = [&](const vec3<T>& n) {
+    std::size_t best = 0;
+    for (std::size_t f = 1; f < poly.face_count(); ++f)
+      if (dot(poly.plane(f).normal, n) > dot(poly.plane(best).normal, n)) best = f;
+    return best;
+  };
+
+  const gjk_result<T> g =
+      run_gjk(capsule<T>{r, c.half_height}, relative, shape, transform<T>::identity()).result;
+  if (!g.overlapping && g.distance > T(0)) {
+    if (g.distance - r > margin) return m;
+    const vec3<T> n = (g.on_b - g.on_a) / g.distance;  // from the core into the polyhedron
+    const std::size_t f = nearest_face(-n);
+    const vec3<T> fn = poly.plane(f).normal;
+    if (dot(fn, -n) > T(0.999) && std::abs(dot(axis, fn)) < T(0.05) && face_contact(f)) return m;
+    m.normal = apply_direction(pose_p, n);
+    m.add({apply(pose_p, (g.on_a + n * r + g.on_b) * T(0.5)), r - g.distance, (1u << 30) | std::uint32_t(f)});
+    return m;
+  }
+
+  // The core reaches into the polyhedron: the separating axis test.
+  struct best {
+    T separation = -std::numeric_limits<T>::infinity();
+    std::size_t index = 0;
+    vec3<T> axis{};
+  } face, edge;
+  for (std::size_t f = 0; f < poly.face_count(); ++f) {
+    const face_plane& p = poly.plane(f);
+    const T s = std::min(p.distance(p0), p.distance(p1)) - r;
+    if (s > face.separation) face = {s, f, p.normal};
+  }
+  // An edge's axis L (across the segment and the edge) counts only where
+  // the edge is the polyhedron's support along it: L between the normals
+  // of the edge's two faces (the segment's arc on the Gauss map, a whole
+  // great circle, crosses the edge's arc there). L is across the segment,
+  // which then projects to one value.
+  const std::span<const vec3<T>> vertices = poly.vertices();
+  const std::span<const hull_edge> edges = poly.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const vec3<T> a = vertices[edges[e].a], ab = vertices[edges[e].b] - a;
+    vec3<T> L = cross(p1 - p0, ab);
+    const T l2 = length_squared(L);
+    if (!(l2 > T(1e-6) * length_squared(p1 - p0) * length_squared(ab))) continue;
+    L /= std::sqrt(l2);
+    const vec3<T> n1 = poly.plane(edges[e].face_ab).normal, n2 = poly.plane(edges[e].face_ba).normal;
+    if (dot(L, n1 + n2) < T(0)) L = -L;  // out of the polyhedron
+    if (dot(cross(n1, L), cross(L, n2)) < T(0)) continue;
+    const T s = dot(L, p0 - a) - r;
+    if (s > edge.separation) edge = {s, e, L};
+  }
+  const T tolerance = T(0.01) * std::min(r, least_half_extent(poly));
+  const bool edge_wins = edge.separation > face.separation + T(0.05) * std::abs(face.separation) + tolerance;
+  if (!edge_wins && face_contact(face.index)) return m;
+  if (edge.separation == -std::numeric_limits<T>::infinity()) {
+    // No edge axis (a segment parallel to every edge cannot happen for a
+    // solid, but a zero-length core can): the face, through its deepest end.
+    const face_plane& p = poly.plane(face.index);
+    const vec3<T> x = p.distance(p0) < p.distance(p1) ? p0 : p1;
+    const T height = p.distance(x);
+    m.normal = apply_direction(pose_p, -p.normal);
+    m.add({apply(pose_p, x - p.normal * ((r + height) * T(0.5))), r - height, std::uint32_t(2 * face.index)});
+    return m;
+  }
+  const vec3<T> L = edge.axis;  // out of the polyhedron, towards the capsule
+  const hull_edge& e = edges[edge.index];
+  const segment_closest<T> closest = closest_points_of_segments(p0, p1, vertices[e.a], vertices[e.b]);
+  const vec3<T> on_capsule = closest.on_first - L * r;
+  m.normal = apply_direction(pose_p, -L);
+  m.add({apply(pose_p, (on_capsule + closest.on_second) * T(0.5)), -dot(on_capsule - closest.on_second, L),
+         (1u << 31) | std::uint32_t(edge.index)});
+  return m;
+}
+
+}  // namespace detail
+
+template <scalar_type T>
+contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, const box<T>& b, const transform<T>& pose_b,
+                            T margin = T(0)) {
+  return detail::collide_capsule_polyhedron(a, pose_a, detail::box_polyhedron<T>(b), b, pose_b, margin);
+}
+template <scalar_type T>
+contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const capsule<T>& b, const transform<T>& pose_b,
+                            T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+template <scalar_type T>
+contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return detail::collide_capsule_polyhedron(a, pose_a, b, b, pose_b, margin);
+}
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const capsule<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/capsule_polyhedron.hpp ----
+// ---- begin impulse/narrowphase/epa.hpp ----
+// impulse/narrowphase/epa.hpp — how deep two overlapping convex shapes
+// are, and along which normal: the expanding polytope algorithm.
+//
+// When the shapes overlap, the origin lies inside their Minkowski
+// difference A − B, and the shortest translation of B that separates them
+// is the point of the boundary of A − B nearest the origin. EPA (van den
+// Bergen 2001; Ericson §9.5.4) grows a polytope inside A − B from GJK's last
+// simplex: it takes the polytope's face nearest the origin, asks for the
+// support point of A − B along that face's normal, and, if the point lies
+// beyond the face, adds it (removing the faces it sees and joining the
+// horizon they leave to it). When the support point is no farther than the
+// face (to a relative tolerance), the face is on the boundary: its normal is
+// the contact normal (from A into B: moving B along it by the depth
+// separates them), its distance from the origin the depth, and the
+// origin's projection on it, in barycentric weights of its three support
+// points, gives the deepest point of each shape.
+//
+// GJK may stop with fewer than four points (the origin on a face, an edge
+// or a vertex of its simplex): the simplex is first blown up to a
+// tetrahedron by support points along directions it does not yet span. If
+// the origin is then not strictly inside (the shapes only touch), the depth
+// is the nearest face's distance, about 0.
+//
+// Spheres and capsules enter as their cores grown by their radii (see
+// gjk.hpp): when the cores are apart, the depth is the radii less the gap
+// and the normal lies along the gap, with no EPA at all; when they overlap,
+// EPA works on the cores (polytopes, on which it ends exactly) and the radii
+// are added after.
+//
+// Termination: the support point within 1e-6 (float) or 1e-10 (double) of
+// the face, relative to its distance plus 1 m, or 128 iterations. The
+// arithmetic runs in double, as in GJK. Against the least penetration over
+// the fifteen separating axes of two boxes (the exact depth for convex
+// polyhedra), the worst error over about 1 880 random overlapping pairs was
+// 1.1e-6 in float and 1.3e-15 in double, in at most 19 iterations.
+
+
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+struct epa_result {
+  bool penetrating = false;  ///< false: the shapes are apart (see gjk_distance)
+  T depth = T(0);            ///< m, ≥ 0
+  vec3<T> normal{T(0), T(1), T(0)};  ///< unit, from A into B
+  vec3<T> on_a{};            ///< world: A's point deepest inside B
+  vec3<T> on_b{};            ///< world: B's point deepest inside A
+  int iterations = 0;
+};
+
+namespace detail {
+
+/// The polytope EPA grows: support points of A − B (with the points of A
+/// and B that made them) and triangular faces wound outwards.
+struct polytope {
+  struct vertex {
+    vec3<double> w, a, b;
+  };
+  struct face {
+    int v[3];
+    vec3<double> normal;  ///< unit, outwards
+    double distance;      ///< of its plane from the origin (≥ 0 while the origin is inside)
+    bool live;
+  };
+  std::vector<vertex> vertices;
+  std::vector<face> faces;
+
+  /// Adds face i, j, k, wound so that its normal points away from `inside`.
+  bool add_face(int i, int j, int k, const vec3<double>& inside) {
+    vec3<double> n = cross(vertices[j].w - vertices[i].w, vertices[k].w - vertices[i].w);
+    const double length2 = length_squared(n);
+    if (!(length2 > 0.0)) return false;
+    n = n / std::sqrt(length2);
+    if (dot(n, vertices[i].w - inside) < 0.0) {
+      std::swap(j, k);
+      n = -n;
+    }
+    faces.push_back({{i, j, k}, n, dot(n, vertices[i].w), true});
+    return true;
+  }
+};
+
+}  // namespace detail
+
+/// The penetration of shape a at pose_a and shape b at pose_b, both convex
+/// with a `support(direction)` in their own frame.
+template <class A, class B, scalar_type T>
+epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b, const transform<T>& pose_b) {
+  using detail::narrow;
+  using detail::wide;
+  epa_result<T> result;
+  const T ra = core_radius<T>(a), rb = core_radius<T>(b);
+  // The cores' answer, grown by the radii: A's deepest point lies a radius
+  // beyond its core along the normal, B's a radius before its own.
+  const auto grown = [&](epa_result<T> r) {
+    r.depth += ra + rb;
+    r.on_a += r.normal * ra;
+    r.on_b -= r.normal * rb;
+    return r;
+  };
+  const detail::gjk_state<T> gjk = detail::run_gjk(a, pose_a, b, pose_b);
+  if (!gjk.result.overlapping) {
+    // Cores apart: the shapes overlap if the radii bridge the gap, along the
+    // line between the cores' closest points.
+    const T gap = gjk.result.distance;
+    if (gap > ra + rb) return result;
+    if (gap > T(0)) {
+      result.penetrating = true;
+      result.normal = (gjk.result.on_b - gjk.result.on_a) / gap;
+      result.on_a = gjk.result.on_a;
+      result.on_b = gjk.result.on_b;
+      result.depth = -gap;
+      return grown(result);
+    }
+  }
+  result.penetrating = true;
+
+  detail::polytope poly;
+  const auto support = [&](const vec3<double>& d) {
+    const vec3<double> sa = wide(world_core_support(a, pose_a, narrow<T>(d)));
+    const vec3<double> sb = wide(world_core_support(b, pose_b, narrow<T>(-d)));
+    return detail::polytope::vertex{sa - sb, sa, sb};
+  };
+  for (int k = 0; k < gjk.last.size; ++k) poly.vertices.push_back({gjk.last.w[k], gjk.last.a[k], gjk.last.b[k]});
+
+  // Blow the simplex up to a tetrahedron: support points along directions
+  // it does not span yet (the axes, then normals of what it has).
+  double scale = 0.0;
+  for (const auto& v : poly.vertices) scale = std::max(scale, length(v.w));
+  const double tiny = 1e-9 * std::max(scale, 1e-30);
+  const vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  if (poly.vertices.empty()) poly.vertices.push_back(support(axes[0]));
+  for (int k = 0; poly.vertices.size() < 2 && k < 6; ++k) {
+    const auto v = support(axes[k]);
+    if (length(v.w - poly.vertices[0].w) > tiny) poly.vertices.push_back(v);
+  }
+  if (poly.vertices.size() == 2) {
+    const vec3<double> d = poly.vertices[1].w - poly.vertices[0].w;
+    const vec3<double> e = any_perpendicular(normalize_or(d, vec3<double>::unit_x()));
+    const vec3<double> f = cross(normalize_or(d, vec3<double>::unit_x()), e);
+    for (const vec3<double>& dir : {e, -e, f, -f}) {
+      const auto v = support(dir);
+      if (length(cross(v.w - poly.vertices[0].w, d)) > tiny * length(d)) {
+        poly.vertices.push_back(v);
+        break;
+      }
+    }
+  }
+  if (poly.vertices.size() == 3) {
+    const vec3<double> n = cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w);
+    for (const vec3<double>& dir : {n, -n}) {
+      const auto v = support(normalize_or(dir, vec3<double>::unit_y()));
+      if (std::abs(dot(v.w - poly.vertices[0].w, normalize_or(n, vec3<double>::unit_y()))) > tiny) {
+        poly.vertices.push_back(v);
+        break;
+      }
+    }
+  }
+  if (poly.vertices.size() < 4) {
+    // The difference of the cores is flat (two points, a point and a
+    // segment, two segments): they touch at the origin, and the normal is
+    // any direction across the flat set (its sign arbitrary).
+    vec3<double> n = vec3<double>::unit_y();
+    if (poly.vertices.size() == 3)
+      n = normalize_or(cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w), n);
+    else if (poly.vertices.size() == 2)
+      n = any_perpendicular(normalize_or(poly.vertices[1].w - poly.vertices[0].w, vec3<double>::unit_x()));
+    result.normal = narrow<T>(n);
+    result.on_a = narrow<T>(poly.vertices[0].a);
+    result.on_b = result.on_a;
+    return grown(result);
+  }
+  const vec3<double> inside =
+      (poly.vertices[0].w + poly.vertices[1].w + poly.vertices[2].w + poly.vertices[3].w) * 0.25;
+  poly.add_face(0, 1, 2, inside);
+  poly.add_face(0, 3, 1, inside);
+  poly.add_face(0, 2, 3, inside);
+  poly.add_face(1, 3, 2, inside);
+
+  constexpr double relative = sizeof(T) < sizeof(double) ? 1e-6 : 1e-10;
+  constexpr int max_iterations = 128;
+  std::vector<std::pair<int, int>> horizon;
+  int nearest = -1;
+  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
+    result.iterations = iteration;
+    nearest = -1;
+    for (int f = 0; f < int(poly.faces.size()); ++f)
+      if (poly.faces[f].live && (nearest < 0 || poly.faces[f].distance < poly.faces[nearest].distance)) nearest = f;
+    if (nearest < 0) break;
+    const detail::polytope::face closest = poly.faces[nearest];
+    const auto v = support(closest.normal);
+    if (dot(closest.normal, v.w) - closest.distance <= relative * (1.0 + std::abs(closest.distance))) break;
+    // Remove the faces the new point sees; their unshared edges are the
+    // horizon, joined to the new point.
+    const int added = int(poly.vertices.size());
+    poly.vertices.push_back(v);
+    horizon.clear();
+    for (auto& f : poly.faces) {
+      if (!f.live || dot(f.normal, v.w - poly.vertices[f.v[0]].w) <= 0.0) continue;
+      f.live = false;
+      for (int e = 0; e < 3; ++e) {
+        const std::pair<int, int> edge{f.v[e], f.v[(e + 1) % 3]};
+        const auto twin = std::find(horizon.begin(), horizon.end(), std::pair<int, int>{edge.second, edge.first});
+        if (twin != horizon.end())
+          horizon.erase(twin);
+        else
+          horizon.push_back(edge);
+      }
+    }
+    for (const auto& [i, j] : horizon) poly.add_face(i, j, added, inside);
+  }
+  if (nearest < 0) return grown(result);
+  // The origin's projection on the nearest face, in its barycentric weights.
+  const detail::polytope::face& f = poly.faces[nearest];
+  const auto& p0 = poly.vertices[f.v[0]];
+  const auto& p1 = poly.vertices[f.v[1]];
+  const auto& p2 = poly.vertices[f.v[2]];
+  const triangle_point<double> q = closest_point_on_triangle(f.normal * f.distance, p0.w, p1.w, p2.w);
+  const vec3<double> on_a = p0.a * q.barycentric.x + p1.a * q.barycentric.y + p2.a * q.barycentric.z;
+  const vec3<double> on_b = p0.b * q.barycentric.x + p1.b * q.barycentric.y + p2.b * q.barycentric.z;
+  result.depth = T(std::max(f.distance, 0.0));
+  result.normal = narrow<T>(f.normal);
+  result.on_a = narrow<T>(on_a);
+  result.on_b = narrow<T>(on_b);
+  return grown(result);
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/epa.hpp ----
+// ---- begin impulse/narrowphase/hull.hpp ----
+// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
+//
+// A hull against a plane: each vertex below the plane's surface plus the
+// margin is a candidate (its id the vertex's index), and four are kept
+// (reduce_to_four), as for a box.
+//
+// A sphere against a hull, in the hull's frame: the face whose plane lies
+// farthest above the centre decides. If even that plane is below it, the
+// centre is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the centre is below it. Otherwise the point of
+// the hull nearest the centre comes from GJK between the centre and the
+// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
+// that point lies within the radius plus the margin. The feature id is that
+// face's index: it holds while the sphere rolls across one face.
+
+
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  const std::span<const vec3<T>> vertices = a.vertices();
+  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
+  std::size_t count = 0;
+  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
+    const vec3<T> x = apply(pose_a, vertices[k]);
+    const T height = dot(p.normal, x) + p.offset;
+    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
+  }
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  std::uint32_t face = 0;
+  T highest = -std::numeric_limits<T>::infinity();
+  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
+    const T d = b.plane(f).distance(centre);
+    if (d > highest) highest = d, face = f;
+  }
+  contact_manifold<T> m;
+  if (highest - a.radius > margin) return m;  // a face's plane separates them
+  // Outside: the hull's point nearest the centre.
+  gjk_result<T> g;
+  if (highest > T(0))
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
+            .result;
+  if (highest <= T(0) || g.overlapping) {
+    // Inside (or on the surface, where GJK finds no direction): out through
+    // the nearest face.
+    const vec3<T> n = b.plane(face).normal;
+    m.normal = apply_direction(pose_b, -n);
+    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
+    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
+    return m;
+  }
+  if (g.distance - a.radius > margin) return m;
+  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
+  m.normal = apply_direction(pose_b, n);
+  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/hull.hpp ----
 // ---- end impulse/narrowphase.hpp ----
 // ---- begin impulse/particles.hpp ----
 // impulse/particles.hpp — the particle module: particle_system, its forces

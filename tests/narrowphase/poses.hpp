@@ -5,8 +5,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -20,6 +22,14 @@ namespace test {
 /// shapes: a few float spacings, or a few thousand double ones.
 template <class T>
 constexpr T contact_tolerance = sizeof(T) == 4 ? T(2e-5) : T(1e-12);
+
+/// The depth of a manifold's deepest point.
+template <class T>
+T deepest(const impulse::contact_manifold<T>& m) {
+  T d = -std::numeric_limits<T>::infinity();
+  for (const auto& p : m.contacts()) d = std::max(d, p.depth);
+  return d;
+}
 
 /// The feature ids of a manifold's points.
 template <class T>

@@ -21,6 +21,7 @@ namespace {
 using namespace impulse;
 using narrowphase::collide;
 using test::at;
+using test::deepest;
 using test::ids_of;
 using test::random_rotation;
 
@@ -52,13 +53,6 @@ T outside(const convex_hull<T>& hull, const transform<T>& pose, const vec3<T>& x
   T worst = -std::numeric_limits<T>::infinity();
   for (const auto& p : hull.planes()) worst = std::max(worst, p.distance(local));
   return worst;
-}
-
-template <class T>
-T deepest(const contact_manifold<T>& m) {
-  T d = -std::numeric_limits<T>::infinity();
-  for (const auto& p : m.contacts()) d = std::max(d, p.depth);
-  return d;
 }
 
 }  // namespace
