@@ -7,8 +7,10 @@
 // their penetration when they overlap by EPA (narrowphase/epa.hpp),
 // convex hulls against planes and spheres (narrowphase/hull.hpp), and
 // hulls against hulls and boxes by separating axes and clipping
-// (narrowphase/hull_hull.hpp), and capsules against boxes and hulls
-// (narrowphase/capsule_polyhedron.hpp).
+// (narrowphase/hull_hull.hpp), capsules against boxes and hulls
+// (narrowphase/capsule_polyhedron.hpp), ray casts against every shape
+// (narrowphase/ray_cast.hpp), and the time of impact of two moving convex
+// shapes by conservative advancement (narrowphase/time_of_impact.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
@@ -19,4 +21,6 @@
 #include "narrowphase/hull.hpp"
 #include "narrowphase/hull_hull.hpp"
 #include "narrowphase/manifold.hpp"
+#include "narrowphase/ray_cast.hpp"
+#include "narrowphase/time_of_impact.hpp"
 #include "narrowphase/triangle.hpp"
