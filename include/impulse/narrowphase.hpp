@@ -10,12 +10,15 @@
 // (narrowphase/hull_hull.hpp), capsules against boxes and hulls
 // (narrowphase/capsule_polyhedron.hpp), ray casts against every shape
 // (narrowphase/ray_cast.hpp), and the time of impact of two moving convex
-// shapes by conservative advancement (narrowphase/time_of_impact.hpp).
+// shapes by conservative advancement (narrowphase/time_of_impact.hpp);
+// and the table of pair tests built from a config's shape_list
+// (narrowphase/dispatch.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
 #include "narrowphase/box_box.hpp"
 #include "narrowphase/capsule_polyhedron.hpp"
+#include "narrowphase/dispatch.hpp"
 #include "narrowphase/epa.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/hull.hpp"

@@ -111,9 +111,11 @@ concept solver_policy = declares_policy_kind<S, policy_kind::solver>;
 template <class S>
 concept shape_type = declares_policy_kind<S, policy_kind::shape>;
 
-/// The shapes a world is compiled for; narrow-phase code is instantiated only
-/// for pairs drawn from this list.
-template <class... Shapes>
+/// The shapes a world is compiled for, as templates over the scalar
+/// (`shape_list<sphere, box>`): the world instantiates each with its
+/// config's scalar, and narrow-phase code is instantiated only for pairs
+/// drawn from this list (narrowphase/dispatch.hpp).
+template <template <class> class... Shapes>
 struct shape_list {
   static constexpr std::size_t size = sizeof...(Shapes);
 };
@@ -122,17 +124,19 @@ namespace detail {
 
 template <class T>
 struct is_shape_list : std::false_type {};
-template <class... Shapes>
+template <template <class> class... Shapes>
 struct is_shape_list<shape_list<Shapes...>> : std::true_type {};
 
 template <class T>
 struct shape_list_of_shapes : std::false_type {};
-template <class... Shapes>
-struct shape_list_of_shapes<shape_list<Shapes...>> : std::bool_constant<(shape_type<Shapes> && ...)> {};
+template <template <class> class... Shapes>
+struct shape_list_of_shapes<shape_list<Shapes...>>
+    : std::bool_constant<((shape_type<Shapes<float>> && shape_type<Shapes<double>>) && ...)> {};
 
 }  // namespace detail
 
-/// A shape_list<...> whose every element models shape_type.
+/// A shape_list<...> whose every template, made with float and with
+/// double, models shape_type.
 template <class L>
 concept shape_set = detail::shape_list_of_shapes<L>::value;
 
@@ -197,7 +201,8 @@ consteval bool check_config() {
                   "impulse config: `shapes` must be impulse::shape_list<...>");
     if constexpr (detail::is_shape_list<typename C::shapes>::value) {
       static_assert(shape_set<typename C::shapes>,
-                    "impulse config: every type in `shapes` must model impulse::shape_type");
+                    "impulse config: every template in `shapes` must, made with float and "
+                    "double, model impulse::shape_type");
     }
   }
   if constexpr (detail::has_sleeping<C>) {
@@ -5121,7 +5126,7 @@ namespace impulse {
 enum class error_code : std::uint8_t;
 class invalid_argument;
 enum class policy_kind;
-template <class... Shapes>
+template <template <class> class... Shapes>
 struct shape_list;
 
 }  // namespace impulse
@@ -6574,7 +6579,9 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 // (narrowphase/hull_hull.hpp), capsules against boxes and hulls
 // (narrowphase/capsule_polyhedron.hpp), ray casts against every shape
 // (narrowphase/ray_cast.hpp), and the time of impact of two moving convex
-// shapes by conservative advancement (narrowphase/time_of_impact.hpp).
+// shapes by conservative advancement (narrowphase/time_of_impact.hpp);
+// and the table of pair tests built from a config's shape_list
+// (narrowphase/dispatch.hpp).
 
 // ---- begin impulse/narrowphase/analytic.hpp ----
 // impulse/narrowphase/analytic.hpp — closed-form pair tests between
@@ -9803,6 +9810,292 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/capsule_polyhedron.hpp ----
+// ---- begin impulse/narrowphase/dispatch.hpp ----
+// impulse/narrowphase/dispatch.hpp — the pair tests a world is compiled
+// for, chosen from its config's shape_list.
+//
+// `dispatcher<shape_list<sphere, box>, float>` holds a table of one entry
+// per ordered pair of listed shapes, each entry the `collide` written for
+// that pair (sphere–box, box–sphere, …), called through the shapes'
+// indices in the list. Only the listed pairs are instantiated: a world of
+// spheres and boxes compiles none of the hull, capsule or GJK code. Two
+// shapes that are only ever static (planes, triangle meshes) never meet,
+// and their entry returns an empty manifold.
+//
+// A listed pair with no `collide` is a compile error whose instantiation
+// context names the pair: `missing_pair_test<A, B, T>`. A user's own shape
+// joins by providing `collide(const mine<T>&, const transform<T>&, const
+// other<T>&, const transform<T>&, T margin)` for each shape it is listed
+// with, in its own namespace (found by argument-dependent lookup) or in
+// impulse::narrowphase.
+
+
+// ---- begin impulse/shapes/triangle_mesh.hpp ----
+// impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
+//
+// Vertices and index triples, counter-clockwise seen from the free side.
+// Static only: it need not be closed, so it has no volume and no mass
+// properties. The narrow phase adds a bounding-volume tree over its
+// triangles; this file holds the geometry and its bounds.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+class triangle_mesh {
+ public:
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  /// Copies the mesh after checking it: finite vertices, indices in range,
+  /// at least one triangle, and no triangle of zero area.
+  static triangle_mesh make(std::span<const vec3<T>> vertices, std::span<const std::uint32_t> indices) {
+    if (indices.empty() || indices.size() % 3 != 0)
+      detail::report_error(error_code::degenerate_shape, "triangle_mesh: needs whole triangles, at least one");
+    triangle_mesh mesh;
+    for (const vec3<T>& v : vertices) {
+      if (!is_finite(v)) detail::report_error(error_code::non_finite, "triangle_mesh: a vertex is not finite");
+      mesh.bounds_ = mesh.vertices_.empty() ? aabb<T>{v, v} : merge(mesh.bounds_, v);
+      mesh.vertices_.push_back(v);
+    }
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+      for (std::size_t k = 0; k < 3; ++k)
+        if (indices[t + k] >= vertices.size())
+          detail::report_error(error_code::out_of_range, "triangle_mesh: an index names a missing vertex",
+                               std::uint32_t(t / 3));
+      const vec3<T> a = vertices[indices[t]], b = vertices[indices[t + 1]], c = vertices[indices[t + 2]];
+      // Zero area relative to the triangle's own size: ε² of its longest edge squared.
+      const T scale = max_component(abs(b - a)) + max_component(abs(c - a));
+      if (!(length_squared(cross(b - a, c - a)) > scalar_traits<T>::epsilon * scalar_traits<T>::epsilon * scale * scale * scale * scale))
+        detail::report_error(error_code::degenerate_shape, "triangle_mesh: a triangle has zero area",
+                             std::uint32_t(t / 3));
+    }
+    mesh.indices_.assign(indices.begin(), indices.end());
+    return mesh;
+  }
+
+  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
+  [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
+  /// The three corners of triangle t.
+  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
+    a = vertices_[indices_[3 * t]];
+    b = vertices_[indices_[3 * t + 1]];
+    c = vertices_[indices_[3 * t + 2]];
+  }
+
+  aabb<T> local_aabb() const noexcept { return bounds_; }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    aabb<T> box{apply(pose, vertices_[0]), apply(pose, vertices_[0])};
+    for (const vec3<T>& v : vertices_) box = merge(box, apply(pose, v));
+    return box;
+  }
+
+ private:
+  std::vector<vec3<T>> vertices_;
+  std::vector<std::uint32_t> indices_;
+  aabb<T> bounds_{};
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/triangle_mesh.hpp ----
+// ---- begin impulse/narrowphase/hull.hpp ----
+// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
+//
+// A hull against a plane: each vertex below the plane's surface plus the
+// margin is a candidate (its id the vertex's index), and four are kept
+// (reduce_to_four), as for a box.
+//
+// A sphere against a hull, in the hull's frame: the face whose plane lies
+// farthest above the centre decides. If even that plane is below it, the
+// centre is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the centre is below it. Otherwise the point of
+// the hull nearest the centre comes from GJK between the centre and the
+// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
+// that point lies within the radius plus the margin. The feature id is that
+// face's index: it holds while the sphere rolls across one face.
+
+
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  const std::span<const vec3<T>> vertices = a.vertices();
+  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
+  std::size_t count = 0;
+  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
+    const vec3<T> x = apply(pose_a, vertices[k]);
+    const T height = dot(p.normal, x) + p.offset;
+    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
+  }
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  std::uint32_t face = 0;
+  T highest = -std::numeric_limits<T>::infinity();
+  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
+    const T d = b.plane(f).distance(centre);
+    if (d > highest) highest = d, face = f;
+  }
+  contact_manifold<T> m;
+  if (highest - a.radius > margin) return m;  // a face's plane separates them
+  // Outside: the hull's point nearest the centre.
+  gjk_result<T> g;
+  if (highest > T(0))
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
+            .result;
+  if (highest <= T(0) || g.overlapping) {
+    // Inside (or on the surface, where GJK finds no direction): out through
+    // the nearest face.
+    const vec3<T> n = b.plane(face).normal;
+    m.normal = apply_direction(pose_b, -n);
+    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
+    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
+    return m;
+  }
+  if (g.distance - a.radius > margin) return m;
+  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
+  m.normal = apply_direction(pose_b, n);
+  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/hull.hpp ----
+
+namespace impulse::narrowphase {
+
+/// Whether `collide(a, pose_a, b, pose_b, margin)` is written for shapes A
+/// then B, in scalar T.
+template <class A, class B, class T>
+concept has_pair_test = requires(const A& a, const B& b, const transform<T>& pose, T margin) {
+  { collide(a, pose, b, pose, margin) } -> std::same_as<contact_manifold<T>>;
+};
+
+/// Shapes that only static bodies have (planes, triangle meshes): two of
+/// them never need a pair test.
+template <class S>
+inline constexpr bool static_only = false;
+template <scalar_type T>
+inline constexpr bool static_only<plane<T>> = true;
+template <scalar_type T>
+inline constexpr bool static_only<triangle_mesh<T>> = true;
+
+namespace detail {
+
+/// Instantiated for a listed pair without a test, so that the compiler's
+/// error names the pair in this template's arguments.
+template <class A, class B, class T>
+struct missing_pair_test {
+  static_assert(has_pair_test<A, B, T>,
+                "impulse: the config's shape_list lists a pair of shapes that has no narrow-phase test "
+                "(the pair is named in missing_pair_test<A, B, T>): write collide(const A&, const "
+                "transform<T>&, const B&, const transform<T>&, T margin), or take one of them out of the list");
+  static constexpr bool value = has_pair_test<A, B, T>;
+};
+
+/// The I-th of the types Ts.
+template <std::size_t I, class First, class... Rest>
+struct type_at {
+  using type = typename type_at<I - 1, Rest...>::type;
+};
+template <class First, class... Rest>
+struct type_at<0, First, Rest...> {
+  using type = First;
+};
+
+/// The call, where unqualified lookup sees every collide above and
+/// argument-dependent lookup adds the user's.
+template <class A, class B, class T>
+contact_manifold<T> call_collide(const void* a, const transform<T>& pose_a, const void* b, const transform<T>& pose_b,
+                                 T margin) {
+  if constexpr (static_only<A> && static_only<B>) {
+    return {};
+  } else if constexpr (missing_pair_test<A, B, T>::value) {
+    return collide(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, margin);
+  } else {
+    return {};  // not reached: missing_pair_test has failed the build
+  }
+}
+
+}  // namespace detail
+
+template <class List, scalar_type T>
+class dispatcher;
+
+template <template <class> class... Shapes, scalar_type T>
+class dispatcher<shape_list<Shapes...>, T> {
+  template <std::size_t I>
+  using shape_at = typename detail::type_at<I, Shapes<T>...>::type;
+
+  template <class S>
+  static constexpr std::uint32_t find() noexcept {
+    constexpr bool same[] = {std::is_same_v<S, Shapes<T>>..., false};
+    for (std::uint32_t i = 0; i < sizeof...(Shapes); ++i)
+      if (same[i]) return i;
+    return std::uint32_t(sizeof...(Shapes));
+  }
+
+ public:
+  static constexpr std::size_t shape_count = sizeof...(Shapes);
+
+  /// S's place in the list.
+  template <class S>
+  static constexpr std::uint32_t index_of = find<S>();
+
+  /// A listed shape: its address and its place in the list (what a world
+  /// keeps for each body's shape).
+  struct shape_ref {
+    const void* shape;
+    std::uint32_t index;
+  };
+  template <class S>
+  static constexpr shape_ref ref(const S& shape) noexcept {
+    static_assert(index_of<S> < shape_count, "impulse: this shape is not in the config's shape_list");
+    return {&shape, index_of<S>};
+  }
+
+  /// The manifold of a and b, by the test written for their pair.
+  static contact_manifold<T> collide(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
+                                     const transform<T>& pose_b, T margin = T(0)) {
+    IMPULSE_ASSERT(a.index < shape_count && b.index < shape_count);
+    return table[a.index * shape_count + b.index](a.shape, pose_a, b.shape, pose_b, margin);
+  }
+
+ private:
+  using pair_test = contact_manifold<T> (*)(const void*, const transform<T>&, const void*, const transform<T>&, T);
+
+  template <std::size_t... I>
+  static constexpr std::array<pair_test, shape_count * shape_count> make_table(std::index_sequence<I...>) noexcept {
+    return {&detail::call_collide<shape_at<I / shape_count>, shape_at<I % shape_count>, T>...};
+  }
+  static constexpr std::array<pair_test, shape_count * shape_count> table =
+      make_table(std::make_index_sequence<shape_count * shape_count>{});
+};
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/dispatch.hpp ----
 // ---- begin impulse/narrowphase/epa.hpp ----
 // impulse/narrowphase/epa.hpp — how deep two overlapping convex shapes
 // are, and along which normal: the expanding polytope algorithm.
@@ -10033,91 +10326,6 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/epa.hpp ----
-// ---- begin impulse/narrowphase/hull.hpp ----
-// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
-//
-// A hull against a plane: each vertex below the plane's surface plus the
-// margin is a candidate (its id the vertex's index), and four are kept
-// (reduce_to_four), as for a box.
-//
-// A sphere against a hull, in the hull's frame: the face whose plane lies
-// farthest above the centre decides. If even that plane is below it, the
-// centre is inside the hull and the way out is through that face: the depth
-// is the radius plus how far the centre is below it. Otherwise the point of
-// the hull nearest the centre comes from GJK between the centre and the
-// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
-// that point lies within the radius plus the margin. The feature id is that
-// face's index: it holds while the sphere rolls across one face.
-
-
-
-namespace impulse::narrowphase {
-
-template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  const detail::world_plane<T> p = detail::in_world(b, pose_b);
-  const std::span<const vec3<T>> vertices = a.vertices();
-  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
-  std::size_t count = 0;
-  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
-    const vec3<T> x = apply(pose_a, vertices[k]);
-    const T height = dot(p.normal, x) + p.offset;
-    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
-  }
-  contact_manifold<T> m;
-  m.normal = -p.normal;
-  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
-  return m;
-}
-
-template <scalar_type T>
-contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
-}
-
-template <scalar_type T>
-contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
-  std::uint32_t face = 0;
-  T highest = -std::numeric_limits<T>::infinity();
-  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
-    const T d = b.plane(f).distance(centre);
-    if (d > highest) highest = d, face = f;
-  }
-  contact_manifold<T> m;
-  if (highest - a.radius > margin) return m;  // a face's plane separates them
-  // Outside: the hull's point nearest the centre.
-  gjk_result<T> g;
-  if (highest > T(0))
-    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
-            .result;
-  if (highest <= T(0) || g.overlapping) {
-    // Inside (or on the surface, where GJK finds no direction): out through
-    // the nearest face.
-    const vec3<T> n = b.plane(face).normal;
-    m.normal = apply_direction(pose_b, -n);
-    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
-    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
-    return m;
-  }
-  if (g.distance - a.radius > margin) return m;
-  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
-  m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
-  return m;
-}
-
-template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
-}
-
-}  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/hull.hpp ----
 // ---- begin impulse/narrowphase/ray_cast.hpp ----
 // impulse/narrowphase/ray_cast.hpp — where a ray first meets a shape.
 //
@@ -12023,73 +12231,5 @@ template <scalar_type T> struct mass_properties;
 
 }  // namespace impulse
 // ---- end impulse/shapes/fwd.hpp ----
-// ---- begin impulse/shapes/triangle_mesh.hpp ----
-// impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
-//
-// Vertices and index triples, counter-clockwise seen from the free side.
-// Static only: it need not be closed, so it has no volume and no mass
-// properties. The narrow phase adds a bounding-volume tree over its
-// triangles; this file holds the geometry and its bounds.
-
-
-
-namespace impulse {
-
-template <scalar_type T>
-class triangle_mesh {
- public:
-  static constexpr policy_kind kind = policy_kind::shape;
-
-  /// Copies the mesh after checking it: finite vertices, indices in range,
-  /// at least one triangle, and no triangle of zero area.
-  static triangle_mesh make(std::span<const vec3<T>> vertices, std::span<const std::uint32_t> indices) {
-    if (indices.empty() || indices.size() % 3 != 0)
-      detail::report_error(error_code::degenerate_shape, "triangle_mesh: needs whole triangles, at least one");
-    triangle_mesh mesh;
-    for (const vec3<T>& v : vertices) {
-      if (!is_finite(v)) detail::report_error(error_code::non_finite, "triangle_mesh: a vertex is not finite");
-      mesh.bounds_ = mesh.vertices_.empty() ? aabb<T>{v, v} : merge(mesh.bounds_, v);
-      mesh.vertices_.push_back(v);
-    }
-    for (std::size_t t = 0; t < indices.size(); t += 3) {
-      for (std::size_t k = 0; k < 3; ++k)
-        if (indices[t + k] >= vertices.size())
-          detail::report_error(error_code::out_of_range, "triangle_mesh: an index names a missing vertex",
-                               std::uint32_t(t / 3));
-      const vec3<T> a = vertices[indices[t]], b = vertices[indices[t + 1]], c = vertices[indices[t + 2]];
-      // Zero area relative to the triangle's own size: ε² of its longest edge squared.
-      const T scale = max_component(abs(b - a)) + max_component(abs(c - a));
-      if (!(length_squared(cross(b - a, c - a)) > scalar_traits<T>::epsilon * scalar_traits<T>::epsilon * scale * scale * scale * scale))
-        detail::report_error(error_code::degenerate_shape, "triangle_mesh: a triangle has zero area",
-                             std::uint32_t(t / 3));
-    }
-    mesh.indices_.assign(indices.begin(), indices.end());
-    return mesh;
-  }
-
-  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
-  [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
-  /// The three corners of triangle t.
-  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
-    a = vertices_[indices_[3 * t]];
-    b = vertices_[indices_[3 * t + 1]];
-    c = vertices_[indices_[3 * t + 2]];
-  }
-
-  aabb<T> local_aabb() const noexcept { return bounds_; }
-  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
-    aabb<T> box{apply(pose, vertices_[0]), apply(pose, vertices_[0])};
-    for (const vec3<T>& v : vertices_) box = merge(box, apply(pose, v));
-    return box;
-  }
-
- private:
-  std::vector<vec3<T>> vertices_;
-  std::vector<std::uint32_t> indices_;
-  aabb<T> bounds_{};
-};
-
-}  // namespace impulse
-// ---- end impulse/shapes/triangle_mesh.hpp ----
 // ---- end impulse/shapes.hpp ----
 // ---- end impulse/impulse.hpp ----

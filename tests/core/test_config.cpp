@@ -21,8 +21,15 @@ struct rk_like {
 struct sap_like {
   static constexpr impulse::policy_kind kind = impulse::policy_kind::broadphase;
 };
+template <class T>
 struct ball_like {
   static constexpr impulse::policy_kind kind = impulse::policy_kind::shape;
+  T radius;
+};
+template <class T>
+struct mislabelled_ball {  // says it is a broad phase
+  static constexpr impulse::policy_kind kind = impulse::policy_kind::broadphase;
+  T radius;
 };
 
 struct double_config : impulse::default_config {
@@ -71,7 +78,7 @@ TEST_CASE("policy concepts tell policy kinds apart") {
   static_assert(impulse::broadphase_policy<sap_like>);
   static_assert(!impulse::solver_policy<sap_like>);
   static_assert(impulse::shape_set<impulse::shape_list<ball_like, ball_like>>);
-  static_assert(!impulse::shape_set<impulse::shape_list<ball_like, sap_like>>);
+  static_assert(!impulse::shape_set<impulse::shape_list<ball_like, mislabelled_ball>>);
   static_assert(impulse::shape_set<impulse::shape_list<>>);
   CHECK(impulse::shape_list<ball_like, ball_like>::size == 2);
 }

@@ -8,7 +8,7 @@ namespace impulse {
 enum class error_code : std::uint8_t;
 class invalid_argument;
 enum class policy_kind;
-template <class... Shapes>
+template <template <class> class... Shapes>
 struct shape_list;
 
 }  // namespace impulse

@@ -63,9 +63,11 @@ concept solver_policy = declares_policy_kind<S, policy_kind::solver>;
 template <class S>
 concept shape_type = declares_policy_kind<S, policy_kind::shape>;
 
-/// The shapes a world is compiled for; narrow-phase code is instantiated only
-/// for pairs drawn from this list.
-template <class... Shapes>
+/// The shapes a world is compiled for, as templates over the scalar
+/// (`shape_list<sphere, box>`): the world instantiates each with its
+/// config's scalar, and narrow-phase code is instantiated only for pairs
+/// drawn from this list (narrowphase/dispatch.hpp).
+template <template <class> class... Shapes>
 struct shape_list {
   static constexpr std::size_t size = sizeof...(Shapes);
 };
@@ -74,17 +76,19 @@ namespace detail {
 
 template <class T>
 struct is_shape_list : std::false_type {};
-template <class... Shapes>
+template <template <class> class... Shapes>
 struct is_shape_list<shape_list<Shapes...>> : std::true_type {};
 
 template <class T>
 struct shape_list_of_shapes : std::false_type {};
-template <class... Shapes>
-struct shape_list_of_shapes<shape_list<Shapes...>> : std::bool_constant<(shape_type<Shapes> && ...)> {};
+template <template <class> class... Shapes>
+struct shape_list_of_shapes<shape_list<Shapes...>>
+    : std::bool_constant<((shape_type<Shapes<float>> && shape_type<Shapes<double>>) && ...)> {};
 
 }  // namespace detail
 
-/// A shape_list<...> whose every element models shape_type.
+/// A shape_list<...> whose every template, made with float and with
+/// double, models shape_type.
 template <class L>
 concept shape_set = detail::shape_list_of_shapes<L>::value;
 
@@ -149,7 +153,8 @@ consteval bool check_config() {
                   "impulse config: `shapes` must be impulse::shape_list<...>");
     if constexpr (detail::is_shape_list<typename C::shapes>::value) {
       static_assert(shape_set<typename C::shapes>,
-                    "impulse config: every type in `shapes` must model impulse::shape_type");
+                    "impulse config: every template in `shapes` must, made with float and "
+                    "double, model impulse::shape_type");
     }
   }
   if constexpr (detail::has_sleeping<C>) {
