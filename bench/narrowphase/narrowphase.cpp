@@ -1,0 +1,378 @@
+// bench/narrowphase: pair tests per second for each shape pair and each
+// algorithm, ours beside libccd's and Bullet's, on the same pairs in the
+// same run.
+//
+// The pairs: 4 096 per shape pairing, seeded (tests/peers/convex_pairs.hpp,
+// shared with the libccd agreement test), half overlapping and half apart,
+// sizes 0.1 m to 2 m, random rotations, each with its exact distance or
+// depth from a brute force over features and axes (the closed form for
+// two spheres, exact for every pairing here).
+//
+// The algorithms, each run over all the pairs of a pairing:
+// - collide: our dedicated pair test and its contact manifold (analytic
+//   for spheres and capsules, SAT + clipping for boxes and hulls) with
+//   margin 0. A row appears for every pairing that has a `collide`
+//   overload when this file is compiled (hull–hull and capsule–box arrive
+//   with hull_hull.hpp and capsule_polyhedron.hpp).
+// - gjk_epa: the general query: GJK distance, then EPA if they overlap.
+//   libccd: ccdGJKPenetration (GJK, then EPA if they intersect; no
+//   distance when apart); mpr: ccdMPRPenetration. Bullet:
+//   btGjkPairDetector with btVoronoiSimplexSolver and
+//   btGjkEpaPenetrationDepthSolver, which gives the distance or depth.
+// - box_box: Bullet's btBoxBoxDetector (ODE's dBoxBox), box–box only.
+// - gjk_distance: GJK alone, on the separated pairs of box–box and
+//   hull–hull. libccd 2.1 has no distance query: its row is
+//   ccdGJKIntersect, a yes/no answer, with no error figure.
+//
+// Engines: impulse_f32 and impulse_f64 (ours in float and double); libccd
+// (double, as a user gets it: CCD_INIT's tolerances, 1e-4, which its EPA
+// compares with a squared distance, so it stops up to 1 cm short) and
+// libccd_tight (epa/mpr_tolerance 1e-12, as tests/peers uses it); bullet
+// (Debian's float build), every shape with collision margin 0 so that it
+// answers for the same shapes (a sphere's and a capsule's radius are their
+// margin in Bullet, as they are our core radius).
+//
+// Timing: every case of a pairing runs once per round, interleaved, for
+// `rounds` rounds; ns_per_test is the median over the rounds of the time
+// of one pass over the pairs divided by their number.
+// max_abs_error_vs_reference (m) compares the signed distance (distance
+// when apart, minus the depth when overlapping) with the exact one, over
+// the pairs where the engine gives a figure: collide only on overlapping
+// pairs (the deepest contact point's depth; a missed overlap counts its
+// whole depth), libccd only on overlapping pairs.
+//
+//   narrowphase [--quick]   CSV on stdout, a markdown table on stderr
+//
+// --quick runs 512 pairs and 3 rounds (a smoke test).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "convex_pairs.hpp"
+#include "impulse/narrowphase.hpp"
+#if __has_include("impulse/narrowphase/hull_hull.hpp")
+#include "impulse/narrowphase/hull_hull.hpp"
+#endif
+#if __has_include("impulse/narrowphase/capsule_polyhedron.hpp")
+#include "impulse/narrowphase/capsule_polyhedron.hpp"
+#endif
+
+#ifdef IMPULSE_BENCH_HAVE_CCD
+#include "ccd_shapes.hpp"
+#endif
+#ifdef IMPULSE_BENCH_HAVE_BULLET
+#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <btBulletCollisionCommon.h>
+#endif
+
+namespace {
+
+using namespace peers;
+constexpr double not_given = std::numeric_limits<double>::quiet_NaN();
+
+/// One line of the table: a pass over the pairs that returns a checksum
+/// (so that the compiler keeps the work), the times of the passes, and the
+/// error measured on a separate, untimed pass.
+struct timed_case {
+  std::string pair, algorithm, engine;
+  std::size_t tests = 0;
+  std::function<double()> pass;
+  double max_error = not_given;
+  std::vector<double> ns_per_test;
+
+  [[nodiscard]] double median() const {
+    std::vector<double> v = ns_per_test;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  }
+};
+
+/// A case from `signed_distance(i)`: the engine's signed distance for pair
+/// i, or NaN where it gives none. `reference[i]` is the exact one; for a
+/// collide test (`overlap_only`) a pair it finds apart is skipped when
+/// they are apart and counts its whole depth when they overlap.
+template <class F>
+timed_case make_case(std::string pair, std::string algorithm, std::string engine, const std::vector<std::size_t>& which,
+                     const std::vector<double>& reference, F signed_distance, bool measured = true) {
+  timed_case c{std::move(pair), std::move(algorithm), std::move(engine), which.size(), {}, not_given, {}};
+  for (const std::size_t i : which) {
+    if (!measured) break;
+    const double s = signed_distance(i);
+    if (std::isnan(s)) continue;
+    const double e = std::abs(s - reference[i]);
+    c.max_error = std::isnan(c.max_error) ? e : std::max(c.max_error, e);
+  }
+  c.pass = [which, signed_distance]() {
+    double sum = 0;
+    for (const std::size_t i : which) sum += signed_distance(i);
+    return sum;
+  };
+  return c;
+}
+
+/// Our shapes and poses for a pairing, in scalar T.
+template <class A, class B, class T>
+struct our_pairs {
+  std::vector<A> a;
+  std::vector<B> b;
+  std::vector<impulse::transform<T>> pose_a, pose_b;
+
+  explicit our_pairs(const generated_pairs& g) {
+    for (const pair_spec& p : g.pairs) {
+      a.push_back(make<A>(p.a));
+      b.push_back(make<B>(p.b));
+      pose_a.push_back(pose_of<T>(p.a));
+      pose_b.push_back(pose_of<T>(p.b));
+    }
+  }
+};
+
+/// GJK, then EPA if they overlap: the signed distance.
+template <class A, class B, class T>
+double gjk_epa(const A& a, const impulse::transform<T>& pa, const B& b, const impulse::transform<T>& pb) {
+  const auto g = impulse::narrowphase::gjk_distance(a, pa, b, pb);
+  if (!g.overlapping) return double(g.distance);
+  return -double(impulse::narrowphase::epa_penetration(a, pa, b, pb).depth);
+}
+
+/// Ours: collide (where the pairing has one) and gjk_epa, in scalar T.
+template <class A, class B, class T>
+void add_ours(std::vector<timed_case>& cases, const std::string& pair, const char* engine,
+              const generated_pairs& g, const std::vector<std::size_t>& all, const std::vector<double>& reference,
+              const std::vector<std::size_t>& separated, bool distance_row) {
+  auto shapes = std::make_shared<const our_pairs<A, B, T>>(g);
+  if constexpr (requires(const A& a, const B& b, const impulse::transform<T>& p) {
+                  impulse::narrowphase::collide(a, p, b, p, T(0));
+                }) {
+    cases.push_back(make_case(pair, "collide", engine, all, reference, [shapes, &g](std::size_t i) {
+      const auto m = impulse::narrowphase::collide(shapes->a[i], shapes->pose_a[i], shapes->b[i], shapes->pose_b[i], T(0));
+      double deepest = -std::numeric_limits<double>::infinity();
+      for (const auto& c : m.contacts()) deepest = std::max(deepest, double(c.depth));
+      if (m.empty()) return g.answers[i].overlapping ? 0.0 : not_given;  // a missed overlap: error = its depth
+      return -deepest;
+    }));
+  }
+  cases.push_back(make_case(pair, "gjk_epa", engine, all, reference, [shapes](std::size_t i) {
+    return gjk_epa(shapes->a[i], shapes->pose_a[i], shapes->b[i], shapes->pose_b[i]);
+  }));
+  if (distance_row)
+    cases.push_back(make_case(pair, "gjk_distance", engine, separated, reference, [shapes](std::size_t i) {
+      return double(impulse::narrowphase::gjk_distance(shapes->a[i], shapes->pose_a[i], shapes->b[i], shapes->pose_b[i])
+                        .distance);
+    }));
+}
+
+#ifdef IMPULSE_BENCH_HAVE_CCD
+void add_ccd(std::vector<timed_case>& cases, const std::string& pair, const generated_pairs& g,
+             const std::vector<std::size_t>& all, const std::vector<double>& reference,
+             const std::vector<std::size_t>& separated, bool distance_row) {
+  auto shapes = std::make_shared<std::vector<std::pair<ccd_shape, ccd_shape>>>();
+  for (const pair_spec& p : g.pairs) shapes->push_back({ccd_shape(p.a), ccd_shape(p.b)});
+  for (const bool tight : {false, true}) {
+    const char* engine = tight ? "libccd_tight" : "libccd";
+    ccd_t ccd = ccd_setup(1e-12);
+    if (!tight) {  // CCD_INIT's tolerances and iteration limit
+      ccd_t defaults;
+      CCD_INIT(&defaults);
+      ccd.max_iterations = defaults.max_iterations;
+      ccd.epa_tolerance = defaults.epa_tolerance;
+      ccd.mpr_tolerance = defaults.mpr_tolerance;
+      ccd.dist_tolerance = defaults.dist_tolerance;
+    }
+    cases.push_back(make_case(pair, "gjk_epa", engine, all, reference, [shapes, ccd](std::size_t i) {
+      const double depth = ccd_depth(ccd, (*shapes)[i].first, (*shapes)[i].second);
+      return depth < 0 ? not_given : -depth;
+    }));
+    cases.push_back(make_case(pair, "mpr", engine, all, reference, [shapes, ccd](std::size_t i) {
+      ccd_real_t depth = 0;
+      ccd_vec3_t direction, position;
+      if (ccdMPRPenetration(&(*shapes)[i].first, &(*shapes)[i].second, &ccd, &depth, &direction, &position) != 0)
+        return not_given;
+      return -double(depth);
+    }));
+    if (distance_row && !tight)
+      cases.push_back(make_case(
+          pair, "gjk_intersect", engine, separated, reference,
+          [shapes, ccd](std::size_t i) { return double(ccdGJKIntersect(&(*shapes)[i].first, &(*shapes)[i].second, &ccd)); },
+          false));  // a yes/no answer: no distance to compare
+  }
+}
+#endif
+
+#ifdef IMPULSE_BENCH_HAVE_BULLET
+std::unique_ptr<btConvexShape> bullet_shape(const shape_spec& s) {
+  std::unique_ptr<btConvexShape> shape;
+  switch (s.kind) {
+    case shape_kind::sphere: shape = std::make_unique<btSphereShape>(btScalar(s.radius)); break;
+    case shape_kind::capsule:  // along y, as ours; its radius is its margin
+      shape = std::make_unique<btCapsuleShape>(btScalar(s.radius), btScalar(2 * s.half_height));
+      break;
+    case shape_kind::box:
+      shape = std::make_unique<btBoxShape>(btVector3(btScalar(s.half_extents.x), btScalar(s.half_extents.y),
+                                                     btScalar(s.half_extents.z)));
+      shape->setMargin(0);  // keeps the extents (btBoxShape::setMargin)
+      break;
+    case shape_kind::hull: {
+      auto hull = std::make_unique<btConvexHullShape>();
+      for (const v3& p : s.points) hull->addPoint(btVector3(btScalar(p.x), btScalar(p.y), btScalar(p.z)), false);
+      hull->recalcLocalAabb();
+      hull->setMargin(0);
+      shape = std::move(hull);
+      break;
+    }
+  }
+  return shape;
+}
+
+btTransform bullet_pose(const shape_spec& s) {
+  const auto& q = s.pose.rotation;
+  const auto& p = s.pose.position;
+  return btTransform(btQuaternion(btScalar(q.x), btScalar(q.y), btScalar(q.z), btScalar(q.w)),
+                     btVector3(btScalar(p.x), btScalar(p.y), btScalar(p.z)));
+}
+
+/// btBoxBoxDetector reports up to four points through a Result: keep the
+/// deepest (its depth is negative when they overlap).
+struct deepest_point : btDiscreteCollisionDetectorInterface::Result {
+  btScalar depth = BT_LARGE_FLOAT;
+  void setShapeIdentifiersA(int, int) override {}
+  void setShapeIdentifiersB(int, int) override {}
+  void addContactPoint(const btVector3&, const btVector3&, btScalar d) override { depth = std::min(depth, d); }
+};
+
+struct bullet_pair {
+  std::unique_ptr<btConvexShape> a, b;
+  btTransform pose_a, pose_b;
+};
+
+void add_bullet(std::vector<timed_case>& cases, const std::string& pair, const generated_pairs& g,
+                const std::vector<std::size_t>& all, const std::vector<double>& reference,
+                const std::vector<std::size_t>& separated, bool distance_row, bool boxes) {
+  auto shapes = std::make_shared<std::vector<bullet_pair>>();
+  for (const pair_spec& p : g.pairs)
+    shapes->push_back({bullet_shape(p.a), bullet_shape(p.b), bullet_pose(p.a), bullet_pose(p.b)});
+  const auto gjk = [shapes](std::size_t i) {
+    const bullet_pair& p = (*shapes)[i];
+    btVoronoiSimplexSolver simplex;
+    btGjkEpaPenetrationDepthSolver epa;
+    btGjkPairDetector detector(p.a.get(), p.b.get(), &simplex, &epa);
+    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+    input.m_transformA = p.pose_a;
+    input.m_transformB = p.pose_b;
+    btPointCollector out;
+    detector.getClosestPoints(input, out, nullptr);
+    return out.m_hasResult ? double(out.m_distance) : not_given;
+  };
+  cases.push_back(make_case(pair, "gjk_epa", "bullet", all, reference, gjk));
+  if (distance_row) cases.push_back(make_case(pair, "gjk_distance", "bullet", separated, reference, gjk));
+  if (boxes)
+    cases.push_back(make_case(pair, "box_box", "bullet", all, reference, [shapes, &g](std::size_t i) {
+      const bullet_pair& p = (*shapes)[i];
+      btBoxBoxDetector detector(static_cast<const btBoxShape*>(p.a.get()), static_cast<const btBoxShape*>(p.b.get()));
+      btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+      input.m_transformA = p.pose_a;
+      input.m_transformB = p.pose_b;
+      deepest_point out;
+      detector.getClosestPoints(input, out, nullptr);
+      if (out.depth == BT_LARGE_FLOAT) return g.answers[i].overlapping ? 0.0 : not_given;
+      return double(out.depth);
+    }));
+}
+#endif
+
+/// Every case of one pairing.
+template <template <class> class SA, template <class> class SB>
+std::vector<timed_case> pairing(shape_kind ka, shape_kind kb, int n, std::uint32_t seed, bool distance_row,
+                                std::vector<std::unique_ptr<generated_pairs>>& keep) {
+  const std::string pair = std::string(name_of(ka)) + "-" + name_of(kb);
+  keep.push_back(std::make_unique<generated_pairs>(random_pairs(ka, kb, n, seed)));
+  const generated_pairs& g = *keep.back();
+  std::vector<std::size_t> all, separated;
+  std::vector<double> reference;
+  for (std::size_t i = 0; i < g.pairs.size(); ++i) {
+    all.push_back(i);
+    if (!g.answers[i].overlapping) separated.push_back(i);
+    reference.push_back(g.answers[i].overlapping ? -g.answers[i].depth : g.answers[i].distance);
+  }
+  std::vector<timed_case> cases;
+  add_ours<SA<float>, SB<float>, float>(cases, pair, "impulse_f32", g, all, reference, separated, distance_row);
+  add_ours<SA<double>, SB<double>, double>(cases, pair, "impulse_f64", g, all, reference, separated, distance_row);
+#ifdef IMPULSE_BENCH_HAVE_CCD
+  add_ccd(cases, pair, g, all, reference, separated, distance_row);
+#endif
+#ifdef IMPULSE_BENCH_HAVE_BULLET
+  add_bullet(cases, pair, g, all, reference, separated, distance_row,
+             ka == shape_kind::box && kb == shape_kind::box);
+#endif
+  return cases;
+}
+
+/// Runs every case of a pairing once per round, interleaved.
+void time_cases(std::vector<timed_case>& cases, int rounds) {
+  volatile double sink = 0;
+  for (int r = 0; r < rounds; ++r) {
+    for (timed_case& c : cases) {
+      const auto start = std::chrono::steady_clock::now();
+      sink = sink + c.pass();
+      const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+      c.ns_per_test.push_back(ns / double(c.tests));
+    }
+  }
+}
+
+std::string figure(double x, const char* format) {
+  if (std::isnan(x)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, x);
+  return buffer;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  const int n = quick ? 512 : 4096;
+  const int rounds = quick ? 3 : 9;
+
+  using impulse::box;
+  using impulse::capsule;
+  using impulse::convex_hull;
+  using impulse::sphere;
+  using K = shape_kind;
+  std::vector<std::unique_ptr<generated_pairs>> keep;  // the pairs the cases read
+  std::vector<std::vector<timed_case>> pairings;
+  pairings.push_back(pairing<sphere, sphere>(K::sphere, K::sphere, n, 101, false, keep));
+  pairings.push_back(pairing<sphere, box>(K::sphere, K::box, n, 102, false, keep));
+  pairings.push_back(pairing<box, box>(K::box, K::box, n, 103, true, keep));
+  pairings.push_back(pairing<capsule, capsule>(K::capsule, K::capsule, n, 104, false, keep));
+  pairings.push_back(pairing<capsule, box>(K::capsule, K::box, n, 105, false, keep));
+  pairings.push_back(pairing<sphere, convex_hull>(K::sphere, K::hull, n, 106, false, keep));
+  pairings.push_back(pairing<convex_hull, convex_hull>(K::hull, K::hull, n, 107, true, keep));
+
+  std::printf("pair,algorithm,engine,ns_per_test_median,tests_per_second,max_abs_error_vs_reference\n");
+  std::fprintf(stderr, "| pair | algorithm | engine | ns/test (median of %d) | tests/s | max error (m) |\n", rounds);
+  std::fprintf(stderr, "| --- | --- | --- | ---: | ---: | ---: |\n");
+  for (auto& cases : pairings) {
+    time_cases(cases, rounds);
+    for (const timed_case& c : cases) {
+      const double ns = c.median();
+      std::printf("%s,%s,%s,%.1f,%.0f,%s\n", c.pair.c_str(), c.algorithm.c_str(), c.engine.c_str(), ns, 1e9 / ns,
+                  figure(c.max_error, "%.3g").c_str());
+      std::fprintf(stderr, "| %s | %s | %s | %.0f | %.3g | %s |\n", c.pair.c_str(), c.algorithm.c_str(),
+                   c.engine.c_str(), ns, 1e9 / ns, figure(c.max_error, "%.2g").c_str());
+    }
+    std::fflush(stdout);
+  }
+}
