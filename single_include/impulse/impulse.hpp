@@ -7255,23 +7255,6 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 
 namespace impulse::narrowphase::detail {
 
-/// Room for `size` values: on the stack up to N (a collision hull's usual
-/// size, so that a resting pair allocates nothing per step), on the heap
-/// past that.
-template <class U, std::size_t N>
-class scratch_buffer {
- public:
-  explicit scratch_buffer(std::size_t size) {
-    if (size > N) large_.resize(size);
-  }
-  [[nodiscard]] U* data() noexcept { return large_.empty() ? small_.data() : large_.data(); }
-  U& operator[](std::size_t i) noexcept { return data()[i]; }
-
- private:
-  std::array<U, N> small_;
-  std::vector<U> large_;
-};
-
 /// Keeps the part of the convex polygon `in` where dot(w, x) <= limit, in
 /// `out`, which must have room for count + 1 points (Sutherland–Hodgman,
 /// one plane). Returns how many points it wrote.
@@ -9399,6 +9382,44 @@ gjk_result<T> gjk_distance(const A& a, const transform<T>& pose_a, const B& b, c
 // axes and supports are closed forms.
 
 
+// ---- begin impulse/narrowphase/detail/scratch_buffer.hpp ----
+// impulse/narrowphase/detail/scratch_buffer.hpp — working space for one
+// pair test, on the stack when it is small.
+
+
+namespace impulse::narrowphase::detail {
+
+/// Room for `size` values: on the stack up to N (a collision hull's usual
+/// size, so that a resting pair allocates nothing per step), on the heap
+/// past that. The stack room is left uninitialised, so that asking for a
+/// large N costs nothing until it is written: every value must be written
+/// before it is read. U is a plain aggregate of numbers (vectors, planes,
+/// contact points), whose objects an array of bytes provides as it is
+/// written.
+template <class U, std::size_t N>
+class scratch_buffer {
+  static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>,
+                "scratch_buffer holds plain values only");
+
+ public:
+  explicit scratch_buffer(std::size_t size) {
+    if (size > N) large_.resize(size);
+  }
+  scratch_buffer(const scratch_buffer&) = delete;
+  scratch_buffer& operator=(const scratch_buffer&) = delete;
+
+  [[nodiscard]] U* data() noexcept {
+    return large_.empty() ? std::launder(reinterpret_cast<U*>(small_)) : large_.data();
+  }
+  U& operator[](std::size_t i) noexcept { return data()[i]; }
+
+ private:
+  alignas(U) unsigned char small_[N * sizeof(U)];
+  std::vector<U> large_;
+};
+
+}  // namespace impulse::narrowphase::detail
+// ---- end impulse/narrowphase/detail/scratch_buffer.hpp ----
 
 namespace impulse::narrowphase {
 
@@ -10165,8 +10186,17 @@ struct epa_result {
 namespace detail {
 
 /// The polytope EPA grows: support points of A − B (with the points of A
-/// and B that made them) and triangular faces wound outwards.
+/// and B that made them) and triangular faces wound outwards, in arrays of
+/// fixed size so that a query allocates nothing. The sizes follow from the
+/// iteration cap: each iteration adds one vertex, and a closed triangulated
+/// polytope of V vertices has 2V − 4 faces, whose slots are reused once
+/// dead. Should a horizon still not fit, EPA stops with the nearest face
+/// it has, as Jolt's does when its polytope is full.
 struct polytope {
+  static constexpr int max_iterations = 128;
+  static constexpr int max_vertices = 4 + max_iterations;
+  static constexpr int max_faces = 2 * max_vertices;
+
   struct vertex {
     vec3<double> w, a, b;
   };
@@ -10176,20 +10206,35 @@ struct polytope {
     double distance;      ///< of its plane from the origin (≥ 0 while the origin is inside)
     bool live;
   };
-  std::vector<vertex> vertices;
-  std::vector<face> faces;
+  scratch_buffer<vertex, max_vertices> vertices{0};
+  int vertex_count = 0;
+  scratch_buffer<face, max_faces> faces{0};
+  int face_count = 0;  ///< slots used, live or dead
+  scratch_buffer<int, max_faces> free_slots{0};
+  int free_count = 0;
 
-  /// Adds face i, j, k, wound so that its normal points away from `inside`.
-  bool add_face(int i, int j, int k, const vec3<double>& inside) {
-    vec3<double> n = cross(vertices[j].w - vertices[i].w, vertices[k].w - vertices[i].w);
+  void add_vertex(const vertex& v) noexcept { vertices[std::size_t(vertex_count++)] = v; }
+  void kill(int f) noexcept {
+    faces[std::size_t(f)].live = false;
+    free_slots[std::size_t(free_count++)] = f;
+  }
+  /// Adds face i, j, k, wound so that its normal points away from
+  /// `inside`. False if the face is degenerate or there is no slot left.
+  bool add_face(int i, int j, int k, const vec3<double>& inside) noexcept {
+    vec3<double> n = cross(vertices[std::size_t(j)].w - vertices[std::size_t(i)].w,
+                           vertices[std::size_t(k)].w - vertices[std::size_t(i)].w);
     const double length2 = length_squared(n);
     if (!(length2 > 0.0)) return false;
     n = n / std::sqrt(length2);
-    if (dot(n, vertices[i].w - inside) < 0.0) {
+    if (dot(n, vertices[std::size_t(i)].w - inside) < 0.0) {
       std::swap(j, k);
       n = -n;
     }
-    faces.push_back({{i, j, k}, n, dot(n, vertices[i].w), true});
+    int slot;
+    if (free_count > 0) slot = free_slots[std::size_t(--free_count)];
+    else if (face_count < max_faces) slot = face_count++;
+    else return false;
+    faces[std::size_t(slot)] = {{i, j, k}, n, dot(n, vertices[std::size_t(i)].w), true};
     return true;
   }
 };
@@ -10235,49 +10280,49 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
     const vec3<double> sb = wide(world_core_support(b, pose_b, narrow<T>(-d)));
     return detail::polytope::vertex{sa - sb, sa, sb};
   };
-  for (int k = 0; k < gjk.last.size; ++k) poly.vertices.push_back({gjk.last.w[k], gjk.last.a[k], gjk.last.b[k]});
+  for (int k = 0; k < gjk.last.size; ++k) poly.add_vertex({gjk.last.w[k], gjk.last.a[k], gjk.last.b[k]});
 
   // Blow the simplex up to a tetrahedron: support points along directions
   // it does not span yet (the axes, then normals of what it has).
   double scale = 0.0;
-  for (const auto& v : poly.vertices) scale = std::max(scale, length(v.w));
+  for (int k = 0; k < poly.vertex_count; ++k) scale = std::max(scale, length(poly.vertices[std::size_t(k)].w));
   const double tiny = 1e-9 * std::max(scale, 1e-30);
   const vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  if (poly.vertices.empty()) poly.vertices.push_back(support(axes[0]));
-  for (int k = 0; poly.vertices.size() < 2 && k < 6; ++k) {
+  if (poly.vertex_count == 0) poly.add_vertex(support(axes[0]));
+  for (int k = 0; poly.vertex_count < 2 && k < 6; ++k) {
     const auto v = support(axes[k]);
-    if (length(v.w - poly.vertices[0].w) > tiny) poly.vertices.push_back(v);
+    if (length(v.w - poly.vertices[0].w) > tiny) poly.add_vertex(v);
   }
-  if (poly.vertices.size() == 2) {
+  if (poly.vertex_count == 2) {
     const vec3<double> d = poly.vertices[1].w - poly.vertices[0].w;
     const vec3<double> e = any_perpendicular(normalize_or(d, vec3<double>::unit_x()));
     const vec3<double> f = cross(normalize_or(d, vec3<double>::unit_x()), e);
     for (const vec3<double>& dir : {e, -e, f, -f}) {
       const auto v = support(dir);
       if (length(cross(v.w - poly.vertices[0].w, d)) > tiny * length(d)) {
-        poly.vertices.push_back(v);
+        poly.add_vertex(v);
         break;
       }
     }
   }
-  if (poly.vertices.size() == 3) {
+  if (poly.vertex_count == 3) {
     const vec3<double> n = cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w);
     for (const vec3<double>& dir : {n, -n}) {
       const auto v = support(normalize_or(dir, vec3<double>::unit_y()));
       if (std::abs(dot(v.w - poly.vertices[0].w, normalize_or(n, vec3<double>::unit_y()))) > tiny) {
-        poly.vertices.push_back(v);
+        poly.add_vertex(v);
         break;
       }
     }
   }
-  if (poly.vertices.size() < 4) {
+  if (poly.vertex_count < 4) {
     // The difference of the cores is flat (two points, a point and a
     // segment, two segments): they touch at the origin, and the normal is
     // any direction across the flat set (its sign arbitrary).
     vec3<double> n = vec3<double>::unit_y();
-    if (poly.vertices.size() == 3)
+    if (poly.vertex_count == 3)
       n = normalize_or(cross(poly.vertices[1].w - poly.vertices[0].w, poly.vertices[2].w - poly.vertices[0].w), n);
-    else if (poly.vertices.size() == 2)
+    else if (poly.vertex_count == 2)
       n = any_perpendicular(normalize_or(poly.vertices[1].w - poly.vertices[0].w, vec3<double>::unit_x()));
     result.normal = narrow<T>(n);
     result.on_a = narrow<T>(poly.vertices[0].a);
@@ -10292,43 +10337,60 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
   poly.add_face(1, 3, 2, inside);
 
   constexpr double relative = sizeof(T) < sizeof(double) ? 1e-6 : 1e-10;
-  constexpr int max_iterations = 128;
-  std::vector<std::pair<int, int>> horizon;
+  // Every edge of every live face, at most: the horizon of a visible set
+  // that is not a disk (rounding) can be longer than the faces it gets.
+  struct directed_edge {
+    int from, to;
+  };
+  detail::scratch_buffer<directed_edge, 3 * detail::polytope::max_faces> horizon{0};
   int nearest = -1;
-  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
+  for (int iteration = 1; iteration <= detail::polytope::max_iterations; ++iteration) {
     result.iterations = iteration;
     nearest = -1;
-    for (int f = 0; f < int(poly.faces.size()); ++f)
-      if (poly.faces[f].live && (nearest < 0 || poly.faces[f].distance < poly.faces[nearest].distance)) nearest = f;
+    for (int f = 0; f < poly.face_count; ++f)
+      if (poly.faces[std::size_t(f)].live &&
+          (nearest < 0 || poly.faces[std::size_t(f)].distance < poly.faces[std::size_t(nearest)].distance))
+        nearest = f;
     if (nearest < 0) break;
-    const detail::polytope::face closest = poly.faces[nearest];
+    const detail::polytope::face closest = poly.faces[std::size_t(nearest)];
     const auto v = support(closest.normal);
     if (dot(closest.normal, v.w) - closest.distance <= relative * (1.0 + std::abs(closest.distance))) break;
-    // Remove the faces the new point sees; their unshared edges are the
-    // horizon, joined to the new point.
-    const int added = int(poly.vertices.size());
-    poly.vertices.push_back(v);
-    horizon.clear();
-    for (auto& f : poly.faces) {
-      if (!f.live || dot(f.normal, v.w - poly.vertices[f.v[0]].w) <= 0.0) continue;
-      f.live = false;
+    // The faces the new point sees go; their unshared edges are the
+    // horizon, joined to the new point. If the new faces would not fit,
+    // stop with the nearest face so far, the polytope left whole.
+    const auto sees = [&](const detail::polytope::face& face) {
+      return face.live && dot(face.normal, v.w - poly.vertices[std::size_t(face.v[0])].w) > 0.0;
+    };
+    int edges = 0, seen = 0;
+    for (int f = 0; f < poly.face_count; ++f) {
+      const detail::polytope::face& face = poly.faces[std::size_t(f)];
+      if (!sees(face)) continue;
+      ++seen;
       for (int e = 0; e < 3; ++e) {
-        const std::pair<int, int> edge{f.v[e], f.v[(e + 1) % 3]};
-        const auto twin = std::find(horizon.begin(), horizon.end(), std::pair<int, int>{edge.second, edge.first});
-        if (twin != horizon.end())
-          horizon.erase(twin);
+        const directed_edge edge{face.v[e], face.v[(e + 1) % 3]};
+        int twin = 0;
+        while (twin < edges && !(horizon[std::size_t(twin)].from == edge.to && horizon[std::size_t(twin)].to == edge.from))
+          ++twin;
+        if (twin < edges)
+          horizon[std::size_t(twin)] = horizon[std::size_t(--edges)];
         else
-          horizon.push_back(edge);
+          horizon[std::size_t(edges++)] = edge;
       }
     }
-    for (const auto& [i, j] : horizon) poly.add_face(i, j, added, inside);
+    const int slots = poly.free_count + seen + (detail::polytope::max_faces - poly.face_count);
+    if (poly.vertex_count == detail::polytope::max_vertices || slots < edges) break;
+    for (int f = 0; f < poly.face_count; ++f)
+      if (sees(poly.faces[std::size_t(f)])) poly.kill(f);
+    const int added = poly.vertex_count;
+    poly.add_vertex(v);
+    for (int k = 0; k < edges; ++k) poly.add_face(horizon[std::size_t(k)].from, horizon[std::size_t(k)].to, added, inside);
   }
   if (nearest < 0) return grown(result);
   // The origin's projection on the nearest face, in its barycentric weights.
-  const detail::polytope::face& f = poly.faces[nearest];
-  const auto& p0 = poly.vertices[f.v[0]];
-  const auto& p1 = poly.vertices[f.v[1]];
-  const auto& p2 = poly.vertices[f.v[2]];
+  const detail::polytope::face& f = poly.faces[std::size_t(nearest)];
+  const auto& p0 = poly.vertices[std::size_t(f.v[0])];
+  const auto& p1 = poly.vertices[std::size_t(f.v[1])];
+  const auto& p2 = poly.vertices[std::size_t(f.v[2])];
   const triangle_point<double> q = closest_point_on_triangle(f.normal * f.distance, p0.w, p1.w, p2.w);
   const vec3<double> on_a = p0.a * q.barycentric.x + p1.a * q.barycentric.y + p2.a * q.barycentric.z;
   const vec3<double> on_b = p0.b * q.barycentric.x + p1.b * q.barycentric.y + p2.b * q.barycentric.z;

@@ -23,7 +23,7 @@
 #include "../shapes/plane.hpp"
 #include "../shapes/sphere.hpp"
 #include "analytic.hpp"
-#include "detail/clipping.hpp"
+#include "detail/scratch_buffer.hpp"
 #include "gjk.hpp"
 #include "manifold.hpp"
 

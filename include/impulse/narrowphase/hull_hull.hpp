@@ -51,6 +51,7 @@
 #include "../shapes/convex_hull.hpp"
 #include "analytic.hpp"
 #include "detail/clipping.hpp"
+#include "detail/scratch_buffer.hpp"
 #include "manifold.hpp"
 
 namespace impulse::narrowphase {

@@ -5,31 +5,11 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstddef>
-#include <vector>
 
 #include "../../math/vec3.hpp"
 
 namespace impulse::narrowphase::detail {
-
-/// Room for `size` values: on the stack up to N (a collision hull's usual
-/// size, so that a resting pair allocates nothing per step), on the heap
-/// past that.
-template <class U, std::size_t N>
-class scratch_buffer {
- public:
-  explicit scratch_buffer(std::size_t size) {
-    if (size > N) large_.resize(size);
-  }
-  [[nodiscard]] U* data() noexcept { return large_.empty() ? small_.data() : large_.data(); }
-  U& operator[](std::size_t i) noexcept { return data()[i]; }
-
- private:
-  std::array<U, N> small_;
-  std::vector<U> large_;
-};
 
 /// Keeps the part of the convex polygon `in` where dot(w, x) <= limit, in
 /// `out`, which must have room for count + 1 points (Sutherland–Hodgman,
