@@ -23,6 +23,14 @@ namespace test {
 template <class T>
 constexpr T contact_tolerance = sizeof(T) == 4 ? T(2e-5) : T(1e-12);
 
+/// Whether a manifold is free of NaN and infinity, with a unit normal.
+template <class T>
+bool finite(const impulse::contact_manifold<T>& m) {
+  bool ok = is_finite(m.normal) && std::abs(length(m.normal) - T(1)) <= T(10) * contact_tolerance<T>;
+  for (const auto& p : m.contacts()) ok = ok && is_finite(p.position) && std::isfinite(p.depth);
+  return ok;
+}
+
 /// The depth of a manifold's deepest point.
 template <class T>
 T deepest(const impulse::contact_manifold<T>& m) {

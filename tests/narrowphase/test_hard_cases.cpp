@@ -17,17 +17,11 @@ namespace {
 using namespace impulse;
 using narrowphase::collide;
 using test::at;
+using test::finite;
 using test::deepest;
 
 template <class T>
 constexpr T tolerance = test::contact_tolerance<T>;
-
-template <class T>
-bool finite(const contact_manifold<T>& m) {
-  bool ok = is_finite(m.normal) && std::abs(length(m.normal) - T(1)) <= T(10) * tolerance<T>;
-  for (const auto& p : m.contacts()) ok = ok && is_finite(p.position) && std::isfinite(p.depth);
-  return ok;
-}
 
 /// The same pair test on a box and on the hull of its corners, A then B.
 template <class T>
