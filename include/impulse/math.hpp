@@ -7,6 +7,7 @@
 #include "math/fwd.hpp"
 #include "math/mat3.hpp"
 #include "math/quat.hpp"
+#include "math/ray.hpp"
 #include "math/scalar_traits.hpp"
 #include "math/transform.hpp"
 #include "math/vec3.hpp"

@@ -11,6 +11,7 @@ template <scalar_type T> struct quat;
 template <scalar_type T> struct mat3;
 template <scalar_type T> struct transform;
 template <scalar_type T> struct aabb;
+template <scalar_type T> struct ray;
 
 using vec3f = vec3<float>;
 using vec3d = vec3<double>;

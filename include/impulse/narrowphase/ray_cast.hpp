@@ -1,6 +1,6 @@
 // impulse/narrowphase/ray_cast.hpp — where a ray first meets a shape.
 //
-// The ray is impulse::ray (broadphase/proxy.hpp), as the broad phases take
+// The ray is impulse::ray (math/ray.hpp), as the broad phases take
 // it: the segment origin + t·translation for t in [0, max_fraction], as in
 // Box2D's b2RayCastInput. Every `ray_cast(ray, shape, pose, max_fraction)`
 // returns a ray_hit: the fraction t of the first point of the shape on the
@@ -89,7 +89,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "../broadphase/proxy.hpp"
+#include "../math/ray.hpp"
 #include "../math/scalar_traits.hpp"
 #include "../math/transform.hpp"
 #include "../shapes/box.hpp"
