@@ -11,6 +11,8 @@
 // (narrowphase/capsule_polyhedron.hpp), ray casts against every shape
 // (narrowphase/ray_cast.hpp), and the time of impact of two moving convex
 // shapes by conservative advancement (narrowphase/time_of_impact.hpp);
+// static triangle meshes against spheres, capsules, boxes and hulls, and
+// rays against them (narrowphase/mesh.hpp);
 // and the table of pair tests built from a config's shape_list
 // (narrowphase/dispatch.hpp).
 #pragma once
@@ -24,6 +26,7 @@
 #include "narrowphase/hull.hpp"
 #include "narrowphase/hull_hull.hpp"
 #include "narrowphase/manifold.hpp"
+#include "narrowphase/mesh.hpp"
 #include "narrowphase/ray_cast.hpp"
 #include "narrowphase/time_of_impact.hpp"
 #include "narrowphase/triangle.hpp"

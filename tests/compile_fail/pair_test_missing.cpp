@@ -18,5 +18,6 @@ using dispatch = impulse::narrowphase::dispatcher<impulse::shape_list<impulse::s
 
 int main() {
   const lump<float> a{0.5f};
-  return dispatch::collide(dispatch::ref(a), {}, dispatch::ref(a), {}).count;
+  impulse::contact_manifold<float> out[1];
+  return int(dispatch::collide(dispatch::ref(a), {}, dispatch::ref(a), {}, 0.0f, out));
 }

@@ -5,6 +5,10 @@
 // tests/compile_fail/pair_test_missing.cpp.)
 #include <doctest/doctest.h>
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "impulse/narrowphase.hpp"
@@ -59,37 +63,58 @@ impulse::contact_manifold<T> collide(const impulse::sphere<T>& a, const impulse:
 }  // namespace user
 
 TEST_CASE_TEMPLATE("every listed pair reaches its own test", T, float, double) {
-  using all = shape_list<sphere, box, capsule, convex_hull, plane>;
+  using all = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh>;
   using dispatch = narrowphase::dispatcher<all, T>;
-  static_assert(dispatch::shape_count == 5);
-  static_assert(dispatch::template index_of<box<T>> == 1 && dispatch::template index_of<plane<T>> == 4);
+  static_assert(dispatch::shape_count == 6);
+  static_assert(dispatch::template index_of<box<T>> == 1 && dispatch::template index_of<triangle_mesh<T>> == 5);
   const sphere<T> ball{T(0.5)};
   const box<T> brick{{T(0.5), T(0.3), T(0.4)}};
   const capsule<T> rod{T(0.2), T(0.5)};
   const convex_hull<T> hull = convex_hull<T>::from_points(test::box_corners<T>({T(0.4), T(0.4), T(0.4)}));
   const plane<T> ground{vec3<T>::unit_y(), T(0)};
+  // A floor of two triangles, 4 m across, facing +y.
+  const std::vector<vec3<T>> corners{{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+  const std::vector<std::uint32_t> triangles{0, 2, 1, 0, 3, 2};
+  const triangle_mesh<T> floor = triangle_mesh<T>::make(corners, triangles);
   const typename dispatch::shape_ref refs[] = {dispatch::ref(ball), dispatch::ref(brick), dispatch::ref(rod),
-                                               dispatch::ref(hull), dispatch::ref(ground)};
-  // Each ordered pair at a pose where most pairs touch, through the table
-  // and directly: the same manifold, to the bit.
+                                               dispatch::ref(hull), dispatch::ref(ground), dispatch::ref(floor)};
+  // Each ordered pair through the table and directly: the same manifolds,
+  // to the bit. At these poses every pair touches but the static ones and
+  // a shape at pa under the floor at pb: the mesh is one-sided, and the
+  // shape's centre is behind it.
   const transform<T> pa = at<T>({}, quat<T>::from_axis_angle(vec3<T>::unit_z(), T(0.3)));
   const transform<T> pb = at<T>({T(0.2), T(0.45), T(-0.1)}, quat<T>::from_axis_angle(vec3<T>::unit_x(), T(0.5)));
-  const auto direct = [&](const auto& a, const auto& b) { return narrowphase::collide(a, pa, b, pb, T(0.01)); };
-  const contact_manifold<T> expected[5][5] = {
-      {direct(ball, ball), direct(ball, brick), direct(ball, rod), direct(ball, hull), direct(ball, ground)},
-      {direct(brick, ball), direct(brick, brick), direct(brick, rod), direct(brick, hull), direct(brick, ground)},
-      {direct(rod, ball), direct(rod, brick), direct(rod, rod), direct(rod, hull), direct(rod, ground)},
-      {direct(hull, ball), direct(hull, brick), direct(hull, rod), direct(hull, hull), direct(hull, ground)},
-      {direct(ground, ball), direct(ground, brick), direct(ground, rod), direct(ground, hull), {}}};
+  const T margin = T(0.01);
+  using manifolds = std::vector<contact_manifold<T>>;
+  const auto one = [](const contact_manifold<T>& m) { return m.empty() ? manifolds{} : manifolds{m}; };
+  const auto direct = [&](const auto& a, const auto& b) -> manifolds {
+    if constexpr (requires { narrowphase::collide(a, pa, b, pb, margin); }) {
+      return one(narrowphase::collide(a, pa, b, pb, margin));
+    } else {
+      std::array<contact_manifold<T>, 4> out;
+      const std::size_t n = narrowphase::collide(a, pa, b, pb, margin, std::span<contact_manifold<T>>(out));
+      return manifolds(out.begin(), out.begin() + std::ptrdiff_t(n));
+    }
+  };
+  const auto row = [&](const auto& a) {
+    return std::array<manifolds, 6>{direct(a, ball), direct(a, brick), direct(a, rod),
+                                    direct(a, hull), direct(a, ground), direct(a, floor)};
+  };
+  std::array<std::array<manifolds, 6>, 6> expected{row(ball), row(brick), row(rod), row(hull), {}, {}};
+  expected[4] = {direct(ground, ball), direct(ground, brick), direct(ground, rod), direct(ground, hull), {}, {}};
+  expected[5] = {direct(floor, ball), direct(floor, brick), direct(floor, rod), direct(floor, hull), {}, {}};
   int touching = 0;
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      const contact_manifold<T> m = dispatch::collide(refs[i], pa, refs[j], pb, T(0.01));
-      CHECK(same(m, expected[i][j]));
-      touching += !m.empty();
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (std::size_t j = 0; j < 6; ++j) {
+      std::array<contact_manifold<T>, 4> out;
+      const std::size_t n = dispatch::collide(refs[i], pa, refs[j], pb, margin, out);
+      REQUIRE(n == expected[i][j].size());
+      for (std::size_t k = 0; k < n; ++k) CHECK(same(out[k], expected[i][j][k]));
+      touching += n > 0;
+      if (i < 4) CHECK((n > 0) == (j != 5));
     }
   }
-  CHECK(touching == 24);  // all but plane against plane
+  CHECK(touching == 28);
 }
 
 TEST_CASE("a user's shape joins by its own collide, and unlisted pairs are never compiled") {
@@ -99,14 +124,13 @@ TEST_CASE("a user's shape joins by its own collide, and unlisted pairs are never
   const sphere<double> ball{0.5};
   const user::lump<double> blob{0.5};
   user::lump_tests = 0;
-  const auto m = dispatch::collide(dispatch::ref(blob), at<double>({}), dispatch::ref(ball), at<double>({0.9, 0, 0}));
-  REQUIRE(m.count == 1);
-  CHECK(m.points[0].depth == doctest::Approx(0.1).epsilon(1e-12));
-  CHECK(m.normal.x == doctest::Approx(1).epsilon(1e-12));
-  const auto flipped =
-      dispatch::collide(dispatch::ref(ball), at<double>({0.9, 0, 0}), dispatch::ref(blob), at<double>({}));
-  CHECK(flipped.normal.x == doctest::Approx(-1).epsilon(1e-12));
-  CHECK(dispatch::collide(dispatch::ref(blob), at<double>({}), dispatch::ref(blob), at<double>({0, 2, 0})).empty());
+  std::array<contact_manifold<double>, 1> out;
+  REQUIRE(dispatch::collide(dispatch::ref(blob), at<double>({}), dispatch::ref(ball), at<double>({0.9, 0, 0}), 0.0, out) == 1);
+  CHECK(out[0].points[0].depth == doctest::Approx(0.1).epsilon(1e-12));
+  CHECK(out[0].normal.x == doctest::Approx(1).epsilon(1e-12));
+  REQUIRE(dispatch::collide(dispatch::ref(ball), at<double>({0.9, 0, 0}), dispatch::ref(blob), at<double>({}), 0.0, out) == 1);
+  CHECK(out[0].normal.x == doctest::Approx(-1).epsilon(1e-12));
+  CHECK(dispatch::collide(dispatch::ref(blob), at<double>({}), dispatch::ref(blob), at<double>({0, 2, 0}), 0.0, out) == 0);
   CHECK(user::lump_tests == 3);
   static_assert(!narrowphase::has_pair_test<user::lump<double>, box<double>, double>);
 }

@@ -4,7 +4,9 @@
 // `dispatcher<shape_list<sphere, box>, float>` holds a table of one entry
 // per ordered pair of listed shapes, each entry the `collide` written for
 // that pair (sphere–box, box–sphere, …), called through the shapes'
-// indices in the list. Only the listed pairs are instantiated: a world of
+// indices in the list. Every entry writes its manifolds into a span and
+// returns how many: one for a pair of convex shapes, one per distinct
+// normal for a mesh (mesh.hpp). Only the listed pairs are instantiated: a world of
 // spheres and boxes compiles none of the hull, capsule or GJK code. Two
 // shapes that are only ever static (planes, triangle meshes) never meet,
 // and their entry returns an empty manifold.
@@ -14,13 +16,15 @@
 // joins by providing `collide(const mine<T>&, const transform<T>&, const
 // other<T>&, const transform<T>&, T margin)` for each shape it is listed
 // with, in its own namespace (found by argument-dependent lookup) or in
-// impulse::narrowphase.
+// impulse::narrowphase; or the form with `std::span<contact_manifold<T>>
+// out` last, returning how many it wrote.
 #pragma once
 
 #include <array>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -35,15 +39,25 @@
 #include "hull.hpp"
 #include "hull_hull.hpp"
 #include "manifold.hpp"
+#include "mesh.hpp"
 
 namespace impulse::narrowphase {
 
 /// Whether `collide(a, pose_a, b, pose_b, margin)` is written for shapes A
-/// then B, in scalar T.
+/// then B, in scalar T, giving one manifold…
 template <class A, class B, class T>
-concept has_pair_test = requires(const A& a, const B& b, const transform<T>& pose, T margin) {
+concept has_manifold_test = requires(const A& a, const B& b, const transform<T>& pose, T margin) {
   { collide(a, pose, b, pose, margin) } -> std::same_as<contact_manifold<T>>;
 };
+/// …or `collide(a, pose_a, b, pose_b, margin, out)`, writing several into
+/// `out` and returning how many (a mesh: one per distinct normal).
+template <class A, class B, class T>
+concept has_manifolds_test =
+    requires(const A& a, const B& b, const transform<T>& pose, T margin, std::span<contact_manifold<T>> out) {
+      { collide(a, pose, b, pose, margin, out) } -> std::same_as<std::size_t>;
+    };
+template <class A, class B, class T>
+concept has_pair_test = has_manifold_test<A, B, T> || has_manifolds_test<A, B, T>;
 
 /// Shapes that only static bodies have (planes, triangle meshes): two of
 /// them never need a pair test.
@@ -80,14 +94,20 @@ struct type_at<0, First, Rest...> {
 /// The call, where unqualified lookup sees every collide above and
 /// argument-dependent lookup adds the user's.
 template <class A, class B, class T>
-contact_manifold<T> call_collide(const void* a, const transform<T>& pose_a, const void* b, const transform<T>& pose_b,
-                                 T margin) {
+std::size_t call_collide(const void* a, const transform<T>& pose_a, const void* b, const transform<T>& pose_b, T margin,
+                         std::span<contact_manifold<T>> out) {
+  const A& shape_a = *static_cast<const A*>(a);
+  const B& shape_b = *static_cast<const B*>(b);
   if constexpr (static_only<A> && static_only<B>) {
-    return {};
-  } else if constexpr (missing_pair_test<A, B, T>::value) {
-    return collide(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, margin);
+    return 0;
+  } else if constexpr (!missing_pair_test<A, B, T>::value) {
+    return 0;  // not reached: missing_pair_test has failed the build
+  } else if constexpr (has_manifolds_test<A, B, T>) {
+    return collide(shape_a, pose_a, shape_b, pose_b, margin, out);
   } else {
-    return {};  // not reached: missing_pair_test has failed the build
+    if (out.empty()) return 0;
+    out[0] = collide(shape_a, pose_a, shape_b, pose_b, margin);
+    return out[0].empty() ? 0 : 1;
   }
 }
 
@@ -128,15 +148,18 @@ class dispatcher<shape_list<Shapes...>, T> {
     return {&shape, index_of<S>};
   }
 
-  /// The manifold of a and b, by the test written for their pair.
-  static contact_manifold<T> collide(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
-                                     const transform<T>& pose_b, T margin = T(0)) {
+  /// The manifolds of a and b, by the test written for their pair: at most
+  /// out.size() (one, but for a mesh one per distinct normal), written to
+  /// out; returns how many.
+  static std::size_t collide(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
+                             const transform<T>& pose_b, T margin, std::span<contact_manifold<T>> out) {
     IMPULSE_ASSERT(a.index < shape_count && b.index < shape_count);
-    return table[a.index * shape_count + b.index](a.shape, pose_a, b.shape, pose_b, margin);
+    return table[a.index * shape_count + b.index](a.shape, pose_a, b.shape, pose_b, margin, out);
   }
 
  private:
-  using pair_test = contact_manifold<T> (*)(const void*, const transform<T>&, const void*, const transform<T>&, T);
+  using pair_test = std::size_t (*)(const void*, const transform<T>&, const void*, const transform<T>&, T,
+                                    std::span<contact_manifold<T>>);
 
   template <std::size_t... I>
   static constexpr std::array<pair_test, shape_count * shape_count> make_table(std::index_sequence<I...>) noexcept {
