@@ -280,6 +280,15 @@ TEST_CASE_TEMPLATE("reduce_to_four keeps the deepest and spans the candidates", 
   CHECK(m.points[1].feature == 5u);
   CHECK(m.points[2].feature == 0u);
 
+  // The same line with each point a rounding off it (1e-7 of its length
+  // across): still a line, not a triangle of noise.
+  for (int k = 0; k < 6; ++k) line[std::size_t(k)].position.z = T(k % 2 ? 1e-7 : -1e-7) * T(5);
+  reduce_to_four(std::span<const contact_point<T>>(line), up, m);
+  REQUIRE(m.count == 3);
+  CHECK(m.points[0].feature == 2u);
+  CHECK(m.points[1].feature == 5u);
+  CHECK(m.points[2].feature == 0u);
+
   // Four or fewer pass through unchanged.
   reduce_to_four(std::span<const contact_point<T>>(octagon.data(), 3), up, m);
   CHECK(m.count == 3);

@@ -102,9 +102,10 @@ void reduce_to_four(std::span<const contact_point<T>> candidates, const vec3<T>&
   const contact_point<T> d = pick(added);
   out.add(a);
   out.add(b);
-  if (area(c) == T(0)) {
-    // All on one line: its two ends (b and the farthest from b), and the
-    // deepest if it lies between them.
+  if (std::abs(area(c)) <= T(1e-3) * across(b.position - a.position)) {
+    // All on one line, to 0.1 % of ab's length (rounding leaves the points
+    // of a capsule lying across a face a hair off it): its two ends (b and
+    // the farthest from b), and the deepest if it lies between them.
     const contact_point<T> e = pick([&](const contact_point<T>& p) { return across(p.position - b.position); });
     if (across(e.position - b.position) > across(a.position - b.position)) out.add(e);
     return;
