@@ -12,8 +12,7 @@
 // - collide: our dedicated pair test and its contact manifold (analytic
 //   for spheres and capsules, SAT + clipping for boxes and hulls) with
 //   margin 0. A row appears for every pairing that has a `collide`
-//   overload when this file is compiled (hull–hull and capsule–box arrive
-//   with hull_hull.hpp and capsule_polyhedron.hpp).
+//   overload.
 // - gjk_epa: the general query: GJK distance, then EPA if they overlap.
 //   libccd: ccdGJKPenetration (GJK, then EPA if they intersect; no
 //   distance when apart); mpr: ccdMPRPenetration. Bullet:
@@ -44,7 +43,17 @@
 //   narrowphase [--quick]   CSV on stdout, a markdown table on stderr
 //
 // --quick runs 512 pairs and 3 rounds (a smoke test).
+//
+// Then each shape on the ground, ours only (libccd has no plane or mesh,
+// and Bullet meets them only through its whole collision world, which
+// bench/scenes will time): the plane y = 0 (`collide` with a plane) and a
+// flat mesh of 100 × 100 one-metre squares (20 000 triangles, `collide`
+// with a triangle_mesh through its tree), each shape at a random spot and
+// turn, its lowest point up to half its depth below the centre into the
+// ground or above it (half overlapping). The reference is the exact
+// height of its lowest point.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -53,17 +62,12 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "convex_pairs.hpp"
 #include "impulse/narrowphase.hpp"
-#if __has_include("impulse/narrowphase/hull_hull.hpp")
-#include "impulse/narrowphase/hull_hull.hpp"
-#endif
-#if __has_include("impulse/narrowphase/capsule_polyhedron.hpp")
-#include "impulse/narrowphase/capsule_polyhedron.hpp"
-#endif
 
 #ifdef IMPULSE_BENCH_HAVE_CCD
 #include "ccd_shapes.hpp"
@@ -319,6 +323,95 @@ std::vector<timed_case> pairing(shape_kind ka, shape_kind kb, int n, std::uint32
   return cases;
 }
 
+/// A shape resting on the ground at a random spot: its spec, posed.
+shape_spec on_ground(shape_kind k, impulse::lcg32& random, double& lowest_height) {
+  shape_spec s = random_shape(k, random);
+  s.pose = {v3{}, random_rotation(random)};
+  const world_core core = core_of(s);
+  double lowest = core.vertices[0].y;
+  for (const v3& v : core.vertices) lowest = std::min(lowest, v.y);
+  lowest -= core.radius;  // below the centre: < 0
+  // The centre stays above the ground (a mesh is one-sided): the lowest
+  // point from half its depth below the centre into the ground to as far
+  // above it.
+  lowest_height = random.uniform(-0.5, 0.5) * -lowest;
+  s.pose.position = {random.uniform(-45.0, 45.0), lowest_height - lowest, random.uniform(-45.0, 45.0)};
+  return s;
+}
+
+/// The ground as a mesh: n × n one-metre squares centred on the origin.
+template <class T>
+impulse::triangle_mesh<T> ground_mesh(int n) {
+  std::vector<vec3<T>> vertices;
+  std::vector<std::uint32_t> indices;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) vertices.push_back({T(i - n / 2), T(0), T(j - n / 2)});
+  const auto at = [n](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      indices.insert(indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+  return impulse::triangle_mesh<T>::make(vertices, indices);
+}
+
+/// The deepest point of the manifolds as a signed distance; a missed
+/// overlap counts its whole depth (0), a pair found apart gives nothing.
+template <class T>
+double signed_from(std::span<const impulse::contact_manifold<T>> manifolds, bool overlapping) {
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const auto& m : manifolds)
+    for (const auto& c : m.contacts()) deepest = std::max(deepest, double(c.depth));
+  if (deepest == -std::numeric_limits<double>::infinity()) return overlapping ? 0.0 : not_given;
+  return -deepest;
+}
+
+/// Shape S on the plane and on the mesh, in scalar T.
+template <template <class> class S, class T>
+void add_ground(std::vector<timed_case>& cases, shape_kind k, const char* engine, const std::vector<shape_spec>& specs,
+                const std::vector<double>& reference, const std::vector<std::size_t>& all) {
+  struct shapes {
+    std::vector<S<T>> shape;
+    std::vector<impulse::transform<T>> pose;
+    impulse::plane<T> ground{vec3<T>::unit_y(), T(0)};
+    impulse::triangle_mesh<T> mesh = ground_mesh<T>(100);
+  };
+  auto s = std::make_shared<shapes>();
+  for (const shape_spec& spec : specs) {
+    s->shape.push_back(make<S<T>>(spec));
+    s->pose.push_back(pose_of<T>(spec));
+  }
+  const std::string name = name_of(k);
+  cases.push_back(make_case(name + "-plane", "collide", engine, all, reference, [s, &reference](std::size_t i) {
+    const impulse::contact_manifold<T> m[1] = {
+        impulse::narrowphase::collide(s->shape[i], s->pose[i], s->ground, impulse::transform<T>::identity(), T(0))};
+    return signed_from<T>(m, reference[i] < 0);
+  }));
+  cases.push_back(make_case(name + "-mesh", "collide", engine, all, reference, [s, &reference](std::size_t i) {
+    std::array<impulse::contact_manifold<T>, 4> out;
+    const std::size_t n = impulse::narrowphase::collide(s->mesh, impulse::transform<T>::identity(), s->shape[i],
+                                                        s->pose[i], T(0), std::span<impulse::contact_manifold<T>>(out));
+    return signed_from<T>(std::span<const impulse::contact_manifold<T>>(out.data(), n), reference[i] < 0);
+  }));
+}
+
+template <template <class> class S>
+std::vector<timed_case> ground(shape_kind k, int n, std::uint32_t seed, std::vector<std::vector<double>>& keep) {
+  impulse::lcg32 random{seed};
+  std::vector<shape_spec> specs;
+  std::vector<double> reference;
+  std::vector<std::size_t> all;
+  for (int i = 0; i < n; ++i) {
+    double height = 0;
+    specs.push_back(on_ground(k, random, height));
+    reference.push_back(height);
+    all.push_back(std::size_t(i));
+  }
+  keep.push_back(reference);  // the cases read it by reference
+  std::vector<timed_case> cases;
+  add_ground<S, float>(cases, k, "impulse_f32", specs, keep.back(), all);
+  add_ground<S, double>(cases, k, "impulse_f64", specs, keep.back(), all);
+  return cases;
+}
+
 /// Runs every case of a pairing once per round, interleaved.
 void time_cases(std::vector<timed_case>& cases, int rounds) {
   volatile double sink = 0;
@@ -360,6 +453,15 @@ int main(int argc, char** argv) {
   pairings.push_back(pairing<capsule, box>(K::capsule, K::box, n, 105, false, keep));
   pairings.push_back(pairing<sphere, convex_hull>(K::sphere, K::hull, n, 106, false, keep));
   pairings.push_back(pairing<convex_hull, convex_hull>(K::hull, K::hull, n, 107, true, keep));
+  pairings.push_back(pairing<sphere, capsule>(K::sphere, K::capsule, n, 108, false, keep));
+  pairings.push_back(pairing<box, convex_hull>(K::box, K::hull, n, 109, false, keep));
+  pairings.push_back(pairing<capsule, convex_hull>(K::capsule, K::hull, n, 110, false, keep));
+  std::vector<std::vector<double>> heights;
+  heights.reserve(4);  // the cases hold references into it
+  pairings.push_back(ground<sphere>(K::sphere, n, 111, heights));
+  pairings.push_back(ground<capsule>(K::capsule, n, 112, heights));
+  pairings.push_back(ground<box>(K::box, n, 113, heights));
+  pairings.push_back(ground<convex_hull>(K::hull, n, 114, heights));
 
   std::printf("pair,algorithm,engine,ns_per_test_median,tests_per_second,max_abs_error_vs_reference\n");
   std::fprintf(stderr, "| pair | algorithm | engine | ns/test (median of %d) | tests/s | max error (m) |\n", rounds);
