@@ -223,9 +223,11 @@ class manifold_merger {
   /// Keeps at most four of the n candidates in `group`. Points along one
   /// line (a capsule lying across several triangles, within 1e-3 of the
   /// line's length of it) keep the line's two ends, and the deepest point
-  /// if it is deeper than both (a line over a bent mesh); else
-  /// reduce_to_four, whose own test for a line asks for an exact zero area,
-  /// which rounding seldom gives.
+  /// if it is deeper than both by the weld distance (a line over a bent
+  /// mesh); else reduce_to_four. (reduce_to_four's own line case keeps the
+  /// deepest point whatever its depth; here the welded duplicates from
+  /// neighbouring triangles would make it keep a third point of the same
+  /// depth.)
   void reduce(const contact_point<T>* candidates, std::size_t n, contact_manifold<T>& group) const noexcept {
     const vec3<T> normal = group.normal;
     const auto across = [&](const vec3<T>& d) { return d - normal * dot(d, normal); };
