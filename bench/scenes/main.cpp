@@ -1,0 +1,169 @@
+// bench/scenes: DESIGN.md's standard rigid-body scenes (scene_spec.hpp) on
+// every engine compiled in, judged by the same metrics (metrics.hpp).
+//
+//   scenes [--scene NAME]... [--engine NAME]... [--csv FILE]
+//
+// prints CSV on stdout, one row per metric:
+//
+//   engine,config,scene,ms_per_step_median,metric,value
+//
+// ms_per_step_median is the median time of the engine's step call
+// (steady_clock around step() alone: collision detection, solving and
+// integration, not the reading of states) over the last 300 steps, or the
+// last half of a shorter run, repeated on each of the scene's rows. Every
+// scene is built fresh for each engine. --csv FILE writes the same CSV to
+// FILE too; progress goes to stderr.
+//
+// An engine is a type modelling scene_engine (engine.hpp): to add one,
+// include its header and add it to engines() below.
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine.hpp"
+#include "metrics.hpp"
+#include "scene_spec.hpp"
+
+#ifdef IMPULSE_BENCH_HAVE_BULLET
+#include "bullet_engine.hpp"
+#endif
+#ifdef IMPULSE_BENCH_HAVE_ODE
+#include "ode_engine.hpp"
+#endif
+
+namespace {
+
+using namespace bench::scenes;
+
+struct scene_result {
+  std::string config;
+  double ms_per_step_median = 0;
+  std::vector<metric_value> metrics;
+};
+
+template <scene_engine E>
+scene_result run_scene(const scene_spec& spec) {
+  E engine;
+  engine.build(spec);
+  metric_recorder recorder{spec};
+  std::vector<double> step_ms;
+  step_ms.reserve(static_cast<std::size_t>(spec.steps));
+  for (int step = 1; step <= spec.steps; ++step) {
+    const auto start = std::chrono::steady_clock::now();
+    engine.step();
+    const auto stop = std::chrono::steady_clock::now();
+    step_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+    if (recorder.wants(step)) recorder.observe(step, engine.states());
+  }
+  return {engine.config(), median_of_last(step_ms, timing_window(spec.steps)), recorder.results()};
+}
+
+struct engine_entry {
+  std::string_view name;
+  scene_result (*run)(const scene_spec&);
+};
+
+std::vector<engine_entry> engines() {
+  std::vector<engine_entry> list;
+#ifdef IMPULSE_BENCH_HAVE_BULLET
+  list.push_back({bullet_engine::name, &run_scene<bullet_engine>});
+#endif
+#ifdef IMPULSE_BENCH_HAVE_ODE
+  list.push_back({ode_engine::name, &run_scene<ode_engine>});
+#endif
+  return list;
+}
+
+/// Six significant digits: more than any of these figures can be trusted to.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+bool contains(const std::vector<std::string_view>& list, std::string_view s) {
+  for (std::string_view x : list)
+    if (x == s) return true;
+  return false;
+}
+
+int usage(const char* program) {
+  std::fprintf(stderr, "usage: %s [--scene NAME]... [--engine NAME]... [--csv FILE]\nscenes:", program);
+  for (std::string_view s : scene_names()) std::fprintf(stderr, " %.*s", int(s.size()), s.data());
+  std::fprintf(stderr, "\nengines:");
+  for (const engine_entry& e : engines()) std::fprintf(stderr, " %.*s", int(e.name.size()), e.name.data());
+  std::fprintf(stderr, "\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string_view> scenes, engine_names;
+  const char* csv_path = nullptr;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if ((arg == "--scene" || arg == "--engine" || arg == "--csv") && i + 1 < argc) {
+      const char* value = argv[++i];
+      if (arg == "--scene") scenes.emplace_back(value);
+      else if (arg == "--engine") engine_names.emplace_back(value);
+      else csv_path = value;
+    } else {
+      return usage(argv[0]);
+    }
+  }
+  for (std::string_view s : scenes)
+    if (!contains(scene_names(), s)) {
+      std::fprintf(stderr, "unknown scene: %.*s\n", int(s.size()), s.data());
+      return usage(argv[0]);
+    }
+  std::vector<engine_entry> selected;
+  for (const engine_entry& e : engines())
+    if (engine_names.empty() || contains(engine_names, e.name)) selected.push_back(e);
+  if (selected.empty() || (!engine_names.empty() && selected.size() != engine_names.size())) {
+    std::fprintf(stderr, "no such engine compiled in\n");
+    return usage(argv[0]);
+  }
+  if (scenes.empty()) scenes = scene_names();
+
+  std::FILE* csv = nullptr;
+  if (csv_path != nullptr && (csv = std::fopen(csv_path, "w")) == nullptr) {
+    std::fprintf(stderr, "cannot write %s: %s\n", csv_path, std::strerror(errno));
+    return 1;
+  }
+  auto emit = [csv](const std::string& line) {
+    std::fputs(line.c_str(), stdout);
+    if (csv != nullptr) std::fputs(line.c_str(), csv);
+  };
+  emit("engine,config,scene,ms_per_step_median,metric,value\n");
+  std::fflush(stdout);
+
+  int status = 0;
+  for (std::string_view scene_name : scenes) {
+    const scene_spec spec = make_scene(scene_name);
+    for (const engine_entry& e : selected) {
+      std::fprintf(stderr, "%.*s %s: %zu bodies, %d steps ... ", int(e.name.size()), e.name.data(), spec.name.c_str(),
+                   spec.bodies.size(), spec.steps);
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        const scene_result r = e.run(spec);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "%.4f ms/step (%.1f s)\n", r.ms_per_step_median, seconds);
+        for (const metric_value& m : r.metrics)
+          emit(std::string(e.name) + ',' + r.config + ',' + spec.name + ',' + number(r.ms_per_step_median) + ',' +
+               m.name + ',' + number(m.value) + '\n');
+        std::fflush(stdout);
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "failed: %s\n", error.what());
+        status = 1;
+      }
+    }
+  }
+  if (csv != nullptr) std::fclose(csv);
+  return status;
+}
