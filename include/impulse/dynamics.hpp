@@ -1,11 +1,17 @@
 // impulse/dynamics.hpp — the dynamics module: rigid bodies, their motion
-// under forces and springs. (Contacts and joints follow.)
+// under forces and springs, materials, contact constraints and the contact
+// solvers. (Joints follow.)
 #pragma once
 
 #include "config.hpp"
 #include "dynamics/body_motion.hpp"
 #include "dynamics/body_spring.hpp"
+#include "dynamics/contact_constraint.hpp"
 #include "dynamics/fwd.hpp"
+#include "dynamics/island.hpp"
+#include "dynamics/material.hpp"
 #include "dynamics/rigid_body.hpp"
 #include "dynamics/rigid_body_system.hpp"
+#include "dynamics/sequential_impulse.hpp"
+#include "dynamics/solver_settings.hpp"
 #include "integrators.hpp"

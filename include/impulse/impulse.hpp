@@ -11,3 +11,4 @@
 #include "narrowphase.hpp"
 #include "particles.hpp"
 #include "shapes.hpp"
+#include "world.hpp"

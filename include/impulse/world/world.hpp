@@ -1,0 +1,912 @@
+// impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
+// materials, stepped through the pipeline of DESIGN.md.
+//
+// One step, in order (Box2D v3's order: collide from where the bodies are,
+// then solve and move):
+//
+//   broad phase   each moving body's box, grown by the speculative
+//                 distance, is moved; the broad phase reports the pairs.
+//   narrow phase  each pair with a dynamic body gets its manifolds, from
+//                 the dispatcher of the config's shape_list; points that
+//                 keep their feature id keep their impulses (warm start).
+//                 Pairs that start or stop touching become events.
+//   islands       (sleeping on) union–find over touching contacts; an
+//                 island with any body awake is awake entirely.
+//   solver        the config's solver (sequential_impulse, soft_step)
+//                 applies this step's forces, solves the contacts and
+//                 moves the awake bodies.
+//   sleeping      (sleeping on) an island whose every body has been slow
+//                 for sleep_time goes to sleep: no forces, no contacts
+//                 solved, no narrow phase, until something wakes it.
+//
+// Bodies keep Baraff's state (rigid_body.hpp): the solver works on
+// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step, and
+// writes back P = m·v and L = I_w·ω with the inertia the step started with,
+// so that with no contact a spinning body keeps its angular momentum
+// exactly and precesses as the free rigid body does. Forces are held
+// constant over a step, so every integrator policy gives the same velocity
+// change, F·dt/m; the integrator matters once forces depend on the state
+// within a step (springs; issue 8's joints).
+//
+// The world is a value: copying it copies every body, shape, contact and
+// impulse, and snapshot() / restore() are that copy. A step is a pure
+// function of the state (no clocks, no addresses, containers iterated in
+// id order), so the same state stepped twice gives the same bits.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "../broadphase/broad_phase.hpp"
+#include "../config.hpp"
+#include "../core/error.hpp"
+#include "../core/slot_map.hpp"
+#include "../dynamics/body_motion.hpp"
+#include "../dynamics/contact_constraint.hpp"
+#include "../dynamics/island.hpp"
+#include "../dynamics/rigid_body.hpp"
+#include "../narrowphase/dispatch.hpp"
+#include "../narrowphase/ray_cast.hpp"
+#include "body_def.hpp"
+#include "debug_draw.hpp"
+#include "fwd.hpp"
+#include "shape_store.hpp"
+#include "world_traits.hpp"
+
+namespace impulse {
+
+template <class Config>
+class world {
+  static_assert(check_config<Config>());
+
+ public:
+  using config = Config;
+  using scalar = typename Config::scalar;
+  using T = scalar;
+  using shapes = typename detail::world_shapes<Config>::type;
+  using broad_phase_type = typename detail::world_broadphase<Config>::type::template type<T>;
+  using solver_policy = typename detail::world_solver<Config>::type;
+  using solver_type = typename solver_policy::template type<T>;
+  using integrator = typename Config::integrator;
+  static constexpr bool sleeping = detail::world_sleeping<Config>();
+  /// Manifolds one pair can have: one for two convex shapes, one per
+  /// distinct normal against a mesh (a box in a corner of it: two or three).
+  static constexpr int max_manifolds = 4;
+
+  static_assert(broadphase::broad_phase<broad_phase_type, T>,
+                "impulse world: the config's broadphase is not a broad phase for its scalar");
+
+  explicit world(const world_settings<T>& settings = {}) {
+    settings.validate();
+    state_.settings = settings;
+  }
+
+  // ---- settings ----
+
+  [[nodiscard]] const world_settings<T>& settings() const noexcept { return state_.settings; }
+  void set_settings(const world_settings<T>& settings) {
+    settings.validate();
+    state_.settings = settings;
+  }
+  void set_gravity(const vec3<T>& g) {
+    if (!is_finite(g)) detail::report_error(error_code::non_finite, "world::set_gravity: gravity is not finite");
+    state_.settings.gravity = g;
+    wake_all();
+  }
+
+  // ---- bodies ----
+
+  /// Makes a body of `shape` (one of the config's shapes) as `def` says.
+  /// A dynamic body takes the shape's exact mass properties at
+  /// def.material.density, or scaled to def.mass. Bad input (a degenerate
+  /// shape, a non-finite or non-unit pose, a dynamic plane or mesh, an
+  /// infinite or negative mass) is refused and the world is unchanged.
+  template <class Shape>
+  body_id create_body(const body_def<T>& def, const Shape& shape) {
+    static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
+                  "impulse world: this shape is not in the config's shape_list");
+    shape.validate();
+    def.material.validate();
+    rigid_body<T> body = make_body(def, shape);  // checks the pose, the mass and the type
+    vec3<T> center{};
+    if (def.type == body_type::dynamic) {
+      center = centre_of_mass(def, shape);
+      body.position = apply(def.pose, center);
+    }
+    if (!is_finite(def.linear_velocity) || !is_finite(def.angular_velocity))
+      detail::report_error(error_code::non_finite, "world::create_body: velocity is not finite");
+    if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
+      detail::report_error(error_code::invalid_parameter, "world::create_body: a static body cannot move");
+    if (def.type != body_type::static_body) body.set_velocity(def.linear_velocity, def.angular_velocity);
+
+    // Nothing below can fail on the input.
+    body_record record{};
+    record.body = body;
+    record.material = def.material;
+    record.center = center;
+    record.shape = state_.shape_store.add(shape);
+    record.awake = def.awake || def.type != body_type::dynamic;
+    record.user_data = def.user_data;
+    record.previous = body.pose();
+    const body_id id = state_.bodies.insert(record);
+    body_record& r = state_.bodies[id];
+    r.proxy = state_.broad.create(proxy_box(r), pack(id));
+    return id;
+  }
+
+  /// Removes a body and its contacts; the bodies it touched wake. A stale
+  /// or destroyed id is refused.
+  void destroy_body(body_id id) {
+    require(id, "world::destroy_body: no such body (destroyed already?)");
+    std::erase_if(state_.contacts, [&](const contact_record& c) {
+      if (c.a != id && c.b != id) return false;
+      if (c.touching) state_.ended.push_back({c.a, c.b});
+      const body_id other = c.a == id ? c.b : c.a;
+      wake_record(state_.bodies[other]);
+      return true;
+    });
+    body_record& r = state_.bodies[id];
+    state_.broad.destroy(r.proxy);
+    state_.shape_store.remove(r.shape);
+    state_.bodies.erase(id);
+  }
+
+  [[nodiscard]] bool contains(body_id id) const noexcept { return state_.bodies.contains(id); }
+  [[nodiscard]] std::size_t body_count() const noexcept { return state_.bodies.size(); }
+  /// Every live body, in storage order.
+  [[nodiscard]] std::span<const body_id> body_ids() const noexcept { return state_.bodies.ids(); }
+  /// A body's state (position of its centre of mass, orientation, momenta,
+  /// mass properties).
+  [[nodiscard]] const rigid_body<T>& body(body_id id) const {
+    require(id, "world::body: no such body");
+    return state_.bodies[id].body;
+  }
+  /// Where the body's shape is: its origin and orientation.
+  [[nodiscard]] transform<T> shape_pose(body_id id) const {
+    require(id, "world::shape_pose: no such body");
+    return shape_pose_of(state_.bodies[id]);
+  }
+  /// The shape pose between the last two steps: alpha 0 at the start of
+  /// the last step, 1 at its end (advance() returns the alpha of the time
+  /// left over). Rendering at it hides the fixed step's stutter.
+  [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const {
+    require(id, "world::interpolated_pose: no such body");
+    const body_record& r = state_.bodies[id];
+    const transform<T> now = r.body.pose();
+    quat<T> q1 = now.rotation;
+    if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
+    const transform<T> centre{lerp(r.previous.position, now.position, alpha),
+                              normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
+    return {centre.position - rotate(centre.rotation, r.center), centre.rotation};
+  }
+  [[nodiscard]] const impulse::material<T>& material_of(body_id id) const {
+    require(id, "world::material_of: no such body");
+    return state_.bodies[id].material;
+  }
+  [[nodiscard]] std::uint64_t user_data(body_id id) const {
+    require(id, "world::user_data: no such body");
+    return state_.bodies[id].user_data;
+  }
+  [[nodiscard]] bool is_awake(body_id id) const {
+    require(id, "world::is_awake: no such body");
+    return state_.bodies[id].awake;
+  }
+  [[nodiscard]] std::size_t awake_body_count() const noexcept {
+    std::size_t n = 0;
+    for (const body_record& r : state_.bodies.values()) n += r.body.type == body_type::dynamic && r.awake;
+    return n;
+  }
+
+  /// Sets a body's velocities (a dynamic or kinematic body) and wakes it.
+  void set_velocity(body_id id, const vec3<T>& linear, const vec3<T>& angular) {
+    require(id, "world::set_velocity: no such body");
+    body_record& r = state_.bodies[id];
+    r.body.set_velocity(linear, angular);  // refuses non-finite values and static bodies
+    wake_record(r);
+  }
+  /// Moves a body (its shape's origin) at once, and wakes it. Contacts
+  /// follow at the next step; nothing in between is swept.
+  void set_pose(body_id id, const transform<T>& pose) {
+    require(id, "world::set_pose: no such body");
+    body_record& r = state_.bodies[id];
+    rigid_body<T> moved = r.body;
+    moved.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
+    r.body = moved;
+    r.previous = moved.pose();
+    state_.broad.move(r.proxy, proxy_box(r));
+    wake_record(r);
+  }
+  /// A force through the centre of mass for the next step, N.
+  void apply_force(body_id id, const vec3<T>& force) {
+    body_record& r = dynamic_record(id, "world::apply_force: no such body");
+    r.body.apply_force(force);
+    wake_record(r);
+  }
+  /// A force at a world point for the next step, N.
+  void apply_force_at(body_id id, const vec3<T>& force, const vec3<T>& point) {
+    body_record& r = dynamic_record(id, "world::apply_force_at: no such body");
+    r.body.apply_force_at(force, point);
+    wake_record(r);
+  }
+  void apply_torque(body_id id, const vec3<T>& torque) {
+    body_record& r = dynamic_record(id, "world::apply_torque: no such body");
+    r.body.apply_torque(torque);
+    wake_record(r);
+  }
+  /// An impulse at a world point, now, N·s.
+  void apply_impulse_at(body_id id, const vec3<T>& impulse, const vec3<T>& point) {
+    body_record& r = dynamic_record(id, "world::apply_impulse_at: no such body");
+    r.body.apply_impulse_at(impulse, point);
+    wake_record(r);
+  }
+  void wake(body_id id) {
+    require(id, "world::wake: no such body");
+    wake_record(state_.bodies[id]);
+  }
+
+  // ---- stepping ----
+
+  /// Advances the world by dt seconds. Events of this step replace the
+  /// last step's. A body whose state becomes non-finite (valid input can
+  /// still overflow) is left where it was with no velocity, the others
+  /// keep their step, and the error names it.
+  void step(T dt) {
+    if (!std::isfinite(dt) || !(dt > T(0)))
+      detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
+    state_.begun.clear();
+    state_.ended.clear();
+    failed_ = no_object;
+    update_broad_phase();
+    update_contacts();
+    if constexpr (sleeping) wake_islands();
+    solve(dt);
+    if constexpr (sleeping) update_sleep(dt);
+    state_.time += dt;
+    state_.last_dt = dt;
+    ++state_.step_count;
+    if (failed_ != no_object)
+      detail::report_error(error_code::non_finite,
+                           "world::step: a body's state became non-finite; it was left where it was", failed_);
+  }
+
+  /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
+  /// what was left over from the last call allow, at most
+  /// max_steps_per_advance; returns the fraction of a step left over, the
+  /// alpha for interpolated_pose.
+  T advance(T frame_dt) {
+    if (!std::isfinite(frame_dt) || frame_dt < T(0))
+      detail::report_error(error_code::invalid_parameter, "world::advance: frame_dt must be finite and >= 0");
+    const T h = state_.settings.fixed_dt;
+    state_.accumulator += frame_dt;
+    int steps = 0;
+    // A step is due once the time left is within rounding of h: 2.5 steps
+    // and then 0.5 more make three, though the sum falls an ulp short.
+    const T due = h * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
+    while (state_.accumulator >= due && steps < state_.settings.max_steps_per_advance) {
+      step(h);
+      state_.accumulator = std::max(state_.accumulator - h, T(0));
+      ++steps;
+    }
+    // Past the cap the remaining time is dropped: the simulation falls
+    // behind the clock rather than trying to catch up ever harder.
+    if (state_.accumulator >= due) state_.accumulator = std::fmod(state_.accumulator, h);
+    return state_.accumulator / h;
+  }
+
+  [[nodiscard]] T time() const noexcept { return state_.time; }
+  [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
+
+  // ---- events and contacts ----
+
+  /// Pairs that began touching in the last step.
+  [[nodiscard]] std::span<const contact_event> contact_begin_events() const noexcept { return state_.begun; }
+  /// Pairs that stopped touching in the last step, or lost a body since.
+  [[nodiscard]] std::span<const contact_event> contact_end_events() const noexcept { return state_.ended; }
+
+  /// f(a, b, manifolds) for every touching pair; each manifold's normal
+  /// points from a into b.
+  template <class F>
+  void for_each_contact(F&& f) const {
+    for (const contact_record& c : state_.contacts)
+      if (c.touching)
+        f(c.a, c.b, std::span<const contact_manifold<T>>(c.manifolds.data(), std::size_t(c.manifold_count)));
+  }
+  [[nodiscard]] std::size_t touching_pair_count() const noexcept {
+    return std::size_t(std::count_if(state_.contacts.begin(), state_.contacts.end(),
+                                     [](const contact_record& c) { return c.touching; }));
+  }
+
+  // ---- queries ----
+
+  /// The nearest body along the ray within max_fraction of its translation.
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1)) const {
+    std::optional<world_ray_hit<T>> best;
+    T reach = max_fraction;
+    state_.broad.ray_cast(r, max_fraction, [&](proxy_id proxy, T) {
+      const body_id id = unpack(state_.broad.user_data(proxy));
+      const body_record& rec = state_.bodies[id];
+      const transform<T> pose = shape_pose_of(rec);
+      const narrowphase::ray_hit<T> hit =
+          state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
+      if (hit.hit && hit.fraction <= reach) {
+        reach = hit.fraction;
+        best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
+      }
+      return reach;
+    });
+    return best;
+  }
+
+  /// f(body) for every body whose shape's bounding box overlaps `box`.
+  template <class F>
+  void overlap(const aabb<T>& box, F&& f) const {
+    if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
+      detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
+    state_.broad.query(box, [&](proxy_id proxy) {
+      const body_id id = unpack(state_.broad.user_data(proxy));
+      if (overlaps(bounds_of(state_.bodies[id]), box)) f(id);
+    });
+  }
+
+  // ---- drawing ----
+
+  template <class D>
+    requires debug_drawer<D, T>
+  void draw(D& d, const debug_draw_flags& flags = {}) const {
+    if (flags.aabbs)
+      for (const body_record& r : state_.bodies.values()) draw_box(d, bounds_of(r), colour_of(r));
+    for (const contact_record& c : state_.contacts) {
+      if (!c.touching) continue;
+      for (int m = 0; m < c.manifold_count; ++m) {
+        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        for (int i = 0; i < manifold.count; ++i) {
+          const vec3<T>& p = manifold.points[std::size_t(i)].position;
+          if (flags.contacts) d.point(p, debug_color{1, 0.2f, 0.2f});
+          if (flags.normals) d.arrow(p, p + manifold.normal * T(0.2), debug_color{1, 1, 0.2f});
+          if (flags.forces && state_.last_dt > T(0)) {
+            const T force = c.impulses[std::size_t(m)].normal[std::size_t(i)] / state_.last_dt;
+            d.arrow(p, p + manifold.normal * (force * T(0.01)), debug_color{1, 0.5f, 0});
+          }
+        }
+      }
+    }
+    if (flags.velocities)
+      for (const body_record& r : state_.bodies.values())
+        if (r.body.type != body_type::static_body)
+          d.arrow(r.body.position, r.body.position + r.body.linear_velocity() * T(0.1), debug_color{0.2f, 0.6f, 1});
+  }
+
+  // ---- snapshot ----
+
+  /// Everything a step reads: bodies, shapes, broad phase, contacts with
+  /// their impulses, events, time and settings.
+  [[nodiscard]] world_snapshot<Config> snapshot() const { return world_snapshot<Config>(state_); }
+  void restore(const world_snapshot<Config>& s) { state_ = s.state_; }
+
+  // ---- what is conserved, for tests and diagnostics ----
+
+  [[nodiscard]] T kinetic_energy() const noexcept {
+    T e = T(0);
+    for (const body_record& r : state_.bodies.values()) e += r.body.kinetic_energy();
+    return e;
+  }
+
+ private:
+  friend class world_snapshot<Config>;
+  using dispatcher = narrowphase::dispatcher<shapes, T>;
+
+  struct body_record {
+    rigid_body<T> body;
+    impulse::material<T> material;
+    detail::shape_handle shape;
+    vec3<T> center{};      ///< centre of mass in shape space
+    proxy_id proxy;
+    transform<T> previous;  ///< the centre-of-mass pose at the start of the last step
+    T sleep_timer = T(0);   ///< s spent below the sleep speeds
+    bool awake = true;
+    std::uint64_t user_data = 0;
+  };
+
+  /// A pair of bodies whose boxes overlap, and what the narrow phase and
+  /// the solver know of it. Kept sorted by proxy pair, the broad phase's
+  /// order, so that each step's pairs merge with the last step's in one
+  /// pass, with no lookup.
+  struct contact_record {
+    proxy_pair key;
+    body_id a, b;  ///< a owns key.a
+    T friction = T(0), restitution = T(0);
+    int manifold_count = 0;
+    bool touching = false;
+    std::array<contact_manifold<T>, max_manifolds> manifolds{};
+    std::array<manifold_impulse<T>, max_manifolds> impulses{};
+  };
+
+  struct state {
+    world_settings<T> settings{};
+    slot_map<body_record, body_id> bodies;
+    detail::shape_store<shapes, T> shape_store;
+    broad_phase_type broad;
+    std::vector<contact_record> contacts;
+    std::vector<contact_event> begun, ended;
+    T time = T(0), accumulator = T(0), last_dt = T(0);
+    std::uint64_t step_count = 0;
+  };
+
+  // ---- bodies ----
+
+  void require(body_id id, const char* message) const {
+    if (!state_.bodies.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+  body_record& dynamic_record(body_id id, const char* message) {
+    require(id, message);
+    body_record& r = state_.bodies[id];
+    if (r.body.type != body_type::dynamic)
+      detail::report_error(error_code::invalid_parameter, "world: forces and impulses move dynamic bodies only",
+                           id.index);
+    return r;
+  }
+
+  template <class Shape>
+  static rigid_body<T> make_body(const body_def<T>& def, const Shape& shape) {
+    if (!std::isfinite(def.mass) || def.mass < T(0))
+      detail::report_error(error_code::non_finite,
+                           "world::create_body: mass must be finite and >= 0 (a body that cannot move is static)");
+    if (def.type != body_type::dynamic) return rigid_body<T>::fixed(def.type, def.pose);
+    if constexpr (requires { mass_properties_of(shape, T(1)); }) {
+      mass_properties<T> p = mass_properties_of(shape, def.material.density);
+      if (def.mass > T(0)) {
+        p.inertia = p.inertia * (def.mass / p.mass);
+        p.mass = def.mass;
+      }
+      rigid_body<T> b = rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
+      return b;
+    } else {
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_body: planes and triangle meshes can only be static or kinematic");
+    }
+  }
+  template <class Shape>
+  static vec3<T> centre_of_mass(const body_def<T>& def, const Shape& shape) {
+    if constexpr (requires { mass_properties_of(shape, T(1)); }) {
+      return mass_properties_of(shape, def.material.density).center;
+    } else {
+      return {};
+    }
+  }
+
+  static transform<T> shape_pose_of(const body_record& r) noexcept {
+    return {r.body.position - rotate(r.body.orientation, r.center), r.body.orientation};
+  }
+  aabb<T> bounds_of(const body_record& r) const {
+    const transform<T> pose = shape_pose_of(r);
+    return state_.shape_store.visit(r.shape, [&](const auto& s) { return s.world_aabb(pose); });
+  }
+  aabb<T> proxy_box(const body_record& r) const {
+    return expand(bounds_of(r), state_.settings.solver.speculative_distance);
+  }
+  typename dispatcher::shape_ref shape_ref_of(const body_record& r) const noexcept {
+    return {state_.shape_store.address(r.shape), r.shape.type};
+  }
+
+  static std::uint64_t pack(body_id id) noexcept { return std::uint64_t(id.index) | (std::uint64_t(id.generation) << 32); }
+  static body_id unpack(std::uint64_t data) noexcept {
+    return body_id{std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32)};
+  }
+
+  static void wake_record(body_record& r) noexcept {
+    r.awake = true;
+    r.sleep_timer = T(0);
+  }
+  void wake_all() noexcept {
+    for (body_record& r : state_.bodies.values()) wake_record(r);
+  }
+  static bool is_moving(const body_record& r) noexcept {
+    if (r.body.type == body_type::dynamic) return r.awake;
+    if (r.body.type == body_type::kinematic)
+      return r.body.kinematic_velocity != vec3<T>{} || r.body.kinematic_angular_velocity != vec3<T>{};
+    return false;
+  }
+
+  // ---- broad phase ----
+
+  void update_broad_phase() {
+    for (const body_record& r : state_.bodies.values())
+      if (is_moving(r)) state_.broad.move(r.proxy, proxy_box(r));
+    state_.broad.update();
+  }
+
+  // ---- narrow phase ----
+
+  void update_contacts() {
+    const std::span<const proxy_pair> pairs = state_.broad.pairs();
+    std::vector<contact_record>& old = state_.contacts;
+    next_contacts_.clear();
+    std::size_t i = 0;
+    for (const proxy_pair& pair : pairs) {
+      while (i < old.size() && old[i].key < pair) end_contact(old[i++]);
+      if (i < old.size() && old[i].key == pair) {
+        next_contacts_.push_back(old[i++]);
+      } else {
+        const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
+        const body_record& ra = state_.bodies[a];
+        const body_record& rb = state_.bodies[b];
+        if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic) continue;
+        contact_record c{};
+        c.key = pair;
+        c.a = a, c.b = b;
+        c.friction = combine_friction(ra.material.friction, rb.material.friction);
+        c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
+        next_contacts_.push_back(c);
+      }
+      collide(next_contacts_.back());
+    }
+    while (i < old.size()) end_contact(old[i++]);
+    old.swap(next_contacts_);
+  }
+
+  void end_contact(const contact_record& c) {
+    if (c.touching) state_.ended.push_back({c.a, c.b});
+  }
+
+  void collide(contact_record& c) {
+    const body_record& ra = state_.bodies[c.a];
+    const body_record& rb = state_.bodies[c.b];
+    // Two bodies that are not moving keep their manifolds: sleeping ones
+    // wake with the contacts they slept on.
+    if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
+    std::array<contact_manifold<T>, max_manifolds> fresh;
+    const std::size_t n = dispatcher::collide(shape_ref_of(ra), shape_pose_of(ra), shape_ref_of(rb), shape_pose_of(rb),
+                                              state_.settings.solver.speculative_distance,
+                                              std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
+    std::array<manifold_impulse<T>, max_manifolds> carried{};
+    for (std::size_t m = 0; m < n; ++m) {
+      // The old manifold with the nearest normal (a mesh's several keep
+      // theirs apart), then each point by its feature id.
+      int match = -1;
+      T best = T(0.95);  // normals within 18° count as the same face
+      for (int k = 0; k < c.manifold_count; ++k) {
+        const T d = dot(c.manifolds[std::size_t(k)].normal, fresh[m].normal);
+        if (d > best) best = d, match = k;
+      }
+      if (match < 0) continue;
+      const contact_manifold<T>& before = c.manifolds[std::size_t(match)];
+      const manifold_impulse<T>& had = c.impulses[std::size_t(match)];
+      carried[m].friction = had.friction;
+      carried[m].twist = had.twist;
+      for (int p = 0; p < fresh[m].count; ++p)
+        for (int q = 0; q < before.count; ++q)
+          if (before.points[std::size_t(q)].feature == fresh[m].points[std::size_t(p)].feature) {
+            carried[m].normal[std::size_t(p)] = had.normal[std::size_t(q)];
+            break;
+          }
+    }
+    c.manifolds = fresh;
+    c.impulses = carried;
+    c.manifold_count = int(n);
+    const bool touching = n > 0;
+    if (touching && !c.touching) state_.begun.push_back({c.a, c.b});
+    if (!touching && c.touching) state_.ended.push_back({c.a, c.b});
+    c.touching = touching;
+  }
+
+  // ---- islands and sleeping ----
+
+  void wake_islands() {
+    std::vector<body_record>& bodies = state_.bodies.values();
+    islands_.reset(bodies.size());
+    for (const contact_record& c : state_.contacts) {
+      if (!c.touching) continue;
+      const std::uint32_t a = dense(c.a), b = dense(c.b);
+      if (bodies[a].body.type == body_type::dynamic && bodies[b].body.type == body_type::dynamic) islands_.unite(a, b);
+    }
+    island_flag_.assign(bodies.size(), 0);
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].body.type == body_type::dynamic && bodies[i].awake) island_flag_[islands_.find(i)] = 1;
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].body.type == body_type::dynamic && !bodies[i].awake && island_flag_[islands_.find(i)])
+        wake_record(bodies[i]);
+  }
+
+  void update_sleep(T dt) {
+    std::vector<body_record>& bodies = state_.bodies.values();
+    const world_settings<T>& s = state_.settings;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      body_record& r = bodies[i];
+      if (r.body.type != body_type::dynamic || !r.awake) continue;
+      // A body still being pushed out of a penetration is not at rest,
+      // though its velocity is: it would sleep sunk in.
+      // The correction speed is held to a tenth of the sleep speeds: 5 mm/s
+      // is 0.4 mm of penetration beyond the slop at the default rate.
+      const solver_body<T>& motion = solver_bodies_[i];
+      const T linear = s.sleep_linear_speed, angular = s.sleep_angular_speed;
+      const bool slow = length_squared(r.body.linear_velocity()) <= linear * linear &&
+                        length_squared(r.body.angular_velocity()) <= angular * angular &&
+                        length_squared(motion.bias_linear) <= T(0.01) * linear * linear &&
+                        length_squared(motion.bias_angular) <= T(0.01) * angular * angular;
+      r.sleep_timer = slow ? r.sleep_timer + dt : T(0);
+    }
+    // A body carried by a moving kinematic body stays awake.
+    for (const contact_record& c : state_.contacts) {
+      if (!c.touching) continue;
+      body_record& a = state_.bodies[c.a];
+      body_record& b = state_.bodies[c.b];
+      if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
+      if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
+    }
+    island_timer_.assign(bodies.size(), std::numeric_limits<T>::infinity());
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].body.type == body_type::dynamic && bodies[i].awake) {
+        T& t = island_timer_[islands_.find(i)];
+        t = std::min(t, bodies[i].sleep_timer);
+      }
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      body_record& r = bodies[i];
+      if (r.body.type != body_type::dynamic || !r.awake || island_timer_[islands_.find(i)] < s.sleep_time) continue;
+      r.awake = false;
+      r.body.linear_momentum = {};
+      r.body.angular_momentum = {};
+    }
+  }
+
+  // ---- solver ----
+
+  std::uint32_t dense(body_id id) const noexcept { return std::uint32_t(state_.bodies.dense_index(id)); }
+
+  static bool is_solved(const body_record& r) noexcept { return r.body.type == body_type::dynamic && r.awake; }
+
+  void solve(T dt) {
+    std::vector<body_record>& bodies = state_.bodies.values();
+    const vec3<T> gravity_step = state_.settings.gravity * dt;
+    solver_bodies_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const rigid_body<T>& b = bodies[i].body;
+      solver_body<T>& s = solver_bodies_[i];
+      s = solver_body<T>{};
+      s.position = b.position;
+      s.orientation = b.orientation;
+      if (is_solved(bodies[i])) {
+        s.inverse_mass = b.inverse_mass;
+        s.inverse_inertia = b.inverse_inertia_world();
+        s.linear_velocity = b.linear_momentum * b.inverse_mass;
+        s.angular_velocity = s.inverse_inertia * b.angular_momentum;
+        s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
+        s.force_angular = s.inverse_inertia * (b.torque * dt);
+      } else if (b.type == body_type::kinematic) {
+        s.linear_velocity = b.kinematic_velocity;
+        s.angular_velocity = b.kinematic_angular_velocity;
+      }
+    }
+    constraints_.clear();
+    sources_.clear();
+    for (std::uint32_t k = 0; k < state_.contacts.size(); ++k) {
+      const contact_record& c = state_.contacts[k];
+      if (!c.touching) continue;
+      const std::uint32_t ia = dense(c.a), ib = dense(c.b);
+      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      for (int m = 0; m < c.manifold_count; ++m) {
+        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        contact_constraint<T> cc;
+        cc.body_a = ia, cc.body_b = ib;
+        cc.normal = manifold.normal;
+        cc.friction = c.friction;
+        cc.restitution = c.restitution;
+        cc.count = manifold.count;
+        // Friction acts at the middle of the patch, with the mean distance
+        // of the points from it, times 2/3, as the lever of its twist: the
+        // mean radius of a uniformly pressed disc through its points.
+        vec3<T> middle{};
+        for (int p = 0; p < manifold.count; ++p) middle += manifold.points[std::size_t(p)].position;
+        middle = middle * (T(1) / T(manifold.count));
+        T spread = T(0);
+        for (int p = 0; p < manifold.count; ++p) spread += length(manifold.points[std::size_t(p)].position - middle);
+        cc.twist_radius = spread * (T(2) / T(3)) / T(manifold.count);
+        cc.anchor_a = middle - bodies[ia].body.position;
+        cc.anchor_b = middle - bodies[ib].body.position;
+        // The slip at the middle of the patch chooses the tangents.
+        const vec3<T> slip = relative_velocity(solver_bodies_[ia], solver_bodies_[ib], cc.anchor_a, cc.anchor_b);
+        slip_tangents(cc.normal, slip, state_.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
+        const manifold_impulse<T>& carried = c.impulses[std::size_t(m)];
+        cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
+        cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
+        cc.twist_impulse = carried.twist;
+        for (int p = 0; p < manifold.count; ++p) {
+          const contact_point<T>& point = manifold.points[std::size_t(p)];
+          contact_constraint_point<T>& cp = cc.points[p];
+          cp.offset_a = point.position - bodies[ia].body.position;
+          cp.offset_b = point.position - bodies[ib].body.position;
+          cp.depth = point.depth;
+          cp.normal_impulse = carried.normal[std::size_t(p)];
+        }
+        constraints_.push_back(cc);
+        sources_.push_back({k, std::uint32_t(m)});
+      }
+    }
+    if (state_.settings.solver.warm_starting) estimate_cold_loads(dt);
+    solver_.prepare(solver_bodies_, constraints_);
+    solver_.solve(solver_bodies_, constraints_, state_.settings.solver, dt);
+    for (std::size_t j = 0; j < constraints_.size(); ++j) {
+      contact_record& c = state_.contacts[sources_[j].record];
+      const contact_constraint<T>& cc = constraints_[j];
+      manifold_impulse<T>& kept = c.impulses[sources_[j].manifold];
+      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+      kept.twist = cc.twist_impulse;
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      body_record& r = bodies[i];
+      rigid_body<T>& b = r.body;
+      r.previous = b.pose();
+      if (is_solved(r)) {
+        const solver_body<T>& s = solver_bodies_[i];
+        body_pose<T> x{b.position, b.orientation};
+        // L changes by the torque's impulse and by what the contacts did to
+        // ω; written as that change rather than as I_w·ω, it stays constant
+        // to the bit when nothing acts on the body.
+        const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
+        body_momentum<T> momentum{s.linear_velocity * b.mass,
+                                  b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
+        if constexpr (!solver_policy::moves_bodies) {
+          // Free motion under the solved momenta, by the integrator policy:
+          // with L held, ω = R·I⁻¹·Rᵀ·L turns with the body at each stage,
+          // so the gyroscopic motion is as accurate as the integrator.
+          integrator::advance(x, momentum, dt, free_motion{b, s.bias_linear, s.bias_angular});
+        } else {
+          x = {s.position, s.orientation};
+        }
+        const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
+                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0);
+        if (finite) {
+          b.linear_momentum = momentum.linear;
+          b.angular_momentum = momentum.angular;
+          b.position = x.position;
+          b.orientation = normalize(x.orientation);
+        } else {
+          b.linear_momentum = {};
+          b.angular_momentum = {};
+          if (failed_ == no_object) failed_ = state_.bodies.ids()[i].index;
+        }
+      } else if (b.type == body_type::kinematic) {
+        // A kinematic body's motion is prescribed: placed exactly.
+        b.position += b.kinematic_velocity * dt;
+        b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+      }
+      b.clear_loads();
+    }
+  }
+
+  template <class D>
+  static void draw_box(D& d, const aabb<T>& box, const debug_color& colour) {
+    const vec3<T>& l = box.lower;
+    const vec3<T>& u = box.upper;
+    const vec3<T> c[8] = {{l.x, l.y, l.z}, {u.x, l.y, l.z}, {u.x, u.y, l.z}, {l.x, u.y, l.z},
+                          {l.x, l.y, u.z}, {u.x, l.y, u.z}, {u.x, u.y, u.z}, {l.x, u.y, u.z}};
+    for (int i = 0; i < 4; ++i) {
+      d.line(c[i], c[(i + 1) % 4], colour);
+      d.line(c[i + 4], c[(i + 1) % 4 + 4], colour);
+      d.line(c[i], c[i + 4], colour);
+    }
+  }
+  static debug_color colour_of(const body_record& r) noexcept {
+    if (r.body.type == body_type::static_body) return {0.5f, 0.5f, 0.5f};
+    if (r.body.type == body_type::kinematic) return {0.5f, 0.5f, 1};
+    return r.awake ? debug_color{0.3f, 1, 0.3f} : debug_color{0.2f, 0.4f, 0.2f};
+  }
+
+  /// A first guess of the normal impulses of touching contacts that have
+  /// none to carry over: the weight they hold up.
+  ///
+  /// Warm starting makes each step's iterations continue the last step's,
+  /// but a new contact starts from nothing, and Gauss–Seidel moves a load
+  /// only so far per sweep: down a stack one contact per sweep, and from a
+  /// heavy body into a light one beneath it by about the mass ratio's
+  /// inverse per sweep. A 100 kg box set on a 1 kg one sinks 4 cm in the
+  /// first ten steps before the carried-over impulses catch up (200 sweeps
+  /// in the first step still leave 6 mm). So when a contact is new and
+  /// holds a body up against gravity (its normal within 45° of vertical),
+  /// its first impulse is that body's weight over the step, plus what rests
+  /// on the body through other new contacts, shared evenly among the
+  /// contacts holding it: loads are passed down from the highest body. The
+  /// iterations then correct the guess like any carried-over impulse; it
+  /// only sets where they start.
+  void estimate_cold_loads(T dt) {
+    const T g = length(state_.settings.gravity);
+    if (!(g > T(0))) return;
+    const vec3<T> up = state_.settings.gravity * (T(-1) / g);
+    supports_.clear();
+    for (std::uint32_t j = 0; j < constraints_.size(); ++j) {
+      const contact_constraint<T>& c = constraints_[j];
+      bool cold = true, touching = false;
+      for (int p = 0; p < c.count; ++p) {
+        cold = cold && c.points[p].normal_impulse == T(0);
+        touching = touching || c.points[p].depth >= -state_.settings.solver.linear_slop;
+      }
+      if (!cold || !touching) continue;  // a gap still to close carries no load yet
+      T lift = dot(c.normal, up);
+      std::uint32_t upper = c.body_b, lower = c.body_a;
+      if (lift < T(0)) std::swap(upper, lower), lift = -lift;
+      if (lift < T(0.7071) || solver_bodies_[upper].inverse_mass == T(0)) continue;
+      supports_.push_back({dot(solver_bodies_[upper].position, up), upper, lower, j, lift});
+    }
+    if (supports_.empty()) return;
+    std::sort(supports_.begin(), supports_.end(), [](const support& x, const support& y) {
+      return x.height != y.height ? x.height > y.height : x.upper < y.upper;
+    });
+    load_.assign(solver_bodies_.size(), T(0));
+    for (std::size_t first = 0; first < supports_.size();) {
+      const std::uint32_t upper = supports_[first].upper;
+      std::size_t last = first;
+      while (last < supports_.size() && supports_[last].upper == upper) ++last;
+      const T share = (g * dt / solver_bodies_[upper].inverse_mass + load_[upper]) / T(last - first);
+      for (std::size_t k = first; k < last; ++k) {
+        contact_constraint<T>& c = constraints_[supports_[k].constraint];
+        const T per_point = share / (supports_[k].lift * T(c.count));
+        for (int p = 0; p < c.count; ++p) c.points[p].normal_impulse = per_point;
+        if (solver_bodies_[supports_[k].lower].inverse_mass > T(0)) load_[supports_[k].lower] += share;
+      }
+      first = last;
+    }
+  }
+
+  struct support {
+    T height;  ///< of the upper body, along −gravity
+    std::uint32_t upper, lower, constraint;
+    T lift;  ///< the normal's component along −gravity
+  };
+
+  /// A body moving freely with the momenta the solver left it, plus the
+  /// position pass's pseudo-velocities, as the integrator policy's system
+  /// (body_motion.hpp): momentum constant over the step.
+  struct free_motion {
+    const rigid_body<T>& body;
+    vec3<T> bias_linear, bias_angular;
+    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
+      body_kinematics<T> k = kinematics_of(body, x, p);
+      k.linear_velocity += bias_linear;
+      k.angular_velocity += bias_angular;
+      return pose_rate(k, x.orientation);
+    }
+    body_momentum<T> momentum_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+  };
+
+  struct constraint_source {
+    std::uint32_t record;
+    std::uint32_t manifold;
+  };
+
+  state state_;
+  // Per-step scratch, kept to allocate nothing once warm; not part of the
+  // state (each step rebuilds it).
+  solver_type solver_{};
+  std::vector<contact_record> next_contacts_;
+  std::vector<solver_body<T>> solver_bodies_;
+  std::vector<contact_constraint<T>> constraints_;
+  std::vector<constraint_source> sources_;
+  std::vector<support> supports_;
+  std::vector<T> load_;
+  detail::union_find islands_;
+  std::vector<std::uint8_t> island_flag_;
+  std::vector<T> island_timer_;
+  std::uint32_t failed_ = no_object;
+};
+
+/// A world's whole state, to restore it later exactly.
+template <class Config>
+class world_snapshot {
+ public:
+  world_snapshot() = default;
+
+ private:
+  friend class world<Config>;
+  explicit world_snapshot(const typename world<Config>::state& s) : state_(s) {}
+  typename world<Config>::state state_{};
+};
+
+}  // namespace impulse

@@ -1,0 +1,121 @@
+// The standard scenes of DESIGN.md and the hard cases of the world tests,
+// built as the design specifies them, with what the tests measure of them.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "impulse/world.hpp"
+
+namespace test {
+
+/// The default policies with sleeping off: the hard cases are measured on
+/// the solver alone.
+struct awake_config : impulse::default_config {
+  static constexpr bool sleeping = false;
+};
+struct awake_double_config : awake_config {
+  using scalar = double;
+};
+struct sleeping_config : impulse::default_config {
+  static constexpr bool sleeping = true;
+};
+
+template <class T>
+inline constexpr T step_dt = T(1) / T(60);
+
+/// The standard ground: a static box of half-extents (100, 1, 100) whose
+/// top face is y = 0 (or, shifted, the plane through `origin`).
+template <class World>
+impulse::body_id add_ground(World& w, typename World::scalar friction = 0.6,
+                            impulse::vec3<typename World::scalar> origin = {}, typename World::scalar half = 100) {
+  using T = typename World::scalar;
+  impulse::body_def<T> d;
+  d.type = impulse::body_type::static_body;
+  d.pose.position = origin + impulse::vec3<T>{0, -1, 0};
+  d.material.friction = friction;
+  return w.create_body(d, impulse::box<T>::make({half, 1, half}));
+}
+
+/// A dynamic cube of half-extent 0.5 and the given mass.
+template <class World>
+impulse::body_id add_cube(World& w, impulse::vec3<typename World::scalar> at, typename World::scalar mass = 1,
+                          typename World::scalar friction = 0.6,
+                          impulse::quat<typename World::scalar> turn = impulse::quat<typename World::scalar>::identity()) {
+  using T = typename World::scalar;
+  impulse::body_def<T> d;
+  d.pose = {at, turn};
+  d.mass = mass;
+  d.material.friction = friction;
+  return w.create_body(d, impulse::box<T>::make({0.5, 0.5, 0.5}));
+}
+
+/// `pyramid`: rows k = 0..n−1 of n − k cubes at x = i − (n − k − 1)/2,
+/// y = 0.5 + k, z = 0, friction 0.6, bottom row first.
+template <class World>
+std::vector<impulse::body_id> add_pyramid(World& w, int base, impulse::vec3<typename World::scalar> origin = {}) {
+  using T = typename World::scalar;
+  std::vector<impulse::body_id> ids;
+  for (int k = 0; k < base; ++k) {
+    const int n = base - k;
+    for (int i = 0; i < n; ++i)
+      ids.push_back(add_cube(w, origin + impulse::vec3<T>{T(i) - T(n - 1) / T(2), T(0.5) + T(k), 0}));
+  }
+  return ids;
+}
+
+/// `pile`: 1000 cubes on the grid ((i − 4.5)·1.2, 1 + 1.2·j, (k − 4.5)·1.2).
+template <class World>
+std::vector<impulse::body_id> add_pile(World& w) {
+  using T = typename World::scalar;
+  std::vector<impulse::body_id> ids;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k)
+        ids.push_back(add_cube(w, {(T(i) - T(4.5)) * T(1.2), T(1) + T(1.2) * T(j), (T(k) - T(4.5)) * T(1.2)}));
+  return ids;
+}
+
+template <class World>
+void run(World& w, int steps) {
+  for (int i = 0; i < steps; ++i) w.step(step_dt<typename World::scalar>);
+}
+
+/// The largest displacement of any of `ids` from `start`, per axis.
+template <class World>
+impulse::vec3<typename World::scalar> largest_displacement(const World& w, const std::vector<impulse::body_id>& ids,
+                                                           const std::vector<impulse::vec3<typename World::scalar>>& start) {
+  impulse::vec3<typename World::scalar> worst{};
+  for (std::size_t i = 0; i < ids.size(); ++i) worst = max(worst, abs(w.body(ids[i]).position - start[i]));
+  return worst;
+}
+
+template <class World>
+std::vector<impulse::vec3<typename World::scalar>> positions(const World& w, const std::vector<impulse::body_id>& ids) {
+  std::vector<impulse::vec3<typename World::scalar>> p;
+  for (const impulse::body_id id : ids) p.push_back(w.body(id).position);
+  return p;
+}
+
+/// FNV-1a over the bits of every body's position and orientation, in id
+/// order: equal hashes mean bit-identical transforms.
+template <class World>
+std::uint64_t transform_hash(const World& w) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&](const void* data, std::size_t n) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  };
+  for (const impulse::body_id id : w.body_ids()) {
+    const auto& b = w.body(id);
+    mix(&id, sizeof id);
+    mix(&b.position, sizeof b.position);
+    mix(&b.orientation, sizeof b.orientation);
+  }
+  return h;
+}
+
+}  // namespace test
