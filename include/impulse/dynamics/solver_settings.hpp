@@ -30,6 +30,19 @@ struct solver_settings {
   int manifold_sweeps = 4;
   /// Substeps of soft_step (Box2D v3 takes 4).
   int substeps = 4;
+  /// soft_step: sweeps of the soft rows, and then of the rigid ones (the
+  /// relax pass), per substep. Box2D v3 takes one of each: the substeps,
+  /// not the sweeps, carry the convergence.
+  int substep_iterations = 1;
+  int relax_iterations = 1;
+  /// soft_step: stiffness of the soft contact rows, Hz, capped at a quarter
+  /// of the substep rate (a spring stiffer than that is not resolved by the
+  /// substeps); static contacts take twice it. Box2D v3's 30 Hz.
+  T contact_hertz = T(30);
+  /// soft_step: damping ratio of the soft contact rows. 10 (Box2D v3's)
+  /// is far past critical: a pushed-in contact creeps out without
+  /// overshoot instead of springing out.
+  T contact_damping_ratio = T(10);
 
   /// Penetration left uncorrected, m. Contacts rest this deep, so that a
   /// touching pair keeps its manifold (and its warm-started impulses)
@@ -43,7 +56,8 @@ struct solver_settings {
   /// faster. 0.2 corrects 90 % of an error in 10 steps without the
   /// overshoot a larger fraction shows in deep piles.
   T position_correction = T(0.2);
-  /// Largest correction speed of the position pass, m/s: bodies created
+  /// Largest correction speed of the position pass (soft_step: of the soft
+  /// rows' push), m/s: bodies created
   /// deep inside each other separate over several steps instead of
   /// jumping apart in one.
   T max_correction_speed = T(3);
@@ -67,12 +81,13 @@ struct solver_settings {
   bool warm_starting = true;
 
   void validate() const {
-    if (velocity_iterations < 1 || position_iterations < 0 || substeps < 1 || manifold_sweeps < 1)
+    if (velocity_iterations < 1 || position_iterations < 0 || substeps < 1 || manifold_sweeps < 1 ||
+        substep_iterations < 1 || relax_iterations < 0)
       detail::report_error(error_code::invalid_parameter,
-                           "solver_settings: velocity_iterations, manifold_sweeps and substeps must be >= 1, "
-                           "position_iterations >= 0");
-    const T values[] = {linear_slop,           position_correction, max_correction_speed,
-                        speculative_distance, restitution_threshold, rest_slip_speed};
+                           "solver_settings: velocity_iterations, manifold_sweeps, substeps and "
+                           "substep_iterations must be >= 1, position_iterations and relax_iterations >= 0");
+    const T values[] = {linear_slop,           position_correction, max_correction_speed, speculative_distance,
+                        restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio};
     for (const T v : values)
       if (!std::isfinite(v) || v < T(0))
         detail::report_error(error_code::invalid_parameter,

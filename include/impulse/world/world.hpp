@@ -729,7 +729,10 @@ class world {
         sources_.push_back({k, std::uint32_t(m)});
       }
     }
-    if (state_.settings.solver.warm_starting) estimate_cold_loads(dt);
+    if (state_.settings.solver.warm_starting) {
+      // A substepping solver's impulses are per substep.
+      estimate_cold_loads(solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt);
+    }
     solver_.prepare(solver_bodies_, constraints_);
     solver_.solve(solver_bodies_, constraints_, state_.settings.solver, dt);
     for (std::size_t j = 0; j < constraints_.size(); ++j) {

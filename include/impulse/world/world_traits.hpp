@@ -10,6 +10,7 @@
 #include "../broadphase/dynamic_bvh.hpp"
 #include "../core/policy.hpp"
 #include "../dynamics/sequential_impulse.hpp"
+#include "../dynamics/soft_step.hpp"
 #include "../shapes/box.hpp"
 #include "../shapes/capsule.hpp"
 #include "../shapes/convex_hull.hpp"
