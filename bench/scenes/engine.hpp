@@ -13,8 +13,8 @@
 // step() is the only call that is timed, so it must hold the whole of an
 // engine's step (collision detection, solving, integration) and nothing
 // else; states() may copy, it is called outside the clock. Adding an
-// engine (impulse's own, later) is one header with such a type and one
-// line in main.cpp's engine list.
+// engine is one header with such a type and one line in main.cpp's engine
+// list (impulse_engine.hpp is impulse's own).
 #pragma once
 
 #include <concepts>
