@@ -497,3 +497,22 @@ TEST_CASE_TEMPLATE("a shape with a non-finite pose touches nothing and writes no
   REQUIRE(near.size() == 1);
   CHECK(test::deepest(near[0]) == doctest::Approx(-0.05).epsilon(tolerance<T> * 1000));
 }
+
+TEST_CASE("a hull whose origin lies outside it is met by the mesh it rests on") {
+  // The one-sided test asks whether the shape is in front of a triangle;
+  // asked of the hull's origin (here 2 m below it, under the floor) it
+  // would let the hull fall through.
+  const std::vector<vec3<double>> corners = {{-20, 0, -20}, {20, 0, -20}, {20, 0, 20}, {-20, 0, 20}};
+  const std::vector<std::uint32_t> triangles = {0, 2, 1, 0, 3, 2};
+  const triangle_mesh<double> floor = triangle_mesh<double>::make(corners, triangles);
+  std::vector<vec3<double>> points;
+  for (int i = 0; i < 8; ++i) points.push_back({1.5 + (i & 1), 1.5 + ((i >> 1) & 1), 1.5 + (i >> 2)});
+  const convex_hull<double> hull = convex_hull<double>::from_points(points);
+  // Its points span y = −0.01 .. 0.99: sunk 1 cm into the floor.
+  std::vector<contact_manifold<double>> out(4);
+  const std::size_t n = collide(floor, at<double>({0, 0, 0}), hull, at<double>({-2, -1.51, -2}), 0.0, std::span(out));
+  REQUIRE(n == 1);
+  CHECK(out[0].normal.y == doctest::Approx(1.0));
+  CHECK(out[0].count == 4);
+  for (const auto& p : out[0].contacts()) CHECK(p.depth == doctest::Approx(0.01));
+}

@@ -290,6 +290,43 @@ TEST_CASE("debug drawing shows each body's box, each contact point and normal, a
   CHECK(r.arrows == 4 + 1);  // their normals, and the cube's velocity
 }
 
+TEST_CASE("every shape rests where it should: a hull, a capsule and a sphere on a mesh floor and on a plane") {
+  // A unit-cube hull whose points are all off-centre (its centre of mass
+  // is at (2, 2, 2) in its own frame), a capsule lying down and a ball,
+  // dropped on a two-triangle mesh and on a plane: each comes to rest with
+  // its lowest point at the floor, within the slop.
+  for (const bool mesh : {true, false}) {
+    awake_world w;
+    body_def<float> floor;
+    floor.type = body_type::static_body;
+    if (mesh) {
+      const vec3<float> corners[] = {{-20, 0, -20}, {20, 0, -20}, {20, 0, 20}, {-20, 0, 20}};
+      const std::uint32_t triangles[] = {0, 2, 1, 0, 3, 2};
+      w.create_body(floor, triangle_mesh<float>::make(corners, triangles));
+    } else {
+      w.create_body(floor, plane<float>::make({0, 1, 0}, 0));
+    }
+    std::vector<vec3<float>> points;
+    for (int i = 0; i < 8; ++i) points.push_back({1.5f + float(i & 1), 1.5f + float((i >> 1) & 1), 1.5f + float(i >> 2)});
+    body_def<float> d;
+    d.mass = 1;
+    d.pose.position = {-2, -1, -2};  // the hull's points then span y = 0.5 .. 1.5
+    const body_id hull = w.create_body(d, convex_hull<float>::from_points(points));
+    CHECK(w.body(hull).position.y == doctest::Approx(1.0f));  // the centre of mass, not the origin
+    d.pose = {{3, 1, 0}, quat<float>::from_axis_angle({0, 0, 1}, 1.5707963f)};
+    const body_id capsule_body = w.create_body(d, capsule<float>::make(0.25f, 0.5f));
+    d.pose = {{-3, 1, 0}, quat<float>::identity()};
+    const body_id ball = w.create_body(d, sphere<float>::make(0.5f));
+    ::test::run(w, 180);
+    const float slop = w.settings().solver.linear_slop;
+    CHECK(w.body(hull).position.y == doctest::Approx(0.5f).epsilon(2 * slop));
+    CHECK(w.shape_pose(hull).position.y == doctest::Approx(-1.5f).epsilon(4 * slop));
+    CHECK(w.body(capsule_body).position.y == doctest::Approx(0.25f).epsilon(4 * slop));
+    CHECK(w.body(ball).position.y == doctest::Approx(0.5f).epsilon(2 * slop));
+    CHECK(w.kinetic_energy() < 1e-6f);
+  }
+}
+
 TEST_CASE("a kinematic body moves at its velocity and is not pushed by what it hits") {
   world_settings<float> settings;
   settings.gravity = {0, 0, 0};

@@ -384,6 +384,9 @@ struct posed_polyhedron {
   std::size_t vertex_count;
   const face_plane* planes;
   T least_half_extent;
+  /// A point inside it (the middle of its bounds), for the one-sided test:
+  /// a hull's origin may lie outside it.
+  vec3<T> inside;
 };
 
 /// Which of the triangle's corners lie farthest along u (within
@@ -407,7 +410,7 @@ void collide_polyhedron_triangle(const posed_polyhedron<Poly, T>& P, const mesh_
                                  contact_manifold<T>& m) {
   const vec3<T>& n = tri.normal;
   const vec3<T>& a = tri.v[0];
-  if (dot(n, a) > T(0)) return;  // the shape's origin (the frame's origin) is behind the triangle
+  if (dot(n, a - P.inside) > T(0)) return;  // the shape's middle is behind the triangle
   const vec3<T>* V = P.vertices;
   const std::size_t vertex_count = P.vertex_count;
 
@@ -674,7 +677,8 @@ std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transfor
   for (std::size_t f = 0; f < poly.face_count(); ++f)
     planes[f] = {rotate(frame.shape_rotation, poly.plane(f).normal), poly.plane(f).offset};  // the origins coincide
   const T least = least_half_extent(poly);
-  const posed_polyhedron<Poly, T> posed{poly, vertices.data(), local.size(), planes.data(), least};
+  const posed_polyhedron<Poly, T> posed{poly,  vertices.data(), local.size(), planes.data(),
+                                        least, rotate(frame.shape_rotation, center(local_bounds))};
   const aabb<T> box = expand(transform_aabb(local_bounds, transform<T>{{}, frame.shape_rotation}), margin);
   return collide_mesh(mesh, frame, box, T(1e-4) * least, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
