@@ -6,7 +6,7 @@
 // - the policies of the Config the adapter is instantiated with (broad
 //   phase, solver, scalar; main.cpp registers one adapter per set it
 //   compares), every other member defaulted; world_settings defaults apart
-//   from the scene's gravity: 10 velocity iterations, 4 position
+//   from the scene's gravity: 20 velocity iterations, 4 position
 //   iterations, warm starting, 0.5 mm slop, 2 cm speculative distance,
 //   restitution ignored below 0.5 m/s of approach speed.
 // - boxes as impulse::box, spheres as impulse::sphere, each body its own

@@ -5777,14 +5777,15 @@ template <scalar_type T>
 // sees it: rows of the velocity constraint at each point, their effective
 // masses and the impulses they have accumulated.
 //
-// At each point of a manifold with normal n (from A into B) the solver keeps
-// three rows: the normal row, n·(v_B(p) − v_A(p)) ≥ bias with a
-// non-negative impulse, and two friction rows along the tangents t1, t2,
-// whose impulses together lie within the Coulomb disc μ·λn (Catto, "Fast
-// and Simple Physics using Sequential Impulses", GDC 2006). The tangents
-// are a fixed function of the normal, so while the normal holds still the
+// A manifold with normal n (from A into B) has a normal row at each point,
+// n·(v_B(p) − v_A(p)) ≥ bias with a non-negative impulse (Catto, "Fast and
+// Simple Physics using Sequential Impulses", GDC 2006), and friction for
+// the patch as a whole: two tangent rows at its middle whose impulses lie
+// within the Coulomb disc μ·Σλn, and a twist row about the normal (the
+// comment on contact_constraint says why not per point). The tangents are
+// a fixed function of the normal while the contact is at rest, so the
 // impulses carried over from the last step (warm starting) point the same
-// way.
+// way; once it slips, the first tangent follows the slip.
 //
 // Bodies are referred to by their place in the solver's body array; static
 // and kinematic bodies are there too, with zero inverse mass, so every row
@@ -14396,13 +14397,15 @@ template <class Config = default_config> class world;
 //                 solved, no narrow phase, until something wakes it.
 //
 // Bodies keep Baraff's state (rigid_body.hpp): the solver works on
-// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step, and
-// writes back P = m·v and L = I_w·ω with the inertia the step started with,
-// so that with no contact a spinning body keeps its angular momentum
-// exactly and precesses as the free rigid body does. Forces are held
-// constant over a step, so every integrator policy gives the same velocity
-// change, F·dt/m; the integrator matters once forces depend on the state
-// within a step (springs; issue 8's joints).
+// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step; the world
+// writes back P = m·v, and L changed by the torque's impulse and by I_w
+// times what the contacts did to ω, so that with no contact L is constant
+// to the bit. The bodies then move by the config's integrator policy with
+// L held and ω = R·I⁻¹·Rᵀ·L at each stage: a free body precesses as
+// accurately as the integrator (RK4: fourth order). Forces are held
+// constant over a step, so every integrator gives the same velocity
+// change, F·dt/m; the integrator matters for the rotation, and for forces
+// that depend on the state within a step (springs; issue 8's joints).
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure

@@ -2,14 +2,15 @@
 // sees it: rows of the velocity constraint at each point, their effective
 // masses and the impulses they have accumulated.
 //
-// At each point of a manifold with normal n (from A into B) the solver keeps
-// three rows: the normal row, n·(v_B(p) − v_A(p)) ≥ bias with a
-// non-negative impulse, and two friction rows along the tangents t1, t2,
-// whose impulses together lie within the Coulomb disc μ·λn (Catto, "Fast
-// and Simple Physics using Sequential Impulses", GDC 2006). The tangents
-// are a fixed function of the normal, so while the normal holds still the
+// A manifold with normal n (from A into B) has a normal row at each point,
+// n·(v_B(p) − v_A(p)) ≥ bias with a non-negative impulse (Catto, "Fast and
+// Simple Physics using Sequential Impulses", GDC 2006), and friction for
+// the patch as a whole: two tangent rows at its middle whose impulses lie
+// within the Coulomb disc μ·Σλn, and a twist row about the normal (the
+// comment on contact_constraint says why not per point). The tangents are
+// a fixed function of the normal while the contact is at rest, so the
 // impulses carried over from the last step (warm starting) point the same
-// way.
+// way; once it slips, the first tangent follows the slip.
 //
 // Bodies are referred to by their place in the solver's body array; static
 // and kinematic bodies are there too, with zero inverse mass, so every row

@@ -32,11 +32,9 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <span>
 
 #include "../core/policy.hpp"
-#include "../math/quat.hpp"
 #include "contact_constraint.hpp"
 #include "contact_rows.hpp"
 #include "solver_settings.hpp"

@@ -20,13 +20,15 @@
 //                 solved, no narrow phase, until something wakes it.
 //
 // Bodies keep Baraff's state (rigid_body.hpp): the solver works on
-// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step, and
-// writes back P = m·v and L = I_w·ω with the inertia the step started with,
-// so that with no contact a spinning body keeps its angular momentum
-// exactly and precesses as the free rigid body does. Forces are held
-// constant over a step, so every integrator policy gives the same velocity
-// change, F·dt/m; the integrator matters once forces depend on the state
-// within a step (springs; issue 8's joints).
+// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step; the world
+// writes back P = m·v, and L changed by the torque's impulse and by I_w
+// times what the contacts did to ω, so that with no contact L is constant
+// to the bit. The bodies then move by the config's integrator policy with
+// L held and ω = R·I⁻¹·Rᵀ·L at each stage: a free body precesses as
+// accurately as the integrator (RK4: fourth order). Forces are held
+// constant over a step, so every integrator gives the same velocity
+// change, F·dt/m; the integrator matters for the rotation, and for forces
+// that depend on the state within a step (springs; issue 8's joints).
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure
