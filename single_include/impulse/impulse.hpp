@@ -6982,7 +6982,8 @@ struct solver_settings {
   /// stack gets is then a step late, and a late restoring force feeds a
   /// sway instead of damping it: at Bullet's 10 a 10-box tower sways with
   /// growing amplitude (its top 3.7 cm off in 20 s, 21 cm in 40 s, built
-  /// without FMA; Bullet's own falls at 15 s), at 16 it still grows (3 cm in
+  /// without FMA; -O3 -march=native rounding happened to hold it within
+  /// 0.5 mm; Bullet's own falls at 15 s), at 16 it still grows (3 cm in
   /// 40 s). At 20 it settles: under 0.2 mm over 80 s with g++ and clang, at
   /// -O0, -O2 and -O3 -march=native. ODE's quickstep also takes 20.
   int velocity_iterations = 20;
