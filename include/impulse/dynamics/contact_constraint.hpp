@@ -78,7 +78,6 @@ struct contact_constraint_point {
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
-  T restitution_impulse = T(0);  ///< applied by the restitution pass this step
 };
 
 /// A manifold's rows: a normal row per point, and friction for the patch
@@ -141,17 +140,6 @@ void slip_tangents(const vec3<T>& n, const vec3<T>& v, T rest_speed, vec3<T>& t1
   }
   t1 = slip * (T(1) / std::sqrt(speed_squared));
   t2 = cross(n, t1);
-}
-
-/// 1 / (J M⁻¹ Jᵀ) for the row pushing B along d and A against it at offsets
-/// ra, rb (0 when neither body can move).
-template <scalar_type T>
-[[nodiscard]] T effective_mass(const solver_body<T>& a, const solver_body<T>& b, const vec3<T>& ra,
-                               const vec3<T>& rb, const vec3<T>& d) noexcept {
-  const vec3<T> ra_d = cross(ra, d), rb_d = cross(rb, d);
-  const T k = a.inverse_mass + b.inverse_mass + dot(ra_d, a.inverse_inertia * ra_d) +
-              dot(rb_d, b.inverse_inertia * rb_d);
-  return k > T(0) ? T(1) / k : T(0);
 }
 
 /// The inverse of the 2×2 matrix J M⁻¹ Jᵀ of the rows along d1 and d2, as

@@ -38,7 +38,6 @@ void prepare_contacts(std::span<const solver_body<T>> bodies, std::span<contact_
       p.force_delta = dot(c.normal, b.force_linear + cross(b.force_angular, p.offset_b) - a.force_linear -
                                         cross(a.force_angular, p.offset_a));
       p.bias_impulse = T(0);
-      p.restitution_impulse = T(0);
     }
     tangent_block(a, b, c.anchor_a, c.anchor_b, c.tangent1, c.tangent2, c.tangent_mass11, c.tangent_mass12,
                   c.tangent_mass22);
@@ -135,7 +134,6 @@ void restitution_pass(std::span<solver_body<T>> bodies, std::span<contact_constr
         const T lambda = p.normal_mass * (-c.restitution * at_start + shift - vn);
         if (!(lambda > T(0))) continue;
         apply_impulse(a, b, p.offset_a, p.offset_b, c.normal * lambda);
-        p.restitution_impulse += lambda;
         total += lambda;
       }
       if (total == T(0)) continue;
