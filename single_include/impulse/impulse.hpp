@@ -5958,6 +5958,9 @@ struct contact_constraint_point {
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
+  /// The position pass's target separation speed, m/s; < 0 where the
+  /// point takes no part in it (sequential_impulse.hpp, position_targets).
+  T push_speed = T(-1);
 };
 
 /// A manifold's rows: a normal row per point, and friction for the patch
@@ -6932,8 +6935,13 @@ class rigid_body_system {
 //    feature id, are applied again.
 // 4. Velocity iterations: per manifold, friction at the patch (two tangent
 //    rows within the Coulomb disc of the patch's normal impulse and a
-//    twist row), then each point's normal row, clamped to push only. A row that starts apart (a speculative contact,
-//    depth < 0) may close its gap within the step but no more.
+//    twist row), then a few passes over the points' normal rows, clamped
+//    to push only (solver_settings.hpp, manifold_sweeps, says why more
+//    than one). A row that starts apart (a speculative contact, depth < 0)
+//    may close its gap within the step but no more. The manifolds are
+//    visited colour by colour, W that share no moving body at a time in
+//    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
+//    colour could take is solved alone after them.
 // 5. Position pass (split impulses; Catto's "Box2D: the position problem",
 //    Bullet's split impulse): the normal rows once more on separate
 //    pseudo-velocities, pushing penetration beyond the slop out at a
@@ -6947,6 +6955,541 @@ class rigid_body_system {
 // pseudo-velocities, by its integrator policy.
 
 
+// ---- begin impulse/dynamics/constraint_graph.hpp ----
+// impulse/dynamics/constraint_graph.hpp — contacts coloured so that no two
+// of one colour move the same body, and cut into batches of W.
+//
+// Gauss–Seidel solves one row after another because each row reads the
+// velocities the last one wrote. Rows that share no moving body do not
+// read each other's writes, so they can be solved together, one per SIMD
+// lane, and give the answer the one-by-one sweep would in some order.
+// Greedy colouring of the contact graph finds such sets (Catto, "Solver2D"
+// and Box2D v3's constraint_graph.c; Tonge, "Iterative Rigid Body
+// Solvers", GDC 2012): each contact takes the lowest colour neither of its
+// bodies has yet. Static and kinematic bodies do not count: the solver
+// never changes their velocities, so any number of lanes may read them.
+// The colours are then solved one after another, each batch of W contacts
+// of one colour as W lanes.
+//
+// The order of the sweep is colour by colour rather than the contacts'
+// own order; a tower's contacts alternate between two colours, so the
+// sweep goes over every other contact and then over the rest. Colouring
+// is a function of the contact order alone: the same contacts give the
+// same batches, and a run stays deterministic.
+
+
+
+namespace impulse::detail {
+
+/// Contacts in colour order, cut into batches that share no moving body.
+class constraint_graph {
+ public:
+  /// Colours past this many (a body touching more than 64 others) are
+  /// left over and solved one by one after the batches.
+  static constexpr int max_colours = 64;
+
+  /// Batches of at most `width` contacts. A body moves under impulses
+  /// when its inverse mass is not zero.
+  template <scalar_type T>
+  void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts, int width) {
+    used_.assign(bodies.size(), 0);
+    colour_of_.resize(contacts.size());
+    std::uint32_t counts[max_colours + 1] = {};
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
+      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
+      const std::uint64_t taken = (moves_a ? used_[a] : 0) | (moves_b ? used_[b] : 0);
+      const int colour = taken == ~std::uint64_t(0) ? max_colours : std::countr_zero(~taken);
+      if (colour < max_colours) {
+        const std::uint64_t bit = std::uint64_t(1) << colour;
+        if (moves_a) used_[a] |= bit;
+        if (moves_b) used_[b] |= bit;
+      }
+      colour_of_[i] = std::uint8_t(colour);
+      ++counts[colour];
+    }
+    // Counting sort by colour: within a colour the contacts keep their order.
+    std::uint32_t start[max_colours + 2] = {};
+    for (int c = 0; c <= max_colours; ++c) start[c + 1] = start[c] + counts[c];
+    order_.resize(contacts.size());
+    std::uint32_t next[max_colours + 1];
+    for (int c = 0; c <= max_colours; ++c) next[c] = start[c];
+    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[colour_of_[i]]++] = std::uint32_t(i);
+    batch_starts_.clear();
+    for (int c = 0; c < max_colours; ++c)
+      for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
+    batch_starts_.push_back(start[max_colours]);
+    leftover_start_ = start[max_colours];
+  }
+
+  [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
+  /// The contacts of batch k, by their place in the contact array.
+  [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
+    return std::span<const std::uint32_t>(order_).subspan(batch_starts_[k], batch_starts_[k + 1] - batch_starts_[k]);
+  }
+  /// Contacts no colour could take.
+  [[nodiscard]] std::span<const std::uint32_t> leftover() const noexcept {
+    return std::span<const std::uint32_t>(order_).subspan(leftover_start_);
+  }
+
+ private:
+  std::vector<std::uint64_t> used_;      // per body: the colours its contacts have
+  std::vector<std::uint8_t> colour_of_;  // per contact
+  std::vector<std::uint32_t> order_;     // contacts by colour
+  std::vector<std::uint32_t> batch_starts_;
+  std::uint32_t leftover_start_ = 0;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/dynamics/constraint_graph.hpp ----
+// ---- begin impulse/dynamics/contact_batch.hpp ----
+// impulse/dynamics/contact_batch.hpp — W contacts that share no moving body,
+// solved together as the W lanes of SIMD batches.
+//
+// The rows are those of contact_rows.hpp (a normal row per point, friction
+// at the patch: a 2×2 tangent block in the Coulomb disc and a twist row),
+// with every Jacobian and mass worked out before the iterations and held
+// structure-of-arrays, lane i for the batch's i-th contact. An iteration
+// gathers the W pairs of bodies' velocities into lanes, solves, and
+// scatters them back (Box2D v3's contact_solver.c works the same way).
+// One contact's rows form a chain, each reading what the last wrote: a
+// lone contact is bound by the latency of that chain, W of them in lanes
+// run it once for all W.
+//
+// A lane with fewer points than the batch's widest contact, or a lane no
+// contact fills, has rows of zero mass: their impulse stays zero and they
+// change nothing.
+
+
+// ---- begin impulse/math/vec3_batch.hpp ----
+// impulse/math/vec3_batch.hpp — W three-vectors held as three batches (x, y, z).
+//
+// The structure-of-arrays twin of vec3: lane i of (x, y, z) is one vector.
+// It is the state the particle kernels hand to the integrators, so it models
+// integrators::ode_state (addition, scaling by a scalar or a batch) and has
+// the few geometric functions the forces need.
+
+
+namespace impulse {
+
+template <scalar_type T, int W = native_width<T>>
+  requires batch_width<T, W>
+struct vec3_batch {
+  using scalar = T;
+  using lanes = batch<T, W>;
+  static constexpr int width = W;
+
+  lanes x, y, z;
+
+  static vec3_batch broadcast(const vec3<T>& v) noexcept {
+    return {lanes::broadcast(v.x), lanes::broadcast(v.y), lanes::broadcast(v.z)};
+  }
+  /// W consecutive vectors from three structure-of-arrays columns.
+  static vec3_batch load(const T* xs, const T* ys, const T* zs) noexcept {
+    return {lanes::load(xs), lanes::load(ys), lanes::load(zs)};
+  }
+  void store(T* xs, T* ys, T* zs) const noexcept {
+    x.store(xs);
+    y.store(ys);
+    z.store(zs);
+  }
+  vec3<T> lane(int i) const noexcept { return {x[i], y[i], z[i]}; }
+  void set_lane(int i, const vec3<T>& v) noexcept {
+    x.set(i, v.x);
+    y.set(i, v.y);
+    z.set(i, v.z);
+  }
+
+  friend vec3_batch operator-(const vec3_batch& a) noexcept { return {-a.x, -a.y, -a.z}; }
+  friend vec3_batch operator+(const vec3_batch& a, const vec3_batch& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend vec3_batch operator-(const vec3_batch& a, const vec3_batch& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend vec3_batch operator*(const vec3_batch& a, T s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+  friend vec3_batch operator*(T s, const vec3_batch& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+  /// Each lane's vector scaled by that lane's scalar.
+  friend vec3_batch operator*(const vec3_batch& a, lanes s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+  friend vec3_batch operator*(lanes s, const vec3_batch& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
+};
+
+template <scalar_type T, int W>
+batch<T, W> dot(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+template <scalar_type T, int W>
+batch<T, W> length_squared(const vec3_batch<T, W>& a) noexcept {
+  return dot(a, a);
+}
+
+template <scalar_type T, int W>
+batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
+  return sqrt(dot(a, a));
+}
+
+}  // namespace impulse
+// ---- end impulse/math/vec3_batch.hpp ----
+
+namespace impulse::detail {
+
+/// Contacts per batch: the target's widest registers, at most 8 (wider
+/// batches leave more lanes empty in the small colours).
+template <scalar_type T>
+inline constexpr int contact_lanes = native_width<T> < 8 ? native_width<T> : 8;
+
+template <scalar_type T, int W>
+struct contact_batch {
+  using lanes = batch<T, W>;
+  using vectors = vec3_batch<T, W>;
+  /// One point's normal row in every lane.
+  struct row {
+    vectors arm_a, arm_b;    ///< r × n
+    vectors turn_a, turn_b;  ///< I⁻¹ (r × n)
+    lanes mass;              ///< kg
+    lanes gap_speed;         ///< m/s: the speed that just closes a gap this step (0 when touching)
+    lanes push_speed;        ///< m/s: the position pass's target separation speed
+    lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
+    lanes impulse;           ///< N·s
+    lanes bias_impulse;      ///< N·s, of the position pass
+    /// How an impulse on this row changes each row's normal speed: column
+    /// i of the patch's J M⁻¹ Jᵀ, 1/s·kg⁻¹ (zero past the lane's points).
+    lanes coupling[contact_manifold<T>::capacity];
+  };
+
+  std::uint32_t body_a[W] = {}, body_b[W] = {};
+  std::uint32_t contact[W] = {};  ///< each lane's place in the contact array
+  int size = 0;                   ///< lanes in use
+  /// The batch's rows, one per point of its widest contact, are these in
+  /// the solver's row array: a batch of spheres carries one row, not four.
+  std::uint32_t first_row = 0;
+  int rows_used = 0;
+  vectors normal{}, tangent1{}, tangent2{};
+  lanes inverse_mass_a{}, inverse_mass_b{};
+  // Friction at the patch's middle: r × t and I⁻¹ (r × t) for each tangent
+  // and body, the 2×2 block's inverse, and I⁻¹ n for the twist.
+  vectors arm_a1{}, arm_a2{}, arm_b1{}, arm_b2{};
+  vectors turn_a1{}, turn_a2{}, turn_b1{}, turn_b2{};
+  lanes tangent_mass11{}, tangent_mass12{}, tangent_mass22{};
+  lanes friction{};
+  lanes tangent_impulse1{}, tangent_impulse2{};
+  vectors twist_a{}, twist_b{};
+  lanes twist_mass{}, twist_radius{}, twist_impulse{};
+};
+
+/// The velocities of a batch's bodies, in lanes.
+template <scalar_type T, int W>
+struct batch_velocities {
+  vec3_batch<T, W> va{}, wa{}, vb{}, wb{};
+  /// What follows each body's six numbers, carried from gather to scatter
+  /// unchanged (the eight-lane path moves eight numbers a body).
+  batch<T, W> after_a[2]{}, after_b[2]{};
+};
+
+template <scalar_type T, int W>
+using batch_row = typename contact_batch<T, W>::row;
+
+/// Fills `out` with the contacts `members` (prepared by prepare_contacts,
+/// with their position targets), and appends its rows to `rows`.
+template <scalar_type T, int W>
+void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+                std::span<const std::uint32_t> members, T inverse_dt, contact_batch<T, W>& out,
+                std::vector<batch_row<T, W>>& rows) {
+  out = contact_batch<T, W>{};
+  out.size = int(members.size());
+  for (const std::uint32_t m : members) out.rows_used = std::max(out.rows_used, contacts[m].count);
+  out.first_row = std::uint32_t(rows.size());
+  rows.resize(rows.size() + std::size_t(out.rows_used));
+  const std::span<batch_row<T, W>> own = std::span<batch_row<T, W>>(rows).subspan(out.first_row);
+  for (int l = 0; l < out.size; ++l) {
+    const contact_constraint<T>& c = contacts[members[std::size_t(l)]];
+    const solver_body<T>& a = bodies[c.body_a];
+    const solver_body<T>& b = bodies[c.body_b];
+    out.contact[l] = members[std::size_t(l)];
+    out.body_a[l] = c.body_a, out.body_b[l] = c.body_b;
+    out.normal.set_lane(l, c.normal);
+    out.tangent1.set_lane(l, c.tangent1);
+    out.tangent2.set_lane(l, c.tangent2);
+    out.inverse_mass_a.set(l, a.inverse_mass);
+    out.inverse_mass_b.set(l, b.inverse_mass);
+    for (int i = 0; i < c.count; ++i) {
+      const contact_constraint_point<T>& p = c.points[i];
+      batch_row<T, W>& r = own[std::size_t(i)];
+      r.arm_a.set_lane(l, p.arm_a);
+      r.arm_b.set_lane(l, p.arm_b);
+      r.turn_a.set_lane(l, p.turn_a);
+      r.turn_b.set_lane(l, p.turn_b);
+      r.mass.set(l, p.normal_mass);
+      r.gap_speed.set(l, p.depth < T(0) ? -p.depth * inverse_dt : T(0));
+      const bool pushed = p.push_speed >= T(0);
+      r.push_speed.set(l, pushed ? p.push_speed : T(0));
+      r.position_mass.set(l, pushed ? p.normal_mass : T(0));
+      r.impulse.set(l, p.normal_impulse);
+      r.bias_impulse.set(l, T(0));
+      for (int k = 0; k < c.count; ++k) {
+        const contact_constraint_point<T>& q = c.points[k];
+        r.coupling[k].set(l, a.inverse_mass + b.inverse_mass + dot(q.arm_a, p.turn_a) + dot(q.arm_b, p.turn_b));
+      }
+    }
+    const vec3<T> arm_a1 = cross(c.anchor_a, c.tangent1), arm_a2 = cross(c.anchor_a, c.tangent2);
+    const vec3<T> arm_b1 = cross(c.anchor_b, c.tangent1), arm_b2 = cross(c.anchor_b, c.tangent2);
+    out.arm_a1.set_lane(l, arm_a1);
+    out.arm_a2.set_lane(l, arm_a2);
+    out.arm_b1.set_lane(l, arm_b1);
+    out.arm_b2.set_lane(l, arm_b2);
+    out.turn_a1.set_lane(l, a.inverse_inertia * arm_a1);
+    out.turn_a2.set_lane(l, a.inverse_inertia * arm_a2);
+    out.turn_b1.set_lane(l, b.inverse_inertia * arm_b1);
+    out.turn_b2.set_lane(l, b.inverse_inertia * arm_b2);
+    out.tangent_mass11.set(l, c.tangent_mass11);
+    out.tangent_mass12.set(l, c.tangent_mass12);
+    out.tangent_mass22.set(l, c.tangent_mass22);
+    out.friction.set(l, c.friction);
+    out.tangent_impulse1.set(l, c.tangent_impulse1);
+    out.tangent_impulse2.set(l, c.tangent_impulse2);
+    out.twist_a.set_lane(l, a.inverse_inertia * c.normal);
+    out.twist_b.set_lane(l, b.inverse_inertia * c.normal);
+    out.twist_mass.set(l, c.twist_mass);
+    out.twist_radius.set(l, c.twist_radius);
+    out.twist_impulse.set(l, c.twist_impulse);
+  }
+}
+
+/// Writes a batch's accumulated impulses back to its contacts.
+template <scalar_type T, int W>
+void store_batch(const contact_batch<T, W>& in, std::span<const batch_row<T, W>> rows,
+                 std::span<contact_constraint<T>> contacts) noexcept {
+  for (int l = 0; l < in.size; ++l) {
+    contact_constraint<T>& c = contacts[in.contact[l]];
+    for (int i = 0; i < c.count; ++i) {
+      c.points[i].normal_impulse = rows[std::size_t(i)].impulse[l];
+      c.points[i].bias_impulse = rows[std::size_t(i)].bias_impulse[l];
+    }
+    c.tangent_impulse1 = in.tangent_impulse1[l];
+    c.tangent_impulse2 = in.tangent_impulse2[l];
+    c.twist_impulse = in.twist_impulse[l];
+  }
+}
+
+#if defined(__GNUC__)
+/// Transposes eight rows of eight lanes in place: row i lane j becomes row
+/// j lane i (unpack pairs, then pairs of pairs, then halves: 24 shuffles).
+template <class V>
+[[gnu::always_inline]] inline void transpose8(V (&r)[8]) noexcept {
+  V t[8], u[8];
+  for (int i = 0; i < 8; i += 2) {
+    t[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    t[i + 1] = __builtin_shufflevector(r[i], r[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int i = 0; i < 8; i += 4)
+    for (int k = 0; k < 2; ++k) {
+      u[i + k] = __builtin_shufflevector(t[i + k], t[i + k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[i + k + 2] = __builtin_shufflevector(t[i + k], t[i + k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  // u[0..3] hold columns 0, 2, 1, 3 of rows 0–3 in their low halves and
+  // columns 4, 6, 5, 7 in their high halves; u[4..7] the same of rows 4–7.
+  constexpr int order[4] = {0, 2, 1, 3};
+  for (int k = 0; k < 4; ++k) {
+    r[k] = __builtin_shufflevector(u[order[k]], u[order[k] + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    r[k + 4] = __builtin_shufflevector(u[order[k]], u[order[k] + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+  }
+}
+#endif
+
+/// A body's velocities, or the position pass's pseudo-velocities.
+enum class velocity_kind { real, pseudo };
+
+/// Where a body's linear and angular velocities of that kind (which follow
+/// one another in solver_body) start, in bytes. The eight-lane path reads
+/// and writes eight numbers from there: the six and the two after them.
+template <scalar_type T>
+constexpr std::size_t velocities_offset(velocity_kind kind) noexcept {
+  using body = solver_body<T>;
+  static_assert(std::is_standard_layout_v<body>);
+  static_assert(offsetof(body, angular_velocity) == offsetof(body, linear_velocity) + 3 * sizeof(T));
+  static_assert(offsetof(body, bias_angular) == offsetof(body, bias_linear) + 3 * sizeof(T));
+  static_assert(offsetof(body, bias_linear) + 8 * sizeof(T) <= sizeof(body));
+  return kind == velocity_kind::real ? offsetof(body, linear_velocity) : offsetof(body, bias_linear);
+}
+
+template <class Body>
+[[nodiscard]] auto& linear_of(Body& b, velocity_kind kind) noexcept {
+  return kind == velocity_kind::real ? b.linear_velocity : b.bias_linear;
+}
+template <class Body>
+[[nodiscard]] auto& angular_of(Body& b, velocity_kind kind) noexcept {
+  return kind == velocity_kind::real ? b.angular_velocity : b.bias_angular;
+}
+
+/// The velocities of the batch's bodies, in lanes. With eight lanes each body's six
+/// numbers (and two after them) are one load, and eight such rows are
+/// transposed into lanes in registers; otherwise lane by lane into
+/// columns and a column at a time into lanes (writing single lanes of a
+/// vector register goes through memory once per lane).
+template <scalar_type T, int W>
+[[nodiscard]] batch_velocities<T, W> gather(std::span<const solver_body<T>> bodies, const contact_batch<T, W>& in,
+                                            velocity_kind kind) noexcept {
+  batch_velocities<T, W> v;
+#if defined(__GNUC__)
+  if constexpr (W == 8) {
+    using row = detail::lanes<T, 8>;
+    const std::size_t start = velocities_offset<T>(kind);
+    row ra[8], rb[8];
+    for (int l = 0; l < W; ++l) {
+      // Lanes past the batch's contacts read the first lane's bodies: any
+      // finite numbers do, their rows have no mass.
+      const int from = l < in.size ? l : 0;
+      __builtin_memcpy(&ra[l], reinterpret_cast<const char*>(&bodies[in.body_a[from]]) + start, sizeof(row));
+      __builtin_memcpy(&rb[l], reinterpret_cast<const char*>(&bodies[in.body_b[from]]) + start, sizeof(row));
+    }
+    transpose8(ra);
+    transpose8(rb);
+    v.va = {{ra[0]}, {ra[1]}, {ra[2]}};
+    v.wa = {{ra[3]}, {ra[4]}, {ra[5]}};
+    v.vb = {{rb[0]}, {rb[1]}, {rb[2]}};
+    v.wb = {{rb[3]}, {rb[4]}, {rb[5]}};
+    v.after_a[0] = {ra[6]}, v.after_a[1] = {ra[7]};
+    v.after_b[0] = {rb[6]}, v.after_b[1] = {rb[7]};
+    return v;
+  }
+#endif
+  alignas(64) T columns[12][W] = {};
+  for (int l = 0; l < in.size; ++l) {
+    const solver_body<T>& a = bodies[in.body_a[l]];
+    const solver_body<T>& b = bodies[in.body_b[l]];
+    const vec3<T>* parts[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
+    for (int k = 0; k < 4; ++k) {
+      columns[3 * k][l] = parts[k]->x;
+      columns[3 * k + 1][l] = parts[k]->y;
+      columns[3 * k + 2][l] = parts[k]->z;
+    }
+  }
+  const auto column = [&](int k) {
+    return vec3_batch<T, W>::load(columns[3 * k], columns[3 * k + 1], columns[3 * k + 2]);
+  };
+  v.va = column(0), v.wa = column(1), v.vb = column(2), v.wb = column(3);
+  return v;
+}
+
+/// Writes the lanes back. Lanes may share a static or kinematic body: each
+/// writes back the velocity it read, unchanged (its inverse mass and
+/// inertia are zero).
+template <scalar_type T, int W>
+void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, const batch_velocities<T, W>& v,
+             velocity_kind kind) noexcept {
+#if defined(__GNUC__)
+  if constexpr (W == 8) {
+    using row = detail::lanes<T, 8>;
+    const std::size_t start = velocities_offset<T>(kind);
+    row ra[8] = {v.va.x.v, v.va.y.v, v.va.z.v, v.wa.x.v, v.wa.y.v, v.wa.z.v, v.after_a[0].v, v.after_a[1].v};
+    row rb[8] = {v.vb.x.v, v.vb.y.v, v.vb.z.v, v.wb.x.v, v.wb.y.v, v.wb.z.v, v.after_b[0].v, v.after_b[1].v};
+    transpose8(ra);
+    transpose8(rb);
+    for (int l = 0; l < in.size; ++l) {
+      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
+      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
+    }
+    return;
+  }
+#endif
+  alignas(64) T columns[12][W];
+  const vec3_batch<T, W>* parts[4] = {&v.va, &v.wa, &v.vb, &v.wb};
+  for (int k = 0; k < 4; ++k) parts[k]->store(columns[3 * k], columns[3 * k + 1], columns[3 * k + 2]);
+  for (int l = 0; l < in.size; ++l) {
+    solver_body<T>& a = bodies[in.body_a[l]];
+    solver_body<T>& b = bodies[in.body_b[l]];
+    vec3<T>* targets[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
+    for (int k = 0; k < 4; ++k) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
+  }
+}
+
+/// `sweeps` passes over the normal rows (sequential_impulse.hpp says why
+/// more than one): on the velocities, each row closing at most its gap
+/// (`position` false), or on the pseudo-velocities, pushing points deeper
+/// than the slop apart (`position` true).
+///
+/// Within the passes the rows see the bodies only through each other: an
+/// impulse d on row i changes row k's normal speed by K_ki·d, K the
+/// patch's J M⁻¹ Jᵀ. So the passes run on the rows' speeds (four
+/// numbers) rather than on the bodies' velocities (twelve), and the
+/// impulses reach the bodies once, summed, at the end. The result is the
+/// same; each row's step waits on three operations instead of a dozen.
+template <scalar_type T, int W>
+void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& in, std::span<batch_row<T, W>> rows,
+                         int sweeps, bool position) noexcept {
+  using lanes = batch<T, W>;
+  constexpr int capacity = contact_manifold<T>::capacity;
+  const lanes zero = lanes::broadcast(T(0));
+  const int n = int(rows.size());
+  // A single row is solved exactly by its first pass.
+  if (n == 1) sweeps = 1;
+  const vec3_batch<T, W> dv = v.vb - v.va;
+  lanes speed[capacity], first[capacity];
+  for (int i = 0; i < n; ++i) {
+    const batch_row<T, W>& r = rows[std::size_t(i)];
+    speed[i] = dot(in.normal, dv) + dot(v.wb, r.arm_b) - dot(v.wa, r.arm_a);
+    first[i] = position ? r.bias_impulse : r.impulse;
+  }
+  for (int sweep = 0; sweep < sweeps; ++sweep)
+    for (int i = 0; i < n; ++i) {
+      batch_row<T, W>& r = rows[std::size_t(i)];
+      lanes& total = position ? r.bias_impulse : r.impulse;
+      const lanes next = position ? max(total - r.position_mass * (speed[i] - r.push_speed), zero)
+                                  : max(total - r.mass * (speed[i] + r.gap_speed), zero);
+      const lanes delta = next - total;
+      total = next;
+      for (int k = 0; k < n; ++k) speed[k] = speed[k] + r.coupling[k] * delta;
+    }
+  lanes pushed = zero;
+  vec3_batch<T, W> turn_a{}, turn_b{};
+  for (int i = 0; i < n; ++i) {
+    const batch_row<T, W>& r = rows[std::size_t(i)];
+    const lanes delta = (position ? r.bias_impulse : r.impulse) - first[i];
+    pushed = pushed + delta;
+    turn_a = turn_a + r.turn_a * delta;
+    turn_b = turn_b + r.turn_b * delta;
+  }
+  v.va = v.va - in.normal * (pushed * in.inverse_mass_a);
+  v.wa = v.wa - turn_a;
+  v.vb = v.vb + in.normal * (pushed * in.inverse_mass_b);
+  v.wb = v.wb + turn_b;
+}
+
+/// Friction at the patch, as solve_friction in contact_rows.hpp.
+template <scalar_type T, int W>
+void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
+                          std::span<const batch_row<T, W>> rows) noexcept {
+  using lanes = batch<T, W>;
+  lanes pressed = lanes::broadcast(T(0));
+  for (const batch_row<T, W>& r : rows) pressed = pressed + r.impulse;
+  const lanes limit = in.friction * pressed;
+  const vec3_batch<T, W> dv = v.vb - v.va;
+  const lanes v1 = dot(in.tangent1, dv) + dot(v.wb, in.arm_b1) - dot(v.wa, in.arm_a1);
+  const lanes v2 = dot(in.tangent2, dv) + dot(v.wb, in.arm_b2) - dot(v.wa, in.arm_a2);
+  lanes j1 = in.tangent_impulse1 - (in.tangent_mass11 * v1 + in.tangent_mass12 * v2);
+  lanes j2 = in.tangent_impulse2 - (in.tangent_mass12 * v1 + in.tangent_mass22 * v2);
+  // Back onto the Coulomb disc; the floor keeps the lanes that need no
+  // scaling from dividing by zero.
+  const lanes squared = j1 * j1 + j2 * j2;
+  const lanes floor = lanes::broadcast(std::numeric_limits<T>::min());
+  const lanes scale = select(squared > limit * limit, limit / sqrt(max(squared, floor)), lanes::broadcast(T(1)));
+  j1 = j1 * scale, j2 = j2 * scale;
+  const lanes d1 = j1 - in.tangent_impulse1, d2 = j2 - in.tangent_impulse2;
+  in.tangent_impulse1 = j1, in.tangent_impulse2 = j2;
+  const vec3_batch<T, W> j = in.tangent1 * d1 + in.tangent2 * d2;
+  v.va = v.va - j * in.inverse_mass_a;
+  v.wa = v.wa - (in.turn_a1 * d1 + in.turn_a2 * d2);
+  v.vb = v.vb + j * in.inverse_mass_b;
+  v.wb = v.wb + (in.turn_b1 * d1 + in.turn_b2 * d2);
+
+  const lanes spin = dot(in.normal, v.wb - v.wa);
+  const lanes bound = limit * in.twist_radius;
+  const lanes total = min(max(in.twist_impulse - in.twist_mass * spin, -bound), bound);
+  const lanes d = total - in.twist_impulse;
+  in.twist_impulse = total;
+  v.wa = v.wa - in.twist_a * d;
+  v.wb = v.wb + in.twist_b * d;
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/dynamics/contact_batch.hpp ----
 // ---- begin impulse/dynamics/solver_settings.hpp ----
 // impulse/dynamics/solver_settings.hpp — the contact solver's numbers, in one
 // place, each with its unit and the reason for its value.
@@ -7062,8 +7605,10 @@ class basic_sequential_impulse {
   }
 
   /// Steps 1–5 above: the velocities and pseudo-velocities of the step.
+  /// Steps 4 and 5 run on batches of contacts that share no moving body
+  /// (constraint_graph.hpp), W at a time in SIMD lanes (contact_batch.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             const solver_settings<T>& settings, T dt) const noexcept {
+             const solver_settings<T>& settings, T dt) {
     const T inverse_dt = T(1) / dt;
     for (solver_body<T>& b : bodies) {
       b.linear_velocity += b.force_linear;
@@ -7080,26 +7625,58 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
-    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration)
-      for (contact_constraint<T>& c : contacts) solve_velocity(bodies, c, settings, inverse_dt);
-    for (int iteration = 0; iteration < settings.position_iterations; ++iteration)
-      for (contact_constraint<T>& c : contacts) solve_position(bodies, c, settings, inverse_dt);
+    for (contact_constraint<T>& c : contacts) position_targets(c, settings, inverse_dt);
+    const std::span<const solver_body<T>> read = bodies;
+    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    batches_.resize(graph_.batch_count());
+    rows_.clear();
+    for (std::size_t k = 0; k < batches_.size(); ++k)
+      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), inverse_dt,
+                         batches_[k], rows_);
+    constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
+    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
+      for (batch_type& b : batches_) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        // Friction first: it is bounded by the normal impulses, and the
+        // normal rows, solved last, are the ones that must hold (no sinking).
+        detail::solve_batch_friction(v, b, rows_of(b));
+        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
+        detail::scatter(bodies, b, v, real);
+      }
+      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings, inverse_dt);
+    }
+    for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
+      for (batch_type& b : batches_) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, true);
+        detail::scatter(bodies, b, v, pseudo);
+      }
+      for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+    }
+    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
   }
 
  private:
+  static constexpr int width = detail::contact_lanes<T>;
+  using batch_type = detail::contact_batch<T, width>;
+  using row_type = detail::batch_row<T, width>;
+
+  detail::constraint_graph graph_;
+  std::vector<batch_type> batches_;
+  std::vector<row_type> rows_;
+
+  std::span<row_type> rows_of(const batch_type& b) noexcept {
+    return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
+  }
+
+  /// One manifold's rows, one after another: the manifolds the colouring
+  /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
                              const solver_settings<T>& settings, T inverse_dt) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
-    // Friction first: it is bounded by the normal impulses, and the normal
-    // rows, solved last, are the ones that must hold (no sinking).
+    // Friction first, as in the batches (solve above).
     detail::solve_friction(a, b, c);
-    // The normal rows of one patch are coupled strongly through the
-    // bodies' rotation (a corner's impulse lifts the opposite corner), far
-    // more than patches are coupled to each other; one pass over them
-    // leaves a residual spin that tips a tall stack over within seconds.
-    // A few passes within the patch settle it at little cost: a 10-box
-    // tower that falls in 4 s with one pass stands with four.
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
@@ -7110,18 +7687,29 @@ class basic_sequential_impulse {
       }
   }
 
+  /// What the position pass asks of each point: to separate at a fraction
+  /// of its penetration beyond the slop per step; < 0 when it lies within
+  /// the slop and takes no part.
+  static void position_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+    for (int i = 0; i < c.count; ++i) {
+      contact_constraint_point<T>& p = c.points[i];
+      p.push_speed = p.depth > settings.linear_slop
+                         ? std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
+                                    settings.max_correction_speed)
+                         : T(-1);
+    }
+  }
+
   static void solve_position(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings, T inverse_dt) noexcept {
+                             const solver_settings<T>& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
-        if (p.depth <= settings.linear_slop) continue;
-        const T push_speed = std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
-                                      settings.max_correction_speed);
+        if (p.push_speed < T(0)) continue;
         detail::solve_normal(a.bias_linear, a.bias_angular, b.bias_linear, b.bias_angular, a, b, c.normal, p,
-                             p.bias_impulse, -push_speed);
+                             p.bias_impulse, -p.push_speed);
       }
   }
 };
@@ -7443,72 +8031,6 @@ using aabbd = aabb<double>;
 
 }  // namespace impulse
 // ---- end impulse/math/fwd.hpp ----
-// ---- begin impulse/math/vec3_batch.hpp ----
-// impulse/math/vec3_batch.hpp — W three-vectors held as three batches (x, y, z).
-//
-// The structure-of-arrays twin of vec3: lane i of (x, y, z) is one vector.
-// It is the state the particle kernels hand to the integrators, so it models
-// integrators::ode_state (addition, scaling by a scalar or a batch) and has
-// the few geometric functions the forces need.
-
-
-namespace impulse {
-
-template <scalar_type T, int W = native_width<T>>
-  requires batch_width<T, W>
-struct vec3_batch {
-  using scalar = T;
-  using lanes = batch<T, W>;
-  static constexpr int width = W;
-
-  lanes x, y, z;
-
-  static vec3_batch broadcast(const vec3<T>& v) noexcept {
-    return {lanes::broadcast(v.x), lanes::broadcast(v.y), lanes::broadcast(v.z)};
-  }
-  /// W consecutive vectors from three structure-of-arrays columns.
-  static vec3_batch load(const T* xs, const T* ys, const T* zs) noexcept {
-    return {lanes::load(xs), lanes::load(ys), lanes::load(zs)};
-  }
-  void store(T* xs, T* ys, T* zs) const noexcept {
-    x.store(xs);
-    y.store(ys);
-    z.store(zs);
-  }
-  vec3<T> lane(int i) const noexcept { return {x[i], y[i], z[i]}; }
-  void set_lane(int i, const vec3<T>& v) noexcept {
-    x.set(i, v.x);
-    y.set(i, v.y);
-    z.set(i, v.z);
-  }
-
-  friend vec3_batch operator-(const vec3_batch& a) noexcept { return {-a.x, -a.y, -a.z}; }
-  friend vec3_batch operator+(const vec3_batch& a, const vec3_batch& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-  friend vec3_batch operator-(const vec3_batch& a, const vec3_batch& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-  friend vec3_batch operator*(const vec3_batch& a, T s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-  friend vec3_batch operator*(T s, const vec3_batch& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-  /// Each lane's vector scaled by that lane's scalar.
-  friend vec3_batch operator*(const vec3_batch& a, lanes s) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-  friend vec3_batch operator*(lanes s, const vec3_batch& a) noexcept { return {a.x * s, a.y * s, a.z * s}; }
-};
-
-template <scalar_type T, int W>
-batch<T, W> dot(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-template <scalar_type T, int W>
-batch<T, W> length_squared(const vec3_batch<T, W>& a) noexcept {
-  return dot(a, a);
-}
-
-template <scalar_type T, int W>
-batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
-  return sqrt(dot(a, a));
-}
-
-}  // namespace impulse
-// ---- end impulse/math/vec3_batch.hpp ----
 // ---- end impulse/math.hpp ----
 // ---- begin impulse/narrowphase.hpp ----
 // impulse/narrowphase.hpp — the narrow phase module: contact manifolds

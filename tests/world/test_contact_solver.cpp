@@ -165,6 +165,30 @@ TEST_CASE("a 100 kg box resting on a 1 kg box stands for 10 s without sinking or
   CHECK(w.body(light).position.y > 0.49f);
 }
 
+TEST_CASE("a slab carrying 100 boxes holds them all though it has more contacts than the solver has colours") {
+  // The slab is in 100 contacts with the boxes (and one with the ground);
+  // the colouring gives 64 of them a colour and leaves the rest to be
+  // solved one by one after the batches (constraint_graph.hpp). Both
+  // paths must hold their boxes alike.
+  world<test::awake_config> w;
+  test::add_ground(w);
+  body_def<float> slab_def;
+  slab_def.pose.position = {0, 0.25f, 0};
+  slab_def.mass = 100;
+  const body_id slab = w.create_body(slab_def, box<float>::make({7, 0.25f, 7}));
+  std::vector<body_id> boxes;
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 10; ++k)
+      boxes.push_back(test::add_cube(w, {(float(i) - 4.5f) * 1.2f, 1.0f, (float(k) - 4.5f) * 1.2f}));
+  const auto start = test::positions(w, boxes);
+  test::run(w, 300);
+  const vec3<float> moved = test::largest_displacement(w, boxes, start);
+  CHECK(moved.x < 0.001f);
+  CHECK(moved.y < 0.001f);
+  CHECK(moved.z < 0.001f);
+  CHECK(std::abs(w.body(slab).position.y - 0.25f) < 0.001f);
+}
+
 namespace {
 
 /// The 20-row pyramid after 20 s with its ground at `origin`: the largest

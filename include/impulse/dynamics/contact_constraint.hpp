@@ -78,6 +78,9 @@ struct contact_constraint_point {
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
+  /// The position pass's target separation speed, m/s; < 0 where the
+  /// point takes no part in it (sequential_impulse.hpp, position_targets).
+  T push_speed = T(-1);
 };
 
 /// A manifold's rows: a normal row per point, and friction for the patch

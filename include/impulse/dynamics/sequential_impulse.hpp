@@ -16,8 +16,13 @@
 //    feature id, are applied again.
 // 4. Velocity iterations: per manifold, friction at the patch (two tangent
 //    rows within the Coulomb disc of the patch's normal impulse and a
-//    twist row), then each point's normal row, clamped to push only. A row that starts apart (a speculative contact,
-//    depth < 0) may close its gap within the step but no more.
+//    twist row), then a few passes over the points' normal rows, clamped
+//    to push only (solver_settings.hpp, manifold_sweeps, says why more
+//    than one). A row that starts apart (a speculative contact, depth < 0)
+//    may close its gap within the step but no more. The manifolds are
+//    visited colour by colour, W that share no moving body at a time in
+//    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
+//    colour could take is solved alone after them.
 // 5. Position pass (split impulses; Catto's "Box2D: the position problem",
 //    Bullet's split impulse): the normal rows once more on separate
 //    pseudo-velocities, pushing penetration beyond the slop out at a
@@ -33,8 +38,11 @@
 
 #include <algorithm>
 #include <span>
+#include <vector>
 
 #include "../core/policy.hpp"
+#include "constraint_graph.hpp"
+#include "contact_batch.hpp"
 #include "contact_constraint.hpp"
 #include "contact_rows.hpp"
 #include "solver_settings.hpp"
@@ -49,8 +57,10 @@ class basic_sequential_impulse {
   }
 
   /// Steps 1–5 above: the velocities and pseudo-velocities of the step.
+  /// Steps 4 and 5 run on batches of contacts that share no moving body
+  /// (constraint_graph.hpp), W at a time in SIMD lanes (contact_batch.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             const solver_settings<T>& settings, T dt) const noexcept {
+             const solver_settings<T>& settings, T dt) {
     const T inverse_dt = T(1) / dt;
     for (solver_body<T>& b : bodies) {
       b.linear_velocity += b.force_linear;
@@ -67,26 +77,58 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
-    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration)
-      for (contact_constraint<T>& c : contacts) solve_velocity(bodies, c, settings, inverse_dt);
-    for (int iteration = 0; iteration < settings.position_iterations; ++iteration)
-      for (contact_constraint<T>& c : contacts) solve_position(bodies, c, settings, inverse_dt);
+    for (contact_constraint<T>& c : contacts) position_targets(c, settings, inverse_dt);
+    const std::span<const solver_body<T>> read = bodies;
+    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    batches_.resize(graph_.batch_count());
+    rows_.clear();
+    for (std::size_t k = 0; k < batches_.size(); ++k)
+      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), inverse_dt,
+                         batches_[k], rows_);
+    constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
+    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
+      for (batch_type& b : batches_) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        // Friction first: it is bounded by the normal impulses, and the
+        // normal rows, solved last, are the ones that must hold (no sinking).
+        detail::solve_batch_friction(v, b, rows_of(b));
+        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
+        detail::scatter(bodies, b, v, real);
+      }
+      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings, inverse_dt);
+    }
+    for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
+      for (batch_type& b : batches_) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, true);
+        detail::scatter(bodies, b, v, pseudo);
+      }
+      for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+    }
+    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
   }
 
  private:
+  static constexpr int width = detail::contact_lanes<T>;
+  using batch_type = detail::contact_batch<T, width>;
+  using row_type = detail::batch_row<T, width>;
+
+  detail::constraint_graph graph_;
+  std::vector<batch_type> batches_;
+  std::vector<row_type> rows_;
+
+  std::span<row_type> rows_of(const batch_type& b) noexcept {
+    return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
+  }
+
+  /// One manifold's rows, one after another: the manifolds the colouring
+  /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
                              const solver_settings<T>& settings, T inverse_dt) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
-    // Friction first: it is bounded by the normal impulses, and the normal
-    // rows, solved last, are the ones that must hold (no sinking).
+    // Friction first, as in the batches (solve above).
     detail::solve_friction(a, b, c);
-    // The normal rows of one patch are coupled strongly through the
-    // bodies' rotation (a corner's impulse lifts the opposite corner), far
-    // more than patches are coupled to each other; one pass over them
-    // leaves a residual spin that tips a tall stack over within seconds.
-    // A few passes within the patch settle it at little cost: a 10-box
-    // tower that falls in 4 s with one pass stands with four.
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
@@ -97,18 +139,29 @@ class basic_sequential_impulse {
       }
   }
 
+  /// What the position pass asks of each point: to separate at a fraction
+  /// of its penetration beyond the slop per step; < 0 when it lies within
+  /// the slop and takes no part.
+  static void position_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+    for (int i = 0; i < c.count; ++i) {
+      contact_constraint_point<T>& p = c.points[i];
+      p.push_speed = p.depth > settings.linear_slop
+                         ? std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
+                                    settings.max_correction_speed)
+                         : T(-1);
+    }
+  }
+
   static void solve_position(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings, T inverse_dt) noexcept {
+                             const solver_settings<T>& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
-        if (p.depth <= settings.linear_slop) continue;
-        const T push_speed = std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
-                                      settings.max_correction_speed);
+        if (p.push_speed < T(0)) continue;
         detail::solve_normal(a.bias_linear, a.bias_angular, b.bias_linear, b.bias_angular, a, b, c.normal, p,
-                             p.bias_impulse, -push_speed);
+                             p.bias_impulse, -p.push_speed);
       }
   }
 };
