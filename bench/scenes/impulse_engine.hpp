@@ -64,12 +64,13 @@ constexpr std::string_view broad_phase_name() {
   else return "custom_broadphase";
 }
 
-/// The name of the contact solver a world runs (sequential_impulse is the
-/// only one the library has so far).
+/// The name of the contact solver a world runs.
 template <class World>
 constexpr std::string_view solver_name() {
   if constexpr (std::is_same_v<typename World::solver_policy, impulse::solver::sequential_impulse>)
     return "sequential_impulse";
+  else if constexpr (std::is_same_v<typename World::solver_policy, impulse::solver::soft_step>)
+    return "soft_step";
   else
     return "custom_solver";
 }
@@ -82,9 +83,16 @@ class impulse_engine {
   static constexpr std::string_view name = "impulse";
 
   [[nodiscard]] std::string config() const {
-    const int iterations =
-        std::visit([](const auto& w) { return settings_of(w).solver.velocity_iterations; }, world_);
-    return std::string(detail::solver_name<sleeping_world>()) + " iterations=" + std::to_string(iterations) + ' ' +
+    // soft_step's work is its substeps (one soft and one relax sweep
+    // each); sequential_impulse's its velocity iterations.
+    constexpr bool substepping = sleeping_world::solver_policy::moves_bodies;
+    const int count = std::visit(
+        [](const auto& w) {
+          return substepping ? settings_of(w).solver.substeps : settings_of(w).solver.velocity_iterations;
+        },
+        world_);
+    return std::string(detail::solver_name<sleeping_world>()) + (substepping ? " substeps=" : " iterations=") +
+           std::to_string(count) + ' ' +
            std::string(detail::broad_phase_name<sleeping_world>()) +
            (std::is_same_v<T, double> ? " double" : " float");
   }

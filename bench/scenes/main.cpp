@@ -68,19 +68,22 @@ scene_result run_scene(const scene_spec& spec) {
   return {engine.config(), median_of_last(step_ms, timing_window(spec.steps)), recorder.results()};
 }
 
-// impulse's policy sets: its default broad phase and the sort-based one,
-// each with the only solver there is, in float like the peers. Sleeping is
+// impulse's policy sets, in float like the peers: the default (dynamic
+// BVH, sequential impulses), every other broad phase with the default
+// solver, and the other solver with the default broad phase. Sleeping is
 // left out: the adapter sets it per scene.
-struct impulse_dynamic_bvh : impulse::default_config {
-  using broadphase = impulse::broadphase::dynamic_bvh;
-  using solver = impulse::solver::sequential_impulse;
+template <class BroadPhase, class Solver = impulse::solver::sequential_impulse>
+struct impulse_set : impulse::default_config {
+  using broadphase = BroadPhase;
+  using solver = Solver;
   using scalar = float;
 };
-struct impulse_sweep_and_prune : impulse::default_config {
-  using broadphase = impulse::broadphase::sweep_and_prune;
-  using solver = impulse::solver::sequential_impulse;
-  using scalar = float;
-};
+using impulse_dynamic_bvh = impulse_set<impulse::broadphase::dynamic_bvh>;
+using impulse_sweep_and_prune = impulse_set<impulse::broadphase::sweep_and_prune>;
+using impulse_spatial_hash = impulse_set<impulse::broadphase::spatial_hash>;
+using impulse_octree = impulse_set<impulse::broadphase::octree>;
+using impulse_brute_force = impulse_set<impulse::broadphase::brute_force>;
+using impulse_soft_step = impulse_set<impulse::broadphase::dynamic_bvh, impulse::solver::soft_step>;
 
 struct engine_entry {
   std::string_view name;
@@ -92,6 +95,10 @@ std::vector<engine_entry> engines() {
   list.push_back({impulse_engine<impulse_dynamic_bvh>::name, &run_scene<impulse_engine<impulse_dynamic_bvh>>});
   list.push_back(
       {impulse_engine<impulse_sweep_and_prune>::name, &run_scene<impulse_engine<impulse_sweep_and_prune>>});
+  list.push_back({impulse_engine<impulse_spatial_hash>::name, &run_scene<impulse_engine<impulse_spatial_hash>>});
+  list.push_back({impulse_engine<impulse_octree>::name, &run_scene<impulse_engine<impulse_octree>>});
+  list.push_back({impulse_engine<impulse_brute_force>::name, &run_scene<impulse_engine<impulse_brute_force>>});
+  list.push_back({impulse_engine<impulse_soft_step>::name, &run_scene<impulse_engine<impulse_soft_step>>});
 #ifdef IMPULSE_BENCH_HAVE_BULLET
   list.push_back({bullet_engine::name, &run_scene<bullet_engine>});
 #endif

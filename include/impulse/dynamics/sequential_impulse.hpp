@@ -87,7 +87,11 @@ class basic_sequential_impulse {
                          batches_[k], rows_);
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
-      for (batch_type& b : batches_) {
+      // Forward through the colours, then back (symmetric Gauss–Seidel):
+      // always forward, support climbed a 100-row pyramid one colour at a
+      // time and its boxes moved 12 cm in 200 steps; alternating, 6 mm.
+      for (std::size_t k = 0; k < batches_.size(); ++k) {
+        batch_type& b = batches_[iteration % 2 == 0 ? k : batches_.size() - 1 - k];
         detail::batch_velocities<T, width> v = detail::gather(read, b, real);
         // Friction first: it is bounded by the normal impulses, and the
         // normal rows, solved last, are the ones that must hold (no sinking).

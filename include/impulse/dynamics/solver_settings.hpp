@@ -19,20 +19,23 @@ struct solver_settings {
   /// Projected Gauss–Seidel sweeps over every contact's velocity rows per
   /// step (sequential_impulse; soft_step's restitution pass). Warm starting
   /// makes each step's sweeps continue the last step's, but the support a
-  /// stack gets is then a step late, and a late restoring force feeds a
-  /// sway instead of damping it: at Bullet's 10 a 10-box tower sways with
-  /// growing amplitude (its top 3.7 cm off in 20 s, 21 cm in 40 s, built
-  /// without FMA; -O3 -march=native rounding happened to hold it within
-  /// 0.5 mm; Bullet's own falls at 15 s), at 16 it still grows (3 cm in
-  /// 40 s). At 20 it settles: under 0.2 mm over 80 s with g++ and clang, at
-  /// -O0, -O2 and -O3 -march=native. ODE's quickstep also takes 20.
+  /// stack gets is then a step late, and a late restoring force can feed a
+  /// sway instead of damping it. A 10-box tower over 80 s (g++ -O2
+  /// -march=native, g++ -O2, clang -O2 -march=native): at Bullet's 10 it
+  /// falls in all three, at 16 too; at 20 its top stays within 0.24 mm.
+  /// ODE's quickstep also takes 20. docs/world.md has the whole table.
   int velocity_iterations = 20;
   /// Sweeps of the split-impulse position pass (sequential_impulse): only
   /// the normal rows, on pseudo-velocities that move the bodies this step
   /// and are then forgotten.
   int position_iterations = 4;
-  /// Passes over the normal rows of one manifold each time it is visited
-  /// (sequential_impulse.hpp says why more than one).
+  /// Passes over the normal rows of one manifold each time it is visited.
+  /// They are coupled through the bodies' rotation (a corner's impulse
+  /// lifts the opposite corner) far more than manifolds are to each other.
+  /// The same tower at 20 iterations: one pass falls in all three builds,
+  /// two and three in some, four holds in all (within 0.24 mm); soft_step's
+  /// tower drifts 1.7 cm in 20 s with one. sequential_impulse runs the
+  /// passes on the rows' speeds (contact_batch.hpp), at little cost.
   int manifold_sweeps = 4;
   /// Substeps of soft_step (Box2D v3 takes 4).
   int substeps = 4;
