@@ -49,8 +49,9 @@ struct contact_batch {
     lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
     lanes impulse;           ///< N·s
     lanes bias_impulse;      ///< N·s, of the position pass
-    /// How an impulse on this row changes each row's normal speed: column
-    /// i of the patch's J M⁻¹ Jᵀ, 1/s·kg⁻¹ (zero past the lane's points).
+    /// How an impulse on this row changes each row's normal speed: this
+    /// row's column of the patch's J M⁻¹ Jᵀ, 1/kg (zero past the lane's
+    /// points).
     lanes coupling[contact_manifold<T>::capacity];
   };
 
