@@ -5958,8 +5958,12 @@ struct contact_constraint_point {
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
+  /// How fast the velocity row lets the point approach, m/s: enough to
+  /// close a gap, or to sink to the rest depth, within the step
+  /// (sequential_impulse.hpp, row_targets).
+  T gap_speed = T(0);
   /// The position pass's target separation speed, m/s; < 0 where the
-  /// point takes no part in it (sequential_impulse.hpp, position_targets).
+  /// point takes no part in it (sequential_impulse.hpp, row_targets).
   T push_speed = T(-1);
 };
 
@@ -6938,7 +6942,9 @@ class rigid_body_system {
 //    twist row), then a few passes over the points' normal rows, clamped
 //    to push only (solver_settings.hpp, manifold_sweeps, says why more
 //    than one). A row that starts apart (a speculative contact, depth < 0)
-//    may close its gap within the step but no more. The manifolds are
+//    or shallower than the rest depth may sink to that depth within the
+//    step but no further (solver_settings.hpp, rest_depth, says why not to
+//    zero). The manifolds are
 //    visited colour by colour, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
 //    colour could take is solved alone after them.
@@ -7144,7 +7150,7 @@ struct contact_batch {
     vectors arm_a, arm_b;    ///< r × n
     vectors turn_a, turn_b;  ///< I⁻¹ (r × n)
     lanes mass;              ///< kg
-    lanes gap_speed;         ///< m/s: the speed that just closes a gap this step (0 when touching)
+    lanes gap_speed;         ///< m/s: the approach the row allows (contact_constraint_point::gap_speed)
     lanes push_speed;        ///< m/s: the position pass's target separation speed
     lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
     lanes impulse;           ///< N·s
@@ -7188,10 +7194,10 @@ template <scalar_type T, int W>
 using batch_row = typename contact_batch<T, W>::row;
 
 /// Fills `out` with the contacts `members` (prepared by prepare_contacts,
-/// with their position targets), and appends its rows to `rows`.
+/// with their row targets), and appends its rows to `rows`.
 template <scalar_type T, int W>
 void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
-                std::span<const std::uint32_t> members, T inverse_dt, contact_batch<T, W>& out,
+                std::span<const std::uint32_t> members, contact_batch<T, W>& out,
                 std::vector<batch_row<T, W>>& rows) {
   out = contact_batch<T, W>{};
   out.size = int(members.size());
@@ -7218,7 +7224,7 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
       r.turn_a.set_lane(l, p.turn_a);
       r.turn_b.set_lane(l, p.turn_b);
       r.mass.set(l, p.normal_mass);
-      r.gap_speed.set(l, p.depth < T(0) ? -p.depth * inverse_dt : T(0));
+      r.gap_speed.set(l, p.gap_speed);
       const bool pushed = p.push_speed >= T(0);
       r.push_speed.set(l, pushed ? p.push_speed : T(0));
       r.position_mass.set(l, pushed ? p.normal_mass : T(0));
@@ -7507,13 +7513,12 @@ namespace impulse {
 template <scalar_type T>
 struct solver_settings {
   /// Projected Gauss–Seidel sweeps over every contact's velocity rows per
-  /// step (sequential_impulse; soft_step's restitution pass). Warm starting
-  /// makes each step's sweeps continue the last step's, but the support a
-  /// stack gets is then a step late, and a late restoring force can feed a
-  /// sway instead of damping it. A 10-box tower over 80 s (g++ -O2
-  /// -march=native, g++ -O2, clang -O2 -march=native): at Bullet's 10 it
-  /// falls in all three, at 16 too; at 20 its top stays within 0.24 mm.
-  /// ODE's quickstep also takes 20. docs/world.md has the whole table.
+  /// step (sequential_impulse; soft_step's restitution pass). A 10-box
+  /// tower holds for 80 s at 6 or more (rest_depth says why it did not);
+  /// the 20-row pyramid moves about half a millimetre in 20 s at 10 or
+  /// 20; the 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at
+  /// 10 and 5.5 mm at 20. ODE's quickstep also
+  /// takes 20, Bullet 10. docs/world.md has the measurements.
   int velocity_iterations = 20;
   /// Sweeps of the split-impulse position pass (sequential_impulse): only
   /// the normal rows, on pseudo-velocities that move the bodies this step
@@ -7522,10 +7527,11 @@ struct solver_settings {
   /// Passes over the normal rows of one manifold each time it is visited.
   /// They are coupled through the bodies' rotation (a corner's impulse
   /// lifts the opposite corner) far more than manifolds are to each other.
-  /// The same tower at 20 iterations: one pass falls in all three builds,
-  /// two and three in some, four holds in all (within 0.24 mm); soft_step's
-  /// tower drifts 1.7 cm in 20 s with one. sequential_impulse runs the
-  /// passes on the rows' speeds (contact_batch.hpp), at little cost.
+  /// The 10-box tower over 80 s at 20 iterations: its top drifts 0.24 mm
+  /// with one pass, 0.044 mm with two, 0.016 mm with four; at 10
+  /// iterations one pass falls. soft_step's tower drifts 1.7 cm in 20 s
+  /// with one. sequential_impulse runs the passes on the rows' speeds
+  /// (contact_batch.hpp), at little cost.
   int manifold_sweeps = 4;
   /// Substeps of soft_step (Box2D v3 takes 4).
   int substeps = 4;
@@ -7565,6 +7571,18 @@ struct solver_settings {
   /// Catto, GDC 2014): a body meets the ground on the step it arrives,
   /// with no penetration to correct and no bounce from correcting it.
   T speculative_distance = T(0.02);
+  /// Depth a resting contact is let sink to, m (sequential_impulse): the
+  /// velocity rows let a point approach until it lies this deep (a gap
+  /// closes to it, not to zero). At depth zero a face is on the edge
+  /// between pressing and not, and float rounding of the positions
+  /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
+  /// 10-box tower swayed on that noise and fell within 80 s at 16, 20 or
+  /// 26 iterations, depending on the build. Pressed 3 µm in, its top stays
+  /// within 0.02 mm at 10 to 26 iterations in every build, and within
+  /// 0.07 mm standing on a floor 60 m up (rounding 3.8 µm there). Deeper
+  /// costs a tall heavy stack: the 100-row pyramid of 100 kg boxes sags
+  /// 5.5 mm in 200 steps at 3 µm, 6.1 mm at zero, 10.7 mm at 10 µm.
+  T rest_depth = T(0.000003);
   /// Approach speed below which a contact is treated as resting and does
   /// not bounce, m/s. Resting contacts approach at about g·dt/2 = 0.08 m/s
   /// under gravity at 60 Hz; bouncing them would make stacks with
@@ -7586,7 +7604,8 @@ struct solver_settings {
                            "solver_settings: velocity_iterations, manifold_sweeps, substeps and "
                            "substep_iterations must be >= 1, position_iterations and relax_iterations >= 0");
     const T values[] = {linear_slop,           position_correction, max_correction_speed, speculative_distance,
-                        restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio};
+                        restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio,
+                        rest_depth};
     for (const T v : values)
       if (!std::isfinite(v) || v < T(0))
         detail::report_error(error_code::invalid_parameter,
@@ -7629,14 +7648,14 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
-    for (contact_constraint<T>& c : contacts) position_targets(c, settings, inverse_dt);
+    for (contact_constraint<T>& c : contacts) row_targets(c, settings, inverse_dt);
     const std::span<const solver_body<T>> read = bodies;
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
     batches_.resize(graph_.batch_count());
     rows_.clear();
     for (std::size_t k = 0; k < batches_.size(); ++k)
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), inverse_dt,
-                         batches_[k], rows_);
+      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                         rows_);
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
       // Forward through the colours, then back (symmetric Gauss–Seidel):
@@ -7651,7 +7670,7 @@ class basic_sequential_impulse {
         detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
         detail::scatter(bodies, b, v, real);
       }
-      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings, inverse_dt);
+      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
     }
     for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
       for (batch_type& b : batches_) {
@@ -7680,7 +7699,7 @@ class basic_sequential_impulse {
   /// One manifold's rows, one after another: the manifolds the colouring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings, T inverse_dt) noexcept {
+                             const solver_settings<T>& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     // Friction first, as in the batches (solve above).
@@ -7688,19 +7707,20 @@ class basic_sequential_impulse {
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
-        // Apart by a gap g: the row allows closing it this step, vn ≥ −g/dt.
-        const T gap_speed = p.depth < T(0) ? -p.depth * inverse_dt : T(0);
         detail::solve_normal(a.linear_velocity, a.angular_velocity, b.linear_velocity, b.angular_velocity, a, b,
-                             c.normal, p, p.normal_impulse, gap_speed);
+                             c.normal, p, p.normal_impulse, p.gap_speed);
       }
   }
 
-  /// What the position pass asks of each point: to separate at a fraction
-  /// of its penetration beyond the slop per step; < 0 when it lies within
-  /// the slop and takes no part.
-  static void position_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+  /// What the rows ask of each point. The velocity row: vn ≥ −gap_speed,
+  /// a point shallower than the rest depth (or apart by a gap) may sink to
+  /// it within the step but no further. The position pass: to separate at
+  /// a fraction of the penetration beyond the slop per step; < 0 when the
+  /// point lies within the slop and takes no part.
+  static void row_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
+      p.gap_speed = p.depth < settings.rest_depth ? (settings.rest_depth - p.depth) * inverse_dt : T(0);
       p.push_speed = p.depth > settings.linear_slop
                          ? std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
                                     settings.max_correction_speed)
@@ -14806,6 +14826,16 @@ struct world_settings {
   T sleep_linear_speed = T(0.05);   ///< m/s
   T sleep_angular_speed = T(0.035);  ///< rad/s
   T sleep_time = T(0.5);            ///< s
+  /// A pair whose relative pose has moved less than these since its last
+  /// full test keeps that test's manifolds, carried with the bodies, and
+  /// skips the pair test (world.hpp, reuse_manifolds); either at 0 tests
+  /// every pair every step. Jolt's body pair cache takes 1 mm and 2°; a
+  /// point carried with its body may lie past the edge of the face under
+  /// it by as much as it slid, 17 mm at 2° for a corner 0.5 m from the
+  /// centre, so the angle here is 0.5° (4.4 mm): a box tipping over an
+  /// edge is tested again before it has turned far.
+  T contact_reuse_distance = T(0.001);  ///< m
+  T contact_reuse_angle = T(0.0087);    ///< rad
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
@@ -14818,6 +14848,10 @@ struct world_settings {
         sleep_linear_speed < T(0) || sleep_angular_speed < T(0) || sleep_time < T(0))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: sleep speeds and time must be finite and >= 0");
+    if (!std::isfinite(contact_reuse_distance) || !std::isfinite(contact_reuse_angle) ||
+        contact_reuse_distance < T(0) || contact_reuse_angle < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: contact reuse distance and angle must be finite and >= 0");
   }
 };
 
@@ -15444,6 +15478,11 @@ class world {
     bool touching = false;
     std::array<contact_manifold<T>, max_manifolds> manifolds{};
     std::array<manifold_impulse<T>, max_manifolds> impulses{};
+    /// What the last full pair test found, in A's shape frame, and B's
+    /// shape frame in A's then: reuse_manifolds carries it with the bodies.
+    bool tested = false;
+    transform<T> tested_relative{};
+    std::array<contact_manifold<T>, max_manifolds> tested_local{};
   };
 
   struct state {
@@ -15542,9 +15581,26 @@ class world {
 
   // ---- narrow phase ----
 
+  /// How far a pair may move before its pair test runs again
+  /// (world_settings::contact_reuse_distance and _angle), as collide
+  /// compares them.
+  struct reuse_limits {
+    T distance_squared;
+    T cos_half_angle;
+  };
+
   void update_contacts() {
     const std::span<const proxy_pair> pairs = state_.broad.pairs();
     std::vector<contact_record>& old = state_.contacts;
+    const world_settings<T>& s = state_.settings;
+    const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
+                              std::cos(s.contact_reuse_angle / T(2))};
+    // Most steps have the last step's pairs: then the records are updated
+    // where they are, rather than copied over.
+    if (same_pairs(pairs)) {
+      for (contact_record& c : old) collide(c, limits);
+      return;
+    }
     next_contacts_.clear();
     std::size_t i = 0;
     for (const proxy_pair& pair : pairs) {
@@ -15552,10 +15608,10 @@ class world {
       if (i < old.size() && old[i].key == pair) {
         next_contacts_.push_back(old[i++]);
       } else {
+        if (!may_touch(pair)) continue;
         const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
         const body_record& ra = state_.bodies[a];
         const body_record& rb = state_.bodies[b];
-        if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic) continue;
         contact_record c{};
         c.key = pair;
         c.a = a, c.b = b;
@@ -15563,24 +15619,47 @@ class world {
         c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
         next_contacts_.push_back(c);
       }
-      collide(next_contacts_.back());
+      collide(next_contacts_.back(), limits);
     }
     while (i < old.size()) end_contact(old[i++]);
     old.swap(next_contacts_);
+  }
+
+  /// Whether a pair of proxies can make contact: one of its bodies is
+  /// dynamic.
+  bool may_touch(const proxy_pair& pair) const {
+    const body_record& ra = state_.bodies[unpack(state_.broad.user_data(pair.a))];
+    const body_record& rb = state_.bodies[unpack(state_.broad.user_data(pair.b))];
+    return ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic;
+  }
+
+  /// Whether the broad phase's pairs, less those that cannot touch, are
+  /// the records' pairs.
+  bool same_pairs(std::span<const proxy_pair> pairs) const {
+    const std::vector<contact_record>& old = state_.contacts;
+    std::size_t i = 0;
+    for (const proxy_pair& pair : pairs) {
+      if (i < old.size() && old[i].key == pair) ++i;
+      else if (may_touch(pair)) return false;
+    }
+    return i == old.size();
   }
 
   void end_contact(const contact_record& c) {
     if (c.touching) state_.ended.push_back({c.a, c.b});
   }
 
-  void collide(contact_record& c) {
+  void collide(contact_record& c, const reuse_limits& limits) {
     const body_record& ra = state_.bodies[c.a];
     const body_record& rb = state_.bodies[c.b];
     // Two bodies that are not moving keep their manifolds: sleeping ones
     // wake with the contacts they slept on.
     if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
+    const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
+    const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
+    if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
     std::array<contact_manifold<T>, max_manifolds> fresh;
-    const std::size_t n = dispatcher::collide(shape_ref_of(ra), shape_pose_of(ra), shape_ref_of(rb), shape_pose_of(rb),
+    const std::size_t n = dispatcher::collide(shape_ref_of(ra), pose_a, shape_ref_of(rb), pose_b,
                                               state_.settings.solver.speculative_distance,
                                               std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
     std::array<manifold_impulse<T>, max_manifolds> carried{};
@@ -15608,10 +15687,53 @@ class world {
     c.manifolds = fresh;
     c.impulses = carried;
     c.manifold_count = int(n);
+    c.tested = true;
+    c.tested_relative = relative;
+    for (std::size_t m = 0; m < n; ++m) {
+      contact_manifold<T>& local = c.tested_local[m];
+      local = fresh[m];
+      local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
+      for (int p = 0; p < local.count; ++p)
+        local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh[m].points[std::size_t(p)].position);
+    }
     const bool touching = n > 0;
     if (touching && !c.touching) state_.begun.push_back({c.a, c.b});
     if (!touching && c.touching) state_.ended.push_back({c.a, c.b});
     c.touching = touching;
+  }
+
+  /// Keeps the manifolds of the pair's last full test while B has moved
+  /// less than the reuse limits relative to A since then (a resting stack
+  /// skips its pair tests), and returns whether it did. Each point lies
+  /// midway between a point of A's surface and one of B's, `depth` apart
+  /// along the normal: the one on A and the normal stay with A, the one on
+  /// B is carried with B, and the depth and midpoint follow. For a corner
+  /// of B on a face of A the depth is exact, and the midpoint lags the
+  /// fresh one by half the corner's slide; a point clipped at the edge of
+  /// A's face is carried past it by as much. (Bullet refreshes its
+  /// persistent manifolds' points the same way; Jolt's body pair cache
+  /// reuses manifolds within the same limits.)
+  bool reuse_manifolds(contact_record& c, const transform<T>& pose_a, const transform<T>& relative,
+                       const reuse_limits& limits) const noexcept {
+    const vec3<T> shift = relative.position - c.tested_relative.position;
+    if (!(length_squared(shift) < limits.distance_squared)) return false;
+    // B's turn in A's frame since the test; |w| = cos(angle / 2).
+    const quat<T> turn = relative.rotation * conjugate(c.tested_relative.rotation);
+    if (!(std::abs(turn.w) > limits.cos_half_angle)) return false;
+    for (int m = 0; m < c.manifold_count; ++m) {
+      const contact_manifold<T>& local = c.tested_local[std::size_t(m)];
+      contact_manifold<T>& out = c.manifolds[std::size_t(m)];
+      out.normal = rotate(pose_a.rotation, local.normal);
+      for (int p = 0; p < local.count; ++p) {
+        const contact_point<T>& tested = local.points[std::size_t(p)];
+        const vec3<T> on_b = tested.position - local.normal * (tested.depth * T(0.5));
+        const vec3<T> moved = rotate(turn, on_b - c.tested_relative.position) + relative.position - on_b;
+        contact_point<T>& point = out.points[std::size_t(p)];
+        point.depth = tested.depth - dot(moved, local.normal);
+        point.position = apply(pose_a, tested.position + moved * T(0.5));
+      }
+    }
+    return true;
   }
 
   // ---- islands and sleeping ----

@@ -100,6 +100,16 @@ TEST_CASE("bad input is refused with its error and leaves the world unchanged") 
   world_settings<float> bad;
   bad.solver.velocity_iterations = 0;
   CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  bad = {};
+  bad.solver.rest_depth = -1e-5f;
+  CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  bad = {};
+  bad.contact_reuse_distance = nan;
+  CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  bad = {};
+  bad.contact_reuse_angle = -0.1f;
+  CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  CHECK(w.settings().contact_reuse_angle == world_settings<float>{}.contact_reuse_angle);
 
   CHECK(w.body_count() == count);
   CHECK(::test::transform_hash(w) == hash);
@@ -153,6 +163,59 @@ TEST_CASE("a ball landing on the ground begins one contact, and lifting it away 
   REQUIRE(w.touching_pair_count() == 1);
   w.destroy_body(ball);
   CHECK(w.contact_end_events().size() == 1);
+}
+
+TEST_CASE("a pair that moved within the reuse limits keeps its manifold carried with the bodies: the depths of a fresh test") {
+  // A small box resting on a cube, so that every contact point is one of
+  // its corners; then placed anew, moved and turned a little. One world
+  // reuses the manifold, the other (limits 0) tests the pair again.
+  struct seen {
+    vec3<float> normal;
+    std::vector<contact_point<float>> points;
+  };
+  const auto manifold_after = [](float reuse_distance, vec3<float> shift, float angle) {
+    world_settings<float> settings;
+    settings.contact_reuse_distance = reuse_distance;
+    awake_world w(settings);
+    ::test::add_ground(w);
+    const body_id base = ::test::add_cube(w, {0, 0.5f, 0});
+    body_def<float> d;
+    d.pose.position = {0.1f, 1.3f, -0.05f};
+    d.mass = 1;
+    const body_id top = w.create_body(d, box<float>::make({0.3f, 0.3f, 0.3f}));
+    w.step(::test::step_dt<float>);
+    const quat<float> turn = quat<float>::from_axis_angle(normalize(vec3<float>{0.6f, 0.3f, 0.8f}), angle);
+    w.set_pose(top, {vec3<float>{0.1f, 1.3f, -0.05f} + shift, turn});
+    w.step(::test::step_dt<float>);
+    seen out{};
+    w.for_each_contact([&](body_id a, body_id b, std::span<const contact_manifold<float>> m) {
+      if (a == base && b == top) out = {m[0].normal, {m[0].points.begin(), m[0].points.begin() + m[0].count}};
+    });
+    return out;
+  };
+  const float near = world_settings<float>{}.contact_reuse_distance;
+  // Within the limits (0.5 mm, 0.4°): the corners' depths as a fresh test
+  // finds them, and each point within half its corner's slide of it (a
+  // corner 0.52 m from the centre slides 3.6 mm at 0.4°, the shift
+  // 0.5 mm).
+  const seen reused = manifold_after(near, {0.0004f, -0.0002f, 0.0002f}, 0.007f);
+  const seen fresh = manifold_after(0, {0.0004f, -0.0002f, 0.0002f}, 0.007f);
+  REQUIRE(reused.points.size() == 4);
+  REQUIRE(fresh.points.size() == 4);
+  CHECK(length(reused.normal - fresh.normal) < 1e-6f);
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(reused.points[i].feature == fresh.points[i].feature);
+    CHECK(std::abs(reused.points[i].depth - fresh.points[i].depth) < 1e-6f);
+    CHECK(length(reused.points[i].position - fresh.points[i].position) < 0.0022f);
+  }
+  // Past the distance limit the pair is tested again: the fresh manifold.
+  const seen moved = manifold_after(near, {0.002f, 0, 0}, 0);
+  const seen tested = manifold_after(0, {0.002f, 0, 0}, 0);
+  REQUIRE(moved.points.size() == tested.points.size());
+  for (std::size_t i = 0; i < moved.points.size(); ++i) {
+    CHECK(moved.points[i].position == tested.points[i].position);
+    CHECK(moved.points[i].depth == tested.points[i].depth);
+  }
 }
 
 TEST_CASE("a ray cast finds the nearest body and an overlap query the bodies in a box") {

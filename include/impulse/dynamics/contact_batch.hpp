@@ -44,7 +44,7 @@ struct contact_batch {
     vectors arm_a, arm_b;    ///< r × n
     vectors turn_a, turn_b;  ///< I⁻¹ (r × n)
     lanes mass;              ///< kg
-    lanes gap_speed;         ///< m/s: the speed that just closes a gap this step (0 when touching)
+    lanes gap_speed;         ///< m/s: the approach the row allows (contact_constraint_point::gap_speed)
     lanes push_speed;        ///< m/s: the position pass's target separation speed
     lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
     lanes impulse;           ///< N·s
@@ -88,10 +88,10 @@ template <scalar_type T, int W>
 using batch_row = typename contact_batch<T, W>::row;
 
 /// Fills `out` with the contacts `members` (prepared by prepare_contacts,
-/// with their position targets), and appends its rows to `rows`.
+/// with their row targets), and appends its rows to `rows`.
 template <scalar_type T, int W>
 void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
-                std::span<const std::uint32_t> members, T inverse_dt, contact_batch<T, W>& out,
+                std::span<const std::uint32_t> members, contact_batch<T, W>& out,
                 std::vector<batch_row<T, W>>& rows) {
   out = contact_batch<T, W>{};
   out.size = int(members.size());
@@ -118,7 +118,7 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
       r.turn_a.set_lane(l, p.turn_a);
       r.turn_b.set_lane(l, p.turn_b);
       r.mass.set(l, p.normal_mass);
-      r.gap_speed.set(l, p.depth < T(0) ? -p.depth * inverse_dt : T(0));
+      r.gap_speed.set(l, p.gap_speed);
       const bool pushed = p.push_speed >= T(0);
       r.push_speed.set(l, pushed ? p.push_speed : T(0));
       r.position_mass.set(l, pushed ? p.normal_mass : T(0));

@@ -78,8 +78,12 @@ struct contact_constraint_point {
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
+  /// How fast the velocity row lets the point approach, m/s: enough to
+  /// close a gap, or to sink to the rest depth, within the step
+  /// (sequential_impulse.hpp, row_targets).
+  T gap_speed = T(0);
   /// The position pass's target separation speed, m/s; < 0 where the
-  /// point takes no part in it (sequential_impulse.hpp, position_targets).
+  /// point takes no part in it (sequential_impulse.hpp, row_targets).
   T push_speed = T(-1);
 };
 

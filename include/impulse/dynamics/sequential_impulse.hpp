@@ -19,7 +19,9 @@
 //    twist row), then a few passes over the points' normal rows, clamped
 //    to push only (solver_settings.hpp, manifold_sweeps, says why more
 //    than one). A row that starts apart (a speculative contact, depth < 0)
-//    may close its gap within the step but no more. The manifolds are
+//    or shallower than the rest depth may sink to that depth within the
+//    step but no further (solver_settings.hpp, rest_depth, says why not to
+//    zero). The manifolds are
 //    visited colour by colour, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
 //    colour could take is solved alone after them.
@@ -77,14 +79,14 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
-    for (contact_constraint<T>& c : contacts) position_targets(c, settings, inverse_dt);
+    for (contact_constraint<T>& c : contacts) row_targets(c, settings, inverse_dt);
     const std::span<const solver_body<T>> read = bodies;
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
     batches_.resize(graph_.batch_count());
     rows_.clear();
     for (std::size_t k = 0; k < batches_.size(); ++k)
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), inverse_dt,
-                         batches_[k], rows_);
+      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                         rows_);
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
       // Forward through the colours, then back (symmetric Gauss–Seidel):
@@ -99,7 +101,7 @@ class basic_sequential_impulse {
         detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
         detail::scatter(bodies, b, v, real);
       }
-      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings, inverse_dt);
+      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
     }
     for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
       for (batch_type& b : batches_) {
@@ -128,7 +130,7 @@ class basic_sequential_impulse {
   /// One manifold's rows, one after another: the manifolds the colouring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings, T inverse_dt) noexcept {
+                             const solver_settings<T>& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     // Friction first, as in the batches (solve above).
@@ -136,19 +138,20 @@ class basic_sequential_impulse {
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {
         contact_constraint_point<T>& p = c.points[i];
-        // Apart by a gap g: the row allows closing it this step, vn ≥ −g/dt.
-        const T gap_speed = p.depth < T(0) ? -p.depth * inverse_dt : T(0);
         detail::solve_normal(a.linear_velocity, a.angular_velocity, b.linear_velocity, b.angular_velocity, a, b,
-                             c.normal, p, p.normal_impulse, gap_speed);
+                             c.normal, p, p.normal_impulse, p.gap_speed);
       }
   }
 
-  /// What the position pass asks of each point: to separate at a fraction
-  /// of its penetration beyond the slop per step; < 0 when it lies within
-  /// the slop and takes no part.
-  static void position_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+  /// What the rows ask of each point. The velocity row: vn ≥ −gap_speed,
+  /// a point shallower than the rest depth (or apart by a gap) may sink to
+  /// it within the step but no further. The position pass: to separate at
+  /// a fraction of the penetration beyond the slop per step; < 0 when the
+  /// point lies within the slop and takes no part.
+  static void row_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
+      p.gap_speed = p.depth < settings.rest_depth ? (settings.rest_depth - p.depth) * inverse_dt : T(0);
       p.push_speed = p.depth > settings.linear_slop
                          ? std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
                                     settings.max_correction_speed)

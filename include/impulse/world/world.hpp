@@ -430,6 +430,11 @@ class world {
     bool touching = false;
     std::array<contact_manifold<T>, max_manifolds> manifolds{};
     std::array<manifold_impulse<T>, max_manifolds> impulses{};
+    /// What the last full pair test found, in A's shape frame, and B's
+    /// shape frame in A's then: reuse_manifolds carries it with the bodies.
+    bool tested = false;
+    transform<T> tested_relative{};
+    std::array<contact_manifold<T>, max_manifolds> tested_local{};
   };
 
   struct state {
@@ -528,9 +533,26 @@ class world {
 
   // ---- narrow phase ----
 
+  /// How far a pair may move before its pair test runs again
+  /// (world_settings::contact_reuse_distance and _angle), as collide
+  /// compares them.
+  struct reuse_limits {
+    T distance_squared;
+    T cos_half_angle;
+  };
+
   void update_contacts() {
     const std::span<const proxy_pair> pairs = state_.broad.pairs();
     std::vector<contact_record>& old = state_.contacts;
+    const world_settings<T>& s = state_.settings;
+    const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
+                              std::cos(s.contact_reuse_angle / T(2))};
+    // Most steps have the last step's pairs: then the records are updated
+    // where they are, rather than copied over.
+    if (same_pairs(pairs)) {
+      for (contact_record& c : old) collide(c, limits);
+      return;
+    }
     next_contacts_.clear();
     std::size_t i = 0;
     for (const proxy_pair& pair : pairs) {
@@ -538,10 +560,10 @@ class world {
       if (i < old.size() && old[i].key == pair) {
         next_contacts_.push_back(old[i++]);
       } else {
+        if (!may_touch(pair)) continue;
         const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
         const body_record& ra = state_.bodies[a];
         const body_record& rb = state_.bodies[b];
-        if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic) continue;
         contact_record c{};
         c.key = pair;
         c.a = a, c.b = b;
@@ -549,24 +571,47 @@ class world {
         c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
         next_contacts_.push_back(c);
       }
-      collide(next_contacts_.back());
+      collide(next_contacts_.back(), limits);
     }
     while (i < old.size()) end_contact(old[i++]);
     old.swap(next_contacts_);
+  }
+
+  /// Whether a pair of proxies can make contact: one of its bodies is
+  /// dynamic.
+  bool may_touch(const proxy_pair& pair) const {
+    const body_record& ra = state_.bodies[unpack(state_.broad.user_data(pair.a))];
+    const body_record& rb = state_.bodies[unpack(state_.broad.user_data(pair.b))];
+    return ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic;
+  }
+
+  /// Whether the broad phase's pairs, less those that cannot touch, are
+  /// the records' pairs.
+  bool same_pairs(std::span<const proxy_pair> pairs) const {
+    const std::vector<contact_record>& old = state_.contacts;
+    std::size_t i = 0;
+    for (const proxy_pair& pair : pairs) {
+      if (i < old.size() && old[i].key == pair) ++i;
+      else if (may_touch(pair)) return false;
+    }
+    return i == old.size();
   }
 
   void end_contact(const contact_record& c) {
     if (c.touching) state_.ended.push_back({c.a, c.b});
   }
 
-  void collide(contact_record& c) {
+  void collide(contact_record& c, const reuse_limits& limits) {
     const body_record& ra = state_.bodies[c.a];
     const body_record& rb = state_.bodies[c.b];
     // Two bodies that are not moving keep their manifolds: sleeping ones
     // wake with the contacts they slept on.
     if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
+    const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
+    const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
+    if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
     std::array<contact_manifold<T>, max_manifolds> fresh;
-    const std::size_t n = dispatcher::collide(shape_ref_of(ra), shape_pose_of(ra), shape_ref_of(rb), shape_pose_of(rb),
+    const std::size_t n = dispatcher::collide(shape_ref_of(ra), pose_a, shape_ref_of(rb), pose_b,
                                               state_.settings.solver.speculative_distance,
                                               std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
     std::array<manifold_impulse<T>, max_manifolds> carried{};
@@ -594,10 +639,53 @@ class world {
     c.manifolds = fresh;
     c.impulses = carried;
     c.manifold_count = int(n);
+    c.tested = true;
+    c.tested_relative = relative;
+    for (std::size_t m = 0; m < n; ++m) {
+      contact_manifold<T>& local = c.tested_local[m];
+      local = fresh[m];
+      local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
+      for (int p = 0; p < local.count; ++p)
+        local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh[m].points[std::size_t(p)].position);
+    }
     const bool touching = n > 0;
     if (touching && !c.touching) state_.begun.push_back({c.a, c.b});
     if (!touching && c.touching) state_.ended.push_back({c.a, c.b});
     c.touching = touching;
+  }
+
+  /// Keeps the manifolds of the pair's last full test while B has moved
+  /// less than the reuse limits relative to A since then (a resting stack
+  /// skips its pair tests), and returns whether it did. Each point lies
+  /// midway between a point of A's surface and one of B's, `depth` apart
+  /// along the normal: the one on A and the normal stay with A, the one on
+  /// B is carried with B, and the depth and midpoint follow. For a corner
+  /// of B on a face of A the depth is exact, and the midpoint lags the
+  /// fresh one by half the corner's slide; a point clipped at the edge of
+  /// A's face is carried past it by as much. (Bullet refreshes its
+  /// persistent manifolds' points the same way; Jolt's body pair cache
+  /// reuses manifolds within the same limits.)
+  bool reuse_manifolds(contact_record& c, const transform<T>& pose_a, const transform<T>& relative,
+                       const reuse_limits& limits) const noexcept {
+    const vec3<T> shift = relative.position - c.tested_relative.position;
+    if (!(length_squared(shift) < limits.distance_squared)) return false;
+    // B's turn in A's frame since the test; |w| = cos(angle / 2).
+    const quat<T> turn = relative.rotation * conjugate(c.tested_relative.rotation);
+    if (!(std::abs(turn.w) > limits.cos_half_angle)) return false;
+    for (int m = 0; m < c.manifold_count; ++m) {
+      const contact_manifold<T>& local = c.tested_local[std::size_t(m)];
+      contact_manifold<T>& out = c.manifolds[std::size_t(m)];
+      out.normal = rotate(pose_a.rotation, local.normal);
+      for (int p = 0; p < local.count; ++p) {
+        const contact_point<T>& tested = local.points[std::size_t(p)];
+        const vec3<T> on_b = tested.position - local.normal * (tested.depth * T(0.5));
+        const vec3<T> moved = rotate(turn, on_b - c.tested_relative.position) + relative.position - on_b;
+        contact_point<T>& point = out.points[std::size_t(p)];
+        point.depth = tested.depth - dot(moved, local.normal);
+        point.position = apply(pose_a, tested.position + moved * T(0.5));
+      }
+    }
+    return true;
   }
 
   // ---- islands and sleeping ----
