@@ -7517,8 +7517,8 @@ struct solver_settings {
   /// tower holds for 80 s at 6 or more (rest_depth says why it did not);
   /// the 20-row pyramid moves about half a millimetre in 20 s at 10 or
   /// 20; the 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at
-  /// 10 and 5.5 mm at 20. ODE's quickstep also
-  /// takes 20, Bullet 10. docs/world.md has the measurements.
+  /// 10 and 5.5 mm at 20. ODE's quickstep also takes 20, Bullet 10.
+  /// docs/world.md has the measurements.
   int velocity_iterations = 20;
   /// Sweeps of the split-impulse position pass (sequential_impulse): only
   /// the normal rows, on pseudo-velocities that move the bodies this step
@@ -7576,12 +7576,13 @@ struct solver_settings {
   /// closes to it, not to zero). At depth zero a face is on the edge
   /// between pressing and not, and float rounding of the positions
   /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
-  /// 10-box tower swayed on that noise and fell within 80 s at 16, 20 or
-  /// 26 iterations, depending on the build. Pressed 3 µm in, its top stays
-  /// within 0.02 mm at 10 to 26 iterations in every build, and within
-  /// 0.07 mm standing on a floor 60 m up (rounding 3.8 µm there). Deeper
-  /// costs a tall heavy stack: the 100-row pyramid of 100 kg boxes sags
-  /// 5.5 mm in 200 steps at 3 µm, 6.1 mm at zero, 10.7 mm at 10 µm.
+  /// 10-box tower swayed on that noise, and over 80 s fell at 12, 16 or 26
+  /// iterations and drifted 15 mm at 20, depending on the build. Pressed
+  /// 3 µm in, its top stays within 0.05 mm at 6 to 30 iterations in every
+  /// build (0.016 mm at 10 to 30), and within 0.07 mm standing on a floor
+  /// 60 m up (rounding 3.8 µm there). Deeper costs a tall heavy stack: the
+  /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
+  /// 6.1 mm at zero, 10.7 mm at 10 µm.
   T rest_depth = T(0.000003);
   /// Approach speed below which a contact is treated as resting and does
   /// not bounce, m/s. Resting contacts approach at about g·dt/2 = 0.08 m/s
