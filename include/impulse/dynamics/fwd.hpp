@@ -15,13 +15,19 @@ template <scalar_type T> struct body_momentum;
 template <scalar_type T> struct body_kinematics;
 template <scalar_type T> struct wrench;
 template <scalar_type T> struct body_spring;
+enum class joint_type : std::uint8_t;
+template <scalar_type T> struct joint_def;
+template <scalar_type T> struct joint_constraint;
 
 struct body_tag;
 struct spring_tag;
+struct joint_tag;
 /// Names a body of a rigid_body_system (later, of a world).
 using body_id = object_id<body_tag>;
 /// Names a spring of a rigid_body_system.
 using spring_id = object_id<spring_tag>;
+/// Names a joint of a world.
+using joint_id = object_id<joint_tag>;
 
 struct default_config;
 template <class Config = default_config> class rigid_body_system;

@@ -23,7 +23,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <span>
 #include <vector>
 
@@ -31,6 +30,8 @@
 #include "../math/quat.hpp"
 #include "contact_constraint.hpp"
 #include "contact_rows.hpp"
+#include "joint.hpp"
+#include "softness.hpp"
 #include "solver_settings.hpp"
 
 namespace impulse {
@@ -49,56 +50,61 @@ class basic_soft_step {
   }
 
   /// The whole step: velocities solved and bodies moved.
+  ///
+  /// Joints (joint.hpp) are solved before the contacts in each sweep: stiff
+  /// springs (joint_hertz) measured from where the bodies are at each
+  /// substep, then rigid in the relax pass.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             const solver_settings<T>& settings, T dt) {
+             std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
     const int n = settings.substeps;
     const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
     const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
-    const softness moving = soften(hertz, settings.contact_damping_ratio, h);
-    const softness fixed = soften(T(2) * hertz, settings.contact_damping_ratio, h);
+    const softness<T> moving = soften(hertz, settings.contact_damping_ratio, h);
+    const softness<T> fixed = soften(T(2) * hertz, settings.contact_damping_ratio, h);
+    const joint_pass<T> joint_solve{soften(std::min(settings.joint_hertz, T(0.25) * inverse_h),
+                                           settings.joint_damping_ratio, h),
+                                    h};
+    const joint_pass<T> joint_relax{softness<T>::rigid(), h};
     start_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) start_[i] = bodies[i].position;
 
     detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations, T(0),
                              dt);
-    if (!settings.warm_starting)
+    if (!settings.warm_starting) {
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
+      for (joint_constraint<T>& j : joints) detail::forget_impulses(j);
+    }
     for (int substep = 0; substep < n; ++substep) {
       for (solver_body<T>& b : bodies) {
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
       }
+      for (joint_constraint<T>& j : joints) {
+        detail::prepare_joint(std::span<const solver_body<T>>(bodies), j);
+        detail::warm_start_joint(bodies, j);
+      }
       for (contact_constraint<T>& c : contacts) detail::warm_start(bodies, c);
-      for (int i = 0; i < settings.substep_iterations; ++i)
+      for (int i = 0; i < settings.substep_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, true);
+      }
       for (solver_body<T>& b : bodies) {
         b.position += b.linear_velocity * h;
         b.orientation = integrate(b.orientation, b.angular_velocity, h);
       }
-      for (int i = 0; i < settings.relax_iterations; ++i)
+      for (int i = 0; i < settings.relax_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, false);
+      }
     }
   }
 
  private:
-  /// A soft row's coefficients for a spring of `hertz` and damping ratio
-  /// zeta over a step h (Catto, "Soft Step", 2024): the push per metre of
-  /// penetration per second (bias_rate), and the scales of the row's mass
-  /// and of its accumulated impulse that make the spring implicit.
-  struct softness {
-    T bias_rate, mass_scale, impulse_scale;
-  };
-  static softness soften(T hertz, T zeta, T h) noexcept {
-    const T omega = T(2) * std::numbers::pi_v<T> * hertz;
-    const T a1 = T(2) * zeta + h * omega, a2 = h * omega * a1, a3 = T(1) / (T(1) + a2);
-    return {omega / a1, a2 * a3, a3};
-  }
-
   void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const solver_settings<T>& settings,
-                     const softness& moving, const softness& fixed, T inverse_h, bool push_out) const noexcept {
+                     const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
-    const softness& soft = a.inverse_mass == T(0) || b.inverse_mass == T(0) ? fixed : moving;
+    const softness<T>& soft = a.inverse_mass == T(0) || b.inverse_mass == T(0) ? fixed : moving;
     const vec3<T> moved = (b.position - start_[c.body_b]) - (a.position - start_[c.body_a]);
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
       for (int i = 0; i < c.count; ++i) {

@@ -99,6 +99,15 @@ struct solver_settings {
   /// fixed function of the normal, so that resting friction carries over
   /// from step to step; above it the first tangent follows the slip.
   T rest_slip_speed = T(0.01);
+  /// Fraction of a joint's error (its anchors apart, its axes or
+  /// orientation off, a limit passed) removed per step by the position
+  /// pass of sequential_impulse, on pseudo-velocities like the contacts'.
+  T joint_correction = T(0.2);
+  /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
+  /// the substep rate like contact_hertz, and their damping ratio (Box2D
+  /// v3's joint softness: 60 Hz and 2, i.e. twice its contact stiffness).
+  T joint_hertz = T(60);
+  T joint_damping_ratio = T(2);
   /// Whether each step starts from the last step's impulses.
   bool warm_starting = true;
 
@@ -110,13 +119,14 @@ struct solver_settings {
                            "substep_iterations must be >= 1, position_iterations and relax_iterations >= 0");
     const T values[] = {linear_slop,           position_correction, max_correction_speed, speculative_distance,
                         restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio,
-                        rest_depth};
+                        rest_depth,            joint_correction,    joint_hertz,          joint_damping_ratio};
     for (const T v : values)
       if (!std::isfinite(v) || v < T(0))
         detail::report_error(error_code::invalid_parameter,
                              "solver_settings: slop, correction, speeds and distances must be finite and >= 0");
-    if (position_correction > T(1))
-      detail::report_error(error_code::invalid_parameter, "solver_settings: position_correction must lie in [0, 1]");
+    if (position_correction > T(1) || joint_correction > T(1))
+      detail::report_error(error_code::invalid_parameter,
+                           "solver_settings: position_correction and joint_correction must lie in [0, 1]");
   }
 };
 

@@ -90,6 +90,19 @@ struct contact_event {
   friend constexpr bool operator==(const contact_event&, const contact_event&) = default;
 };
 
+/// A joint that broke in the last step: the impulse it applied exceeded
+/// its break_force or break_torque times the step.
+template <scalar_type T>
+struct joint_broken_event {
+  joint_id joint;
+  body_id a;
+  body_id b;
+  T time = T(0);    ///< the world's time at the end of the step it broke in, s
+  T force = T(0);   ///< what it applied in that step, N
+  T torque = T(0);  ///< N·m
+  friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
+};
+
 /// The nearest body a ray meets.
 template <scalar_type T>
 struct world_ray_hit {

@@ -10,6 +10,7 @@ template <scalar_type T> struct body_def;
 template <scalar_type T> struct world_settings;
 template <scalar_type T> struct world_ray_hit;
 struct contact_event;
+template <scalar_type T> struct joint_broken_event;
 struct debug_color;
 struct debug_draw_flags;
 template <class Config> class world_snapshot;

@@ -54,6 +54,7 @@
 #include "../dynamics/body_motion.hpp"
 #include "../dynamics/contact_constraint.hpp"
 #include "../dynamics/island.hpp"
+#include "../dynamics/joint.hpp"
 #include "../dynamics/rigid_body.hpp"
 #include "../narrowphase/dispatch.hpp"
 #include "../narrowphase/ray_cast.hpp"
@@ -145,10 +146,16 @@ class world {
     return id;
   }
 
-  /// Removes a body and its contacts; the bodies it touched wake. A stale
-  /// or destroyed id is refused.
+  /// Removes a body, its contacts and its joints; the bodies it touched or
+  /// was joined to wake. A stale or destroyed id is refused.
   void destroy_body(body_id id) {
     require(id, "world::destroy_body: no such body (destroyed already?)");
+    doomed_joints_.clear();
+    for (std::size_t k = 0; k < state_.joints.size(); ++k) {
+      const joint_record& j = state_.joints.values()[k];
+      if (j.a == id || j.b == id) doomed_joints_.push_back(state_.joints.ids()[k]);
+    }
+    for (const joint_id j : doomed_joints_) destroy_joint(j);
     std::erase_if(state_.contacts, [&](const contact_record& c) {
       if (c.a != id && c.b != id) return false;
       if (c.touching) state_.ended.push_back({c.a, c.b});
@@ -255,6 +262,132 @@ class world {
     wake_record(state_.bodies[id]);
   }
 
+  // ---- joints ----
+
+  /// Joins two bodies as `def` says (joint.hpp). The anchors and axis are
+  /// taken in the bodies' frames as they are now. Refused, with the world
+  /// unchanged: a body given twice, a missing or destroyed body, two bodies
+  /// neither of which is dynamic, non-finite anchors or axis, and the
+  /// other bad values joint_def::validate names. Both bodies wake; unless
+  /// def.collide_connected, their contacts with each other end.
+  joint_id create_joint(const joint_def<T>& def) {
+    require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
+    require(def.body_b, "world::create_joint: body_b does not exist (destroyed?)");
+    if (def.body_a == def.body_b)
+      detail::report_error(error_code::invalid_parameter, "world::create_joint: a joint needs two different bodies",
+                           def.body_a.index);
+    def.validate();
+    body_record& ra = state_.bodies[def.body_a];
+    body_record& rb = state_.bodies[def.body_b];
+    if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic)
+      detail::report_error(error_code::invalid_parameter, "world::create_joint: at least one body must be dynamic",
+                           def.body_a.index);
+
+    // Nothing below can fail on the input.
+    const rigid_body<T>& a = ra.body;
+    const rigid_body<T>& b = rb.body;
+    const bool two_ends = def.type == joint_type::distance;
+    joint_constraint<T> c;
+    c.type = def.type;
+    c.local_anchor_a = inverse_rotate(a.orientation, def.anchor_a - a.position);
+    c.local_anchor_b = inverse_rotate(b.orientation, (two_ends ? def.anchor_b : def.anchor_a) - b.position);
+    vec3<T> axis = def.axis;
+    if (two_ends) axis = def.anchor_b - def.anchor_a;
+    c.local_axis_a = length_squared(axis) > T(0) ? inverse_rotate(a.orientation, normalize(axis)) : vec3<T>{1, 0, 0};
+    c.reference = conjugate(a.orientation) * b.orientation;
+    c.enable_limit = def.enable_limit, c.lower = def.lower, c.upper = def.upper;
+    c.enable_motor = def.enable_motor, c.motor_speed = def.motor_speed, c.max_motor_force = def.max_motor_force;
+    c.length = def.length, c.spring_hertz = def.spring_hertz, c.spring_damping_ratio = def.spring_damping_ratio;
+    joint_record record{};
+    record.constraint = c;
+    record.def = def;
+    record.a = def.body_a, record.b = def.body_b;
+    if (!def.collide_connected) {
+      const std::uint64_t key = pair_key(def.body_a, def.body_b);
+      state_.joined.insert(std::upper_bound(state_.joined.begin(), state_.joined.end(), key), key);
+      end_contacts_between(def.body_a, def.body_b);
+    }
+    wake_record(ra);
+    wake_record(rb);
+    return state_.joints.insert(record);
+  }
+
+  /// Removes a joint; its bodies wake and, if they did not collide, may
+  /// touch again from the next step. A broken joint stays until destroyed.
+  void destroy_joint(joint_id id) {
+    require(id, "world::destroy_joint: no such joint (destroyed already?)");
+    const joint_record& r = state_.joints[id];
+    if (!r.broken) unjoin(r);
+    wake_record(state_.bodies[r.a]);
+    wake_record(state_.bodies[r.b]);
+    state_.joints.erase(id);
+  }
+
+  [[nodiscard]] bool contains(joint_id id) const noexcept { return state_.joints.contains(id); }
+  [[nodiscard]] std::size_t joint_count() const noexcept { return state_.joints.size(); }
+  /// The joint as it was created.
+  [[nodiscard]] const joint_def<T>& joint(joint_id id) const {
+    require(id, "world::joint: no such joint");
+    return state_.joints[id].def;
+  }
+  [[nodiscard]] bool is_broken(joint_id id) const {
+    require(id, "world::is_broken: no such joint");
+    return state_.joints[id].broken;
+  }
+  /// What the joint measures now: a hinge's angle about its axis (rad) or
+  /// a slider's translation along it (m), both 0 at creation; a distance
+  /// joint's length (m); 0 for the others.
+  [[nodiscard]] T joint_position(joint_id id) const {
+    require(id, "world::joint_position: no such joint");
+    return measure(state_.joints[id]).position;
+  }
+  /// How far apart the joint's anchors on A and B are now, m: its error
+  /// for a ball, hinge or fixed joint (a slider's anchors part along the
+  /// axis, a distance joint's by its length).
+  [[nodiscard]] T joint_separation(joint_id id) const {
+    require(id, "world::joint_separation: no such joint");
+    return length(measure(state_.joints[id]).separation);
+  }
+  /// The force and torque the joint applied to B in the last step, N and
+  /// N·m, world (A took the opposite).
+  [[nodiscard]] vec3<T> joint_force(joint_id id) const {
+    require(id, "world::joint_force: no such joint");
+    return state_.joints[id].force;
+  }
+  [[nodiscard]] vec3<T> joint_torque(joint_id id) const {
+    require(id, "world::joint_torque: no such joint");
+    return state_.joints[id].torque;
+  }
+  /// Drives a hinge or slider at `speed` (rad/s or m/s) with at most
+  /// `max_force` (N·m or N); enable false turns the motor off. Wakes the
+  /// bodies.
+  void set_joint_motor(joint_id id, bool enable, T speed, T max_force) {
+    require(id, "world::set_joint_motor: no such joint");
+    joint_record& r = state_.joints[id];
+    joint_def<T> def = r.def;
+    def.enable_motor = enable, def.motor_speed = speed, def.max_motor_force = max_force;
+    def.validate();
+    r.def = def;
+    r.constraint.enable_motor = enable, r.constraint.motor_speed = speed, r.constraint.max_motor_force = max_force;
+    if (!enable) r.constraint.motor_impulse = T(0);
+    wake_joint(r);
+  }
+  /// Keeps a hinge's angle or a slider's translation within [lower, upper];
+  /// enable false frees it. Wakes the bodies.
+  void set_joint_limits(joint_id id, bool enable, T lower, T upper) {
+    require(id, "world::set_joint_limits: no such joint");
+    joint_record& r = state_.joints[id];
+    joint_def<T> def = r.def;
+    def.enable_limit = enable, def.lower = lower, def.upper = upper;
+    def.validate();
+    r.def = def;
+    r.constraint.enable_limit = enable, r.constraint.lower = lower, r.constraint.upper = upper;
+    if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
+    wake_joint(r);
+  }
+  /// Joints that broke in the last step.
+  [[nodiscard]] std::span<const joint_broken_event<T>> joint_broken_events() const noexcept { return state_.broken; }
+
   // ---- stepping ----
 
   /// Advances the world by dt seconds. Events of this step replace the
@@ -266,6 +399,7 @@ class world {
       detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
     state_.begun.clear();
     state_.ended.clear();
+    state_.broken.clear();
     failed_ = no_object;
     update_broad_phase();
     update_contacts();
@@ -437,9 +571,24 @@ class world {
     std::array<contact_manifold<T>, max_manifolds> tested_local{};
   };
 
+  /// A joint, with the impulses it carries between steps and what it
+  /// applied in the last one.
+  struct joint_record {
+    joint_constraint<T> constraint;  ///< in the bodies' frames; body places set each step
+    joint_def<T> def;                ///< as created
+    body_id a, b;
+    vec3<T> force{}, torque{};  ///< on B in the last step, N and N·m
+    bool broken = false;
+  };
+
   struct state {
     world_settings<T> settings{};
     slot_map<body_record, body_id> bodies;
+    slot_map<joint_record, joint_id> joints;
+    /// The body pairs joined without collide_connected (pair_key), sorted,
+    /// once per such joint: their proxies' pairs make no contact.
+    std::vector<std::uint64_t> joined;
+    std::vector<joint_broken_event<T>> broken;
     detail::shape_store<shapes, T> shape_store;
     broad_phase_type broad;
     std::vector<contact_record> contacts;
@@ -452,6 +601,48 @@ class world {
 
   void require(body_id id, const char* message) const {
     if (!state_.bodies.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+  void require(joint_id id, const char* message) const {
+    if (!state_.joints.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+
+  // ---- joints ----
+
+  static std::uint64_t pair_key(body_id a, body_id b) noexcept {
+    const std::uint32_t low = std::min(a.index, b.index), high = std::max(a.index, b.index);
+    return (std::uint64_t(high) << 32) | low;
+  }
+  bool joined(body_id a, body_id b) const noexcept {
+    return !state_.joined.empty() && std::binary_search(state_.joined.begin(), state_.joined.end(), pair_key(a, b));
+  }
+  /// Lets the joint's bodies collide again (if it had stopped them).
+  void unjoin(const joint_record& r) {
+    if (r.def.collide_connected) return;
+    const auto at = std::lower_bound(state_.joined.begin(), state_.joined.end(), pair_key(r.a, r.b));
+    if (at != state_.joined.end() && *at == pair_key(r.a, r.b)) state_.joined.erase(at);
+  }
+  void end_contacts_between(body_id a, body_id b) {
+    std::erase_if(state_.contacts, [&](const contact_record& c) {
+      if (!((c.a == a && c.b == b) || (c.a == b && c.b == a))) return false;
+      if (c.touching) state_.ended.push_back({c.a, c.b});
+      return true;
+    });
+  }
+  void wake_joint(const joint_record& r) {
+    wake_record(state_.bodies[r.a]);
+    wake_record(state_.bodies[r.b]);
+  }
+  /// The joint's parts and errors at the bodies' present poses.
+  joint_constraint<T> measure(const joint_record& r) const {
+    std::array<solver_body<T>, 2> ends{};
+    const rigid_body<T>& a = state_.bodies[r.a].body;
+    const rigid_body<T>& b = state_.bodies[r.b].body;
+    ends[0].position = a.position, ends[0].orientation = a.orientation;
+    ends[1].position = b.position, ends[1].orientation = b.orientation;
+    joint_constraint<T> c = r.constraint;
+    c.body_a = 0, c.body_b = 1;
+    detail::prepare_joint(std::span<const solver_body<T>>(ends), c);
+    return c;
   }
   body_record& dynamic_record(body_id id, const char* message) {
     require(id, message);
@@ -578,11 +769,12 @@ class world {
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
-  /// dynamic.
+  /// dynamic, and no joint between them keeps them apart.
   bool may_touch(const proxy_pair& pair) const {
-    const body_record& ra = state_.bodies[unpack(state_.broad.user_data(pair.a))];
-    const body_record& rb = state_.bodies[unpack(state_.broad.user_data(pair.b))];
-    return ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic;
+    const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
+    const body_record& ra = state_.bodies[a];
+    const body_record& rb = state_.bodies[b];
+    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !joined(a, b);
   }
 
   /// Whether the broad phase's pairs, less those that cannot touch, are
@@ -698,6 +890,11 @@ class world {
       const std::uint32_t a = dense(c.a), b = dense(c.b);
       if (bodies[a].body.type == body_type::dynamic && bodies[b].body.type == body_type::dynamic) islands_.unite(a, b);
     }
+    for (const joint_record& j : state_.joints.values()) {
+      if (j.broken) continue;
+      const std::uint32_t a = dense(j.a), b = dense(j.b);
+      if (bodies[a].body.type == body_type::dynamic && bodies[b].body.type == body_type::dynamic) islands_.unite(a, b);
+    }
     island_flag_.assign(bodies.size(), 0);
     for (std::uint32_t i = 0; i < bodies.size(); ++i)
       if (bodies[i].body.type == body_type::dynamic && bodies[i].awake) island_flag_[islands_.find(i)] = 1;
@@ -724,11 +921,18 @@ class world {
                         length_squared(motion.bias_angular) <= T(0.01) * angular * angular;
       r.sleep_timer = slow ? r.sleep_timer + dt : T(0);
     }
-    // A body carried by a moving kinematic body stays awake.
+    // A body carried by (or joined to) a moving kinematic body stays awake.
     for (const contact_record& c : state_.contacts) {
       if (!c.touching) continue;
       body_record& a = state_.bodies[c.a];
       body_record& b = state_.bodies[c.b];
+      if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
+      if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
+    }
+    for (const joint_record& j : state_.joints.values()) {
+      if (j.broken) continue;
+      body_record& a = state_.bodies[j.a];
+      body_record& b = state_.bodies[j.b];
       if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
       if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
     }
@@ -824,8 +1028,20 @@ class world {
       // A substepping solver's impulses are per substep.
       estimate_cold_loads(solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt);
     }
+    joints_.clear();
+    joint_sources_.clear();
+    for (std::uint32_t k = 0; k < state_.joints.size(); ++k) {
+      const joint_record& r = state_.joints.values()[k];
+      if (r.broken) continue;
+      const std::uint32_t ia = dense(r.a), ib = dense(r.b);
+      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      joints_.push_back(r.constraint);
+      joints_.back().body_a = ia, joints_.back().body_b = ib;
+      joint_sources_.push_back(k);
+    }
     solver_.prepare(solver_bodies_, constraints_);
-    solver_.solve(solver_bodies_, constraints_, state_.settings.solver, dt);
+    solver_.solve(solver_bodies_, constraints_, joints_, state_.settings.solver, dt);
+    keep_joint_impulses(dt);
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
       contact_record& c = state_.contacts[sources_[j].record];
       const contact_constraint<T>& cc = constraints_[j];
@@ -873,6 +1089,46 @@ class world {
         b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
       }
       b.clear_loads();
+    }
+    if constexpr (!solver_policy::moves_bodies) {
+      if (!joints_.empty()) project_joints();
+    }
+  }
+
+  /// The joints' drift removed from where the bodies have moved to
+  /// (sequential_impulse::project_joints); velocities are left as solved.
+  void project_joints() {
+    std::vector<body_record>& bodies = state_.bodies.values();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      solver_bodies_[i].position = bodies[i].body.position;
+      solver_bodies_[i].orientation = bodies[i].body.orientation;
+    }
+    solver_type::project_joints(solver_bodies_, joints_, state_.settings.solver);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (!is_solved(bodies[i])) continue;
+      bodies[i].body.position = solver_bodies_[i].position;
+      bodies[i].body.orientation = solver_bodies_[i].orientation;
+    }
+  }
+
+  /// Keeps what each solved joint accumulated, and breaks those whose
+  /// impulse this step (per substep, for a substepping solver, whose
+  /// impulses are per substep) exceeded their thresholds.
+  void keep_joint_impulses(T dt) {
+    const T h = solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt;
+    for (std::size_t n = 0; n < joints_.size(); ++n) {
+      joint_record& r = state_.joints.values()[joint_sources_[n]];
+      r.constraint = joints_[n];
+      const detail::joint_reaction<T> applied = detail::reaction_of(joints_[n]);
+      r.force = applied.linear * (T(1) / h);
+      r.torque = applied.angular * (T(1) / h);
+      const T force = length(r.force), torque = length(r.torque);
+      if (force > r.def.break_force || torque > r.def.break_torque) {
+        r.broken = true;
+        unjoin(r);
+        wake_joint(r);
+        state_.broken.push_back({state_.joints.ids()[joint_sources_[n]], r.a, r.b, state_.time + dt, force, torque});
+      }
     }
   }
 
@@ -983,6 +1239,9 @@ class world {
   std::vector<solver_body<T>> solver_bodies_;
   std::vector<contact_constraint<T>> constraints_;
   std::vector<constraint_source> sources_;
+  std::vector<joint_constraint<T>> joints_;
+  std::vector<std::uint32_t> joint_sources_;  ///< each solved joint's dense place
+  std::vector<joint_id> doomed_joints_;
   std::vector<support> supports_;
   std::vector<T> load_;
   detail::union_find islands_;
