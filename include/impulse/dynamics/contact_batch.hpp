@@ -70,6 +70,7 @@ struct contact_batch {
   vectors turn_a1{}, turn_a2{}, turn_b1{}, turn_b2{};
   lanes tangent_mass11{}, tangent_mass12{}, tangent_mass22{};
   lanes friction{};
+  lanes slip_target1{}, slip_target2{};
   lanes tangent_impulse1{}, tangent_impulse2{};
   vectors twist_a{}, twist_b{};
   lanes twist_mass{}, twist_radius{}, twist_impulse{};
@@ -143,6 +144,8 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.tangent_mass12.set(l, c.tangent_mass12);
     out.tangent_mass22.set(l, c.tangent_mass22);
     out.friction.set(l, c.friction);
+    out.slip_target1.set(l, c.slip_target1);
+    out.slip_target2.set(l, c.slip_target2);
     out.tangent_impulse1.set(l, c.tangent_impulse1);
     out.tangent_impulse2.set(l, c.tangent_impulse2);
     out.twist_a.set_lane(l, a.inverse_inertia * c.normal);
@@ -362,8 +365,8 @@ void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
   for (const batch_row<T, W>& r : rows) pressed = pressed + r.impulse;
   const lanes limit = in.friction * pressed;
   const vec3_batch<T, W> dv = v.vb - v.va;
-  const lanes v1 = dot(in.tangent1, dv) + dot(v.wb, in.arm_b1) - dot(v.wa, in.arm_a1);
-  const lanes v2 = dot(in.tangent2, dv) + dot(v.wb, in.arm_b2) - dot(v.wa, in.arm_a2);
+  const lanes v1 = dot(in.tangent1, dv) + dot(v.wb, in.arm_b1) - dot(v.wa, in.arm_a1) - in.slip_target1;
+  const lanes v2 = dot(in.tangent2, dv) + dot(v.wb, in.arm_b2) - dot(v.wa, in.arm_a2) - in.slip_target2;
   lanes j1 = in.tangent_impulse1 - (in.tangent_mass11 * v1 + in.tangent_mass12 * v2);
   lanes j2 = in.tangent_impulse2 - (in.tangent_mass12 * v1 + in.tangent_mass22 * v2);
   // Back onto the Coulomb disc; the floor keeps the lanes that need no

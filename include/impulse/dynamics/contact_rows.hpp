@@ -140,7 +140,7 @@ void restitution_pass(std::span<solver_body<T>> bodies, std::span<contact_constr
       any = true;
       // Friction in the impact, within the Coulomb disc of its impulse.
       const vec3<T> v = relative_velocity(a, b, c.anchor_a, c.anchor_b);
-      const T v1 = dot(c.tangent1, v), v2 = dot(c.tangent2, v);
+      const T v1 = dot(c.tangent1, v) - c.slip_target1, v2 = dot(c.tangent2, v) - c.slip_target2;
       T j1 = -(c.tangent_mass11 * v1 + c.tangent_mass12 * v2), j2 = -(c.tangent_mass12 * v1 + c.tangent_mass22 * v2);
       clamp_to_disc(j1, j2, c.friction * total);
       apply_impulse(a, b, c.anchor_a, c.anchor_b, c.tangent1 * j1 + c.tangent2 * j2);
@@ -179,7 +179,7 @@ void solve_friction(solver_body<T>& a, solver_body<T>& b, contact_constraint<T>&
   for (int i = 0; i < c.count; ++i) pressed += c.points[i].normal_impulse;
   const T limit = c.friction * pressed;
   const vec3<T> v = relative_velocity(a, b, c.anchor_a, c.anchor_b);
-  const T v1 = dot(c.tangent1, v), v2 = dot(c.tangent2, v);
+  const T v1 = dot(c.tangent1, v) - c.slip_target1, v2 = dot(c.tangent2, v) - c.slip_target2;
   T j1 = c.tangent_impulse1 - (c.tangent_mass11 * v1 + c.tangent_mass12 * v2);
   T j2 = c.tangent_impulse2 - (c.tangent_mass12 * v1 + c.tangent_mass22 * v2);
   clamp_to_disc(j1, j2, limit);
