@@ -12880,7 +12880,7 @@ struct gjk_ray_cast_result {
 
 template <class Shape, scalar_type T>
 gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>& pose,
-                                        T max_fraction) noexcept {
+                                        T max_fraction, T grown = T(0)) noexcept {
   gjk_ray_cast_result<T> out;
   unit_ray<T> ur;
   if (!prepare_ray(r, max_fraction, ur)) return out;
@@ -12889,7 +12889,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
   constexpr R epsilon = sizeof(T) < sizeof(R) ? R(1e-7) : R(1e-12);
   constexpr int max_iterations = 64;
   const vec3<R> o = wide(ur.origin), u = wide(ur.direction);
-  const R radius = R(core_radius<T>(shape));
+  const R radius = R(core_radius<T>(shape)) + R(grown);
   const R max_distance = R(ur.max_distance);
 
   R lambda = 0;         // m along the ray: x = o + u·λ
@@ -12995,6 +12995,22 @@ template <class Shape, scalar_type T>
 ray_hit<T> gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>& pose,
                         T max_fraction = T(1)) noexcept {
   return detail::run_gjk_ray_cast(r, shape, pose, max_fraction).hit;
+}
+
+/// Where a ball of `radius` whose centre moves along the ray first touches
+/// the shape: the ray against the shape grown by the radius (its core
+/// grown, for GJK's rounded-shape case above), exact to the same
+/// tolerance. The hit's point is the ball's centre there, the normal the
+/// grown surface's. A continuous collision stage sweeps spheres this way.
+template <class Shape, scalar_type T>
+ray_hit<T> sphere_cast(const ray<T>& r, T radius, const Shape& shape, const transform<T>& pose,
+                       T max_fraction = T(1)) noexcept {
+  return detail::run_gjk_ray_cast(r, shape, pose, max_fraction, radius).hit;
+}
+template <scalar_type T>
+ray_hit<T> sphere_cast(const ray<T>& r, T radius, const plane<T>& p, const transform<T>& pose,
+                       T max_fraction = T(1)) noexcept {
+  return ray_cast(r, plane<T>{p.normal, p.offset - radius}, pose, max_fraction);
 }
 
 }  // namespace impulse::narrowphase
@@ -15513,6 +15529,10 @@ struct body_def {
   T mass = T(0);
   /// Created asleep: a settled scene loaded from a file need not settle again.
   bool awake = true;
+  /// With ccd on in the world's config: swept every step against every
+  /// body it could meet, dynamic ones too (a projectile). Other bodies are
+  /// swept only when fast, and only against static and kinematic ones.
+  bool bullet = false;
   std::uint64_t user_data = 0;
 };
 
@@ -15545,6 +15565,15 @@ struct world_settings {
   /// edge is tested again before it has turned far.
   T contact_reuse_distance = T(0.001);  ///< m
   T contact_reuse_angle = T(0.0087);    ///< rad
+  /// With ccd on in the config, a body whose centre moves farther in a step
+  /// than this fraction of its thinnest half-extent (a ball's radius) is
+  /// swept against static and kinematic bodies. Below it the speculative
+  /// contacts (solver.speculative_distance) already catch what it meets.
+  T ccd_motion_fraction = T(0.5);
+  /// How far short of the impact a swept body is stopped, m: the next
+  /// step's speculative contact then meets it apart, not overlapping by
+  /// rounding. Box2D's linear slop.
+  T ccd_gap = T(0.005);
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
@@ -15561,6 +15590,10 @@ struct world_settings {
         contact_reuse_distance < T(0) || contact_reuse_angle < T(0))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: contact reuse distance and angle must be finite and >= 0");
+    if (!std::isfinite(ccd_motion_fraction) || !std::isfinite(ccd_gap) || ccd_motion_fraction < T(0) ||
+        ccd_gap < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: ccd_motion_fraction and ccd_gap must be finite and >= 0");
   }
 };
 
@@ -15831,6 +15864,15 @@ consteval bool world_sleeping() {
   }
 }
 
+template <class C>
+consteval bool world_ccd() {
+  if constexpr (has_ccd<C>) {
+    return C::ccd;
+  } else {
+    return false;
+  }
+}
+
 }  // namespace impulse::detail
 // ---- end impulse/world/world_traits.hpp ----
 
@@ -15850,6 +15892,9 @@ class world {
   using solver_type = typename solver_policy::template type<T>;
   using integrator = typename Config::integrator;
   static constexpr bool sleeping = detail::world_sleeping<Config>();
+  /// Whether fast bodies and bullets are swept (continuous collision); off,
+  /// the sweeping code is not compiled.
+  static constexpr bool ccd = detail::world_ccd<Config>();
   /// Manifolds one pair can have: one for two convex shapes, one per
   /// distinct normal against a mesh (a box in a corner of it: two or three).
   static constexpr int max_manifolds = 4;
@@ -15909,6 +15954,8 @@ class world {
     record.shape = state_.shape_store.add(shape);
     record.awake = def.awake || def.type != body_type::dynamic;
     record.user_data = def.user_data;
+    record.bullet = def.bullet;
+    record.thinnest = thinnest_half_extent(shape);
     record.previous = body.pose();
     const body_id id = state_.bodies.insert(record);
     body_record& r = state_.bodies[id];
@@ -16204,6 +16251,7 @@ class world {
     update_contacts();
     if constexpr (sleeping) wake_islands();
     solve(dt);
+    if constexpr (ccd) continuous();
     if constexpr (sleeping) update_sleep(dt);
     state_.time += dt;
     state_.last_dt = dt;
@@ -16355,6 +16403,8 @@ class world {
     bool awake = true;
     std::uint64_t user_data = 0;
     target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
+    bool bullet = false;
+    T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
   };
 
   /// A pair of bodies whose boxes overlap, and what the narrow phase and
@@ -16697,6 +16747,128 @@ class world {
       }
     }
     return true;
+  }
+
+  // ---- continuous collision ----
+
+  template <class Shape>
+  static T thinnest_half_extent(const Shape& shape) noexcept {
+    if constexpr (requires { shape.radius; } && !requires { shape.half_height; }) {
+      return shape.radius;
+    } else if constexpr (requires { shape.radius; }) {
+      return shape.radius;  // a capsule is thinnest across
+    } else if constexpr (requires { shape.local_aabb(); }) {
+      const aabb<T> box = shape.local_aabb();
+      const vec3<T> half = (box.upper - box.lower) * T(0.5);
+      return std::min({half.x, half.y, half.z});
+    } else {
+      return std::numeric_limits<T>::infinity();  // planes and meshes are never swept
+    }
+  }
+
+  /// After the bodies have moved: each bullet, and each body that crossed
+  /// more than ccd_motion_fraction of its thinnest half-extent, is swept
+  /// from where it started the step to where it ended, and stopped ccd_gap
+  /// short of the first body it would have met (Box2D v3's continuous
+  /// stage: the rest of its step is lost, and the next step's speculative
+  /// contact resolves the impact; its velocity is kept for that).
+  void continuous() {
+    std::vector<body_record>& bodies = state_.bodies.values();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const body_record& r = bodies[i];
+      if (!is_solved(r)) continue;
+      const T moved = length(r.body.position - r.previous.position);
+      if (r.bullet || moved > state_.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
+    }
+  }
+
+  void sweep_back(std::size_t i) {
+    body_record& r = state_.bodies.values()[i];
+    const body_id id = state_.bodies.ids()[i];
+    const narrowphase::sweep<T> path{{r.previous.position - rotate(r.previous.rotation, r.center), r.previous.rotation},
+                                     shape_pose_of(r), r.center};
+    const aabb<T> swept = state_.shape_store.visit(r.shape, [&](const auto& s) {
+      return merge(s.world_aabb(path.start), s.world_aabb(path.end));
+    });
+    T first = T(1);
+    state_.broad.query(swept, [&](proxy_id proxy) {
+      const body_id other = unpack(state_.broad.user_data(proxy));
+      if (other == id || joined(id, other)) return;
+      const body_record& o = state_.bodies[other];
+      // Fast bodies meet the world; bullets meet moving bodies too, but
+      // not each other (each is already swept).
+      if (o.body.type == body_type::dynamic && (!r.bullet || o.bullet)) return;
+      const narrowphase::sweep<T> other_path{
+          {o.previous.position - rotate(o.previous.rotation, o.center), o.previous.rotation}, shape_pose_of(o),
+          o.center};
+      first = std::min(first, impact_time(r, path, o, other_path));
+    });
+    if (!(first < T(1))) return;
+    const transform<T> at = narrowphase::sweep_motion<T>(path).at(first);
+    r.body.position = apply(at, r.center);
+    r.body.orientation = at.rotation;
+  }
+
+  /// When r, moving along path, first comes within ccd_gap of o moving along
+  /// its own; 1 if not within the step. A ball against a body that does not
+  /// turn is a sphere cast, exact; other convex pairs are conservative
+  /// advancement (narrowphase/time_of_impact.hpp). Planes are half-spaces,
+  /// which nothing can cross unseen; meshes are not swept yet.
+  T impact_time(const body_record& r, const narrowphase::sweep<T>& path, const body_record& o,
+                const narrowphase::sweep<T>& other_path) const {
+    const T gap = state_.settings.ccd_gap;
+    return state_.shape_store.visit(r.shape, [&](const auto& mover) {
+      return state_.shape_store.visit(o.shape, [&](const auto& target) {
+        using M = std::decay_t<decltype(mover)>;
+        using O = std::decay_t<decltype(target)>;
+        constexpr bool convex = requires(const M& m, const O& t, vec3<T> d) {
+          m.support(d);
+          t.support(d);
+        };
+        if constexpr (!convex) {
+          return T(1);
+        } else {
+          if constexpr (std::is_same_v<M, sphere<T>>) {
+            if (other_path.start == other_path.end) {
+              // The ball's centre against the body grown by its radius.
+              const vec3<T> from = path.start.position, to = path.end.position;
+              const T distance = length(to - from);
+              const narrowphase::ray_hit<T> hit =
+                  narrowphase::sphere_cast(ray<T>{from, to - from}, mover.radius, target, other_path.start);
+              // Starting within the grown body: the discrete contact has it
+              // (a ball rolling fast on the ground is not stopped by it).
+              if (!hit.hit || !(hit.fraction > T(0))) return T(1);
+              const T t = hit.fraction - gap / distance;
+              if (t > T(0)) return t;
+              return passed(mover, path, target, other_path, -hit.normal) ? T(0) : T(1);
+            }
+          }
+          narrowphase::toi_options<T> options;
+          options.target = gap;
+          options.tolerance = gap * T(0.25);
+          const narrowphase::toi_result<T> hit = narrowphase::time_of_impact(mover, path, target, other_path, options);
+          if (hit.state == narrowphase::toi_state::overlapping) return T(1);  // the discrete contacts have it
+          if (hit.state == narrowphase::toi_state::separated) return T(1);
+          if (hit.t > T(0)) return hit.t;
+          return passed(mover, path, target, other_path, hit.normal) ? T(0) : T(1);
+        }
+      });
+    });
+  }
+
+  /// For a pair that starts the step within ccd_gap (normal: from the
+  /// mover towards the other), whether the step ended with the mover
+  /// through the other or deeper in it than ccd_gap. Such a pair is the
+  /// discrete contacts' to handle, and they nearly always hold it; a body
+  /// that turns fast under the contact's impulse can still swing through
+  /// (a 2 cm plate hitting a wall at 150 m/s, spinning at 10 rad/s), and is
+  /// then put back where it started the step.
+  template <class M, class O>
+  bool passed(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+              const narrowphase::sweep<T>& other_path, const vec3<T>& normal) const {
+    const narrowphase::gjk_result<T> end = narrowphase::gjk_distance(mover, path.end, target, other_path.end);
+    if (!end.overlapping) return dot(end.on_b - end.on_a, normal) < T(0);
+    return narrowphase::epa_penetration(mover, path.end, target, other_path.end).depth > state_.settings.ccd_gap;
   }
 
   // ---- islands and sleeping ----

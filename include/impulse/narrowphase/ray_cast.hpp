@@ -368,7 +368,7 @@ struct gjk_ray_cast_result {
 
 template <class Shape, scalar_type T>
 gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>& pose,
-                                        T max_fraction) noexcept {
+                                        T max_fraction, T grown = T(0)) noexcept {
   gjk_ray_cast_result<T> out;
   unit_ray<T> ur;
   if (!prepare_ray(r, max_fraction, ur)) return out;
@@ -377,7 +377,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
   constexpr R epsilon = sizeof(T) < sizeof(R) ? R(1e-7) : R(1e-12);
   constexpr int max_iterations = 64;
   const vec3<R> o = wide(ur.origin), u = wide(ur.direction);
-  const R radius = R(core_radius<T>(shape));
+  const R radius = R(core_radius<T>(shape)) + R(grown);
   const R max_distance = R(ur.max_distance);
 
   R lambda = 0;         // m along the ray: x = o + u·λ
@@ -483,6 +483,22 @@ template <class Shape, scalar_type T>
 ray_hit<T> gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>& pose,
                         T max_fraction = T(1)) noexcept {
   return detail::run_gjk_ray_cast(r, shape, pose, max_fraction).hit;
+}
+
+/// Where a ball of `radius` whose centre moves along the ray first touches
+/// the shape: the ray against the shape grown by the radius (its core
+/// grown, for GJK's rounded-shape case above), exact to the same
+/// tolerance. The hit's point is the ball's centre there, the normal the
+/// grown surface's. A continuous collision stage sweeps spheres this way.
+template <class Shape, scalar_type T>
+ray_hit<T> sphere_cast(const ray<T>& r, T radius, const Shape& shape, const transform<T>& pose,
+                       T max_fraction = T(1)) noexcept {
+  return detail::run_gjk_ray_cast(r, shape, pose, max_fraction, radius).hit;
+}
+template <scalar_type T>
+ray_hit<T> sphere_cast(const ray<T>& r, T radius, const plane<T>& p, const transform<T>& pose,
+                       T max_fraction = T(1)) noexcept {
+  return ray_cast(r, plane<T>{p.normal, p.offset - radius}, pose, max_fraction);
 }
 
 }  // namespace impulse::narrowphase

@@ -31,6 +31,10 @@ struct body_def {
   T mass = T(0);
   /// Created asleep: a settled scene loaded from a file need not settle again.
   bool awake = true;
+  /// With ccd on in the world's config: swept every step against every
+  /// body it could meet, dynamic ones too (a projectile). Other bodies are
+  /// swept only when fast, and only against static and kinematic ones.
+  bool bullet = false;
   std::uint64_t user_data = 0;
 };
 
@@ -63,6 +67,15 @@ struct world_settings {
   /// edge is tested again before it has turned far.
   T contact_reuse_distance = T(0.001);  ///< m
   T contact_reuse_angle = T(0.0087);    ///< rad
+  /// With ccd on in the config, a body whose centre moves farther in a step
+  /// than this fraction of its thinnest half-extent (a ball's radius) is
+  /// swept against static and kinematic bodies. Below it the speculative
+  /// contacts (solver.speculative_distance) already catch what it meets.
+  T ccd_motion_fraction = T(0.5);
+  /// How far short of the impact a swept body is stopped, m: the next
+  /// step's speculative contact then meets it apart, not overlapping by
+  /// rounding. Box2D's linear slop.
+  T ccd_gap = T(0.005);
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
@@ -79,6 +92,10 @@ struct world_settings {
         contact_reuse_distance < T(0) || contact_reuse_angle < T(0))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: contact reuse distance and angle must be finite and >= 0");
+    if (!std::isfinite(ccd_motion_fraction) || !std::isfinite(ccd_gap) || ccd_motion_fraction < T(0) ||
+        ccd_gap < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: ccd_motion_fraction and ccd_gap must be finite and >= 0");
   }
 };
 

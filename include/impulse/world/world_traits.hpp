@@ -59,4 +59,13 @@ consteval bool world_sleeping() {
   }
 }
 
+template <class C>
+consteval bool world_ccd() {
+  if constexpr (has_ccd<C>) {
+    return C::ccd;
+  } else {
+    return false;
+  }
+}
+
 }  // namespace impulse::detail
