@@ -8265,11 +8265,13 @@ struct solver_settings {
   /// orientation off, a limit passed) removed by each of the
   /// position_iterations passes that move the bodies back onto their
   /// joints after they have moved (sequential_impulse; joint.hpp,
-  /// project_joint). Measured on a 1 m pendulum let go from horizontal,
-  /// largest anchor gap over 20 s: 1.8 mm at 0.2, 0.17 mm at 0.5, under
-  /// 0.01 mm at 1; a chain of 20 links of 10 and 1 kg hanging still:
-  /// 4.0 mm at 0.2, 0.14 mm at 1. Box2D v2 removes the whole error too.
-  T joint_correction = T(1);
+  /// project_joint). Each joint corrects its own error as if alone, so
+  /// coupled joints overshoot at 1: bench/joints' grid of 19 800 ball
+  /// joints tore 12 m open in 300 steps at 1, 4.4 m at 0.8, 2.0 m at 0.65,
+  /// 0.56 m at 0.5 and 1.1 m at 0.2. A 1 m pendulum let go from horizontal
+  /// keeps its pivot within 0.17 mm at 0.5 (1.8 mm at 0.2); a hanging
+  /// chain of 10 and 1 kg links opens 13 mm at 0.5, 18.6 mm at 1.
+  T joint_correction = T(0.5);
   /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
   /// the substep rate like contact_hertz, and their damping ratio (Box2D
   /// v3's joint softness: 60 Hz and 2, i.e. twice its contact stiffness).
@@ -16976,6 +16978,8 @@ class world {
         s.angular_velocity = b.kinematic_angular_velocity;
       }
     }
+    // How long the bodies move in a straight line at a time.
+    const T move_dt = solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt;
     constraints_.clear();
     sources_.clear();
     for (std::uint32_t k = 0; k < state_.contacts.size(); ++k) {
@@ -17010,13 +17014,14 @@ class world {
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept
         // outward 1.7 cm/s. Friction holds the patch at the relative
-        // velocity that cancels it.
+        // velocity that cancels it (per substep, for a substepping solver,
+        // which moves the bodies in straight lines that much shorter).
         const solver_body<T>& sa = solver_bodies_[ia];
         const solver_body<T>& sb = solver_bodies_[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
-        cc.slip_target1 = dot(curving, cc.tangent1) * (-dt / T(2));
-        cc.slip_target2 = dot(curving, cc.tangent2) * (-dt / T(2));
+        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
+        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
         const manifold_impulse<T>& carried = c.impulses[std::size_t(m)];
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);

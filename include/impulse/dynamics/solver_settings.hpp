@@ -103,11 +103,13 @@ struct solver_settings {
   /// orientation off, a limit passed) removed by each of the
   /// position_iterations passes that move the bodies back onto their
   /// joints after they have moved (sequential_impulse; joint.hpp,
-  /// project_joint). Measured on a 1 m pendulum let go from horizontal,
-  /// largest anchor gap over 20 s: 1.8 mm at 0.2, 0.17 mm at 0.5, under
-  /// 0.01 mm at 1; a chain of 20 links of 10 and 1 kg hanging still:
-  /// 4.0 mm at 0.2, 0.14 mm at 1. Box2D v2 removes the whole error too.
-  T joint_correction = T(1);
+  /// project_joint). Each joint corrects its own error as if alone, so
+  /// coupled joints overshoot at 1: bench/joints' grid of 19 800 ball
+  /// joints tore 12 m open in 300 steps at 1, 4.4 m at 0.8, 2.0 m at 0.65,
+  /// 0.56 m at 0.5 and 1.1 m at 0.2. A 1 m pendulum let go from horizontal
+  /// keeps its pivot within 0.17 mm at 0.5 (1.8 mm at 0.2); a hanging
+  /// chain of 10 and 1 kg links opens 13 mm at 0.5, 18.6 mm at 1.
+  T joint_correction = T(0.5);
   /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
   /// the substep rate like contact_hertz, and their damping ratio (Box2D
   /// v3's joint softness: 60 Hz and 2, i.e. twice its contact stiffness).

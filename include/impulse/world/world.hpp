@@ -1166,6 +1166,8 @@ class world {
         s.angular_velocity = b.kinematic_angular_velocity;
       }
     }
+    // How long the bodies move in a straight line at a time.
+    const T move_dt = solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt;
     constraints_.clear();
     sources_.clear();
     for (std::uint32_t k = 0; k < state_.contacts.size(); ++k) {
@@ -1200,13 +1202,14 @@ class world {
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept
         // outward 1.7 cm/s. Friction holds the patch at the relative
-        // velocity that cancels it.
+        // velocity that cancels it (per substep, for a substepping solver,
+        // which moves the bodies in straight lines that much shorter).
         const solver_body<T>& sa = solver_bodies_[ia];
         const solver_body<T>& sb = solver_bodies_[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
-        cc.slip_target1 = dot(curving, cc.tangent1) * (-dt / T(2));
-        cc.slip_target2 = dot(curving, cc.tangent2) * (-dt / T(2));
+        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
+        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
         const manifold_impulse<T>& carried = c.impulses[std::size_t(m)];
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
