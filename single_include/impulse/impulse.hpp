@@ -5792,7 +5792,8 @@ template <scalar_type T>
 //   λ = −m_eff·s_m·(J·v + bias) − s_i·Λ,   Λ ← clamp(Λ + λ)
 //
 // with Λ the impulse accumulated this step, bias the velocity that corrects
-// the error (0 for a rigid row whose error the position pass corrects), and
+// the error (0 for a rigid row whose error is removed from the positions
+// once the bodies have moved), and
 // s_m, s_i the scales of a soft row (softness.hpp): 1 and 0 for a rigid one.
 // The three-row parts are solved as blocks (the 3×3 effective mass
 // inverted once per step), not row by row: the rows of a point share the
@@ -6145,8 +6146,8 @@ template <scalar_type T>
 
 namespace impulse::detail {
 
-/// The velocities a pass works on: the real ones, or the position pass's
-/// pseudo-velocities (sequential_impulse.hpp).
+/// The velocities a pass works on: the bodies' own, or the displacements
+/// of a pass on the positions (joint.hpp, project_joint).
 template <scalar_type T>
 struct velocity_pair {
   vec3<T>& va;
@@ -6157,10 +6158,6 @@ struct velocity_pair {
 template <scalar_type T>
 velocity_pair<T> real_velocities(solver_body<T>& a, solver_body<T>& b) noexcept {
   return {a.linear_velocity, a.angular_velocity, b.linear_velocity, b.angular_velocity};
-}
-template <scalar_type T>
-velocity_pair<T> pseudo_velocities(solver_body<T>& a, solver_body<T>& b) noexcept {
-  return {a.bias_linear, a.bias_angular, b.bias_linear, b.bias_angular};
 }
 
 /// K⁻¹ of a 3×3 effective mass, or zero when K is singular (neither body
@@ -6684,7 +6681,6 @@ struct joint_constraint {
   vec3<T> rotation_error{};    ///< rotation vector from where A holds B to where B is, rad
   T across_error[2] = {};      ///< m (slider) or rad (hinge)
   T position = T(0);           ///< hinge angle (rad), slider translation (m), distance (m)
-  T lower_bias_impulse = T(0), upper_bias_impulse = T(0);  ///< the position pass's
 };
 
 /// What one velocity pass asks of a joint's rows.
@@ -6715,7 +6711,6 @@ void prepare_joint(std::span<const solver_body<T>> bodies, joint_constraint<T>& 
   const solver_body<T>& b = bodies[j.body_b];
   const vec3<T> ra = rotate(a.orientation, j.local_anchor_a), rb = rotate(b.orientation, j.local_anchor_b);
   j.separation = (b.position + rb) - (a.position + ra);
-  j.lower_bias_impulse = j.upper_bias_impulse = T(0);
   const bool holds_point = j.type == joint_type::ball || j.type == joint_type::hinge || j.type == joint_type::fixed;
   const bool holds_rotation = j.type == joint_type::fixed || j.type == joint_type::slider;
   if (holds_point) j.point.prepare(a, b, ra, rb);
@@ -7620,6 +7615,10 @@ class rigid_body_system {
 //    a bounce, and a box landing in a stack would pop the one beneath.
 //    Non-linear Gauss–Seidel on positions (Box2D v2) does the same at the
 //    cost of a contact re-evaluation per iteration.
+// Joints (joint.hpp) take part in steps 3 and 4, before the contacts of
+// each iteration, rigid; their drift is removed once the bodies have moved
+// (project_joints: non-linear Gauss–Seidel on the poses, which sees the
+// drift that a pass planned from the start of the step cannot).
 // The world then moves the bodies with the solved velocities plus the
 // pseudo-velocities, by its integrator policy.
 
@@ -15696,11 +15695,15 @@ template <class Config = default_config> class world;
 //                 the dispatcher of the config's shape_list; points that
 //                 keep their feature id keep their impulses (warm start).
 //                 Pairs that start or stop touching become events.
-//   islands       (sleeping on) union–find over touching contacts; an
-//                 island with any body awake is awake entirely.
+//   islands       (sleeping on) union–find over touching contacts and
+//                 joints; an island with any body awake is awake entirely.
 //   solver        the config's solver (sequential_impulse, soft_step)
-//                 applies this step's forces, solves the contacts and
-//                 moves the awake bodies.
+//                 applies this step's forces, solves the contacts and the
+//                 joints (joint.hpp) and moves the awake bodies; joints
+//                 that pulled harder than their thresholds break.
+//   continuous    (ccd on) fast bodies and bullets are swept from where
+//                 they started the step and put back short of what they
+//                 would have passed (continuous()).
 //   sleeping      (sleeping on) an island whose every body has been slow
 //                 for sleep_time goes to sleep: no forces, no contacts
 //                 solved, no narrow phase, until something wakes it.
@@ -15714,7 +15717,7 @@ template <class Config = default_config> class world;
 // accurately as the integrator (RK4: fourth order). Forces are held
 // constant over a step, so every integrator gives the same velocity
 // change, F·dt/m; the integrator matters for the rotation, and for forces
-// that depend on the state within a step (springs; issue 8's joints).
+// that depend on the state within a step (springs).
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure
@@ -16755,10 +16758,8 @@ class world {
 
   template <class Shape>
   static T thinnest_half_extent(const Shape& shape) noexcept {
-    if constexpr (requires { shape.radius; } && !requires { shape.half_height; }) {
-      return shape.radius;
-    } else if constexpr (requires { shape.radius; }) {
-      return shape.radius;  // a capsule is thinnest across
+    if constexpr (requires { shape.radius; }) {
+      return shape.radius;  // a ball's, and a capsule's across
     } else if constexpr (requires { shape.local_aabb(); }) {
       const aabb<T> box = shape.local_aabb();
       const vec3<T> half = (box.upper - box.lower) * T(0.5);

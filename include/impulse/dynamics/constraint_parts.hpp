@@ -11,7 +11,8 @@
 //   λ = −m_eff·s_m·(J·v + bias) − s_i·Λ,   Λ ← clamp(Λ + λ)
 //
 // with Λ the impulse accumulated this step, bias the velocity that corrects
-// the error (0 for a rigid row whose error the position pass corrects), and
+// the error (0 for a rigid row whose error is removed from the positions
+// once the bodies have moved), and
 // s_m, s_i the scales of a soft row (softness.hpp): 1 and 0 for a rigid one.
 // The three-row parts are solved as blocks (the 3×3 effective mass
 // inverted once per step), not row by row: the rows of a point share the
@@ -30,8 +31,8 @@
 
 namespace impulse::detail {
 
-/// The velocities a pass works on: the real ones, or the position pass's
-/// pseudo-velocities (sequential_impulse.hpp).
+/// The velocities a pass works on: the bodies' own, or the displacements
+/// of a pass on the positions (joint.hpp, project_joint).
 template <scalar_type T>
 struct velocity_pair {
   vec3<T>& va;
@@ -42,10 +43,6 @@ struct velocity_pair {
 template <scalar_type T>
 velocity_pair<T> real_velocities(solver_body<T>& a, solver_body<T>& b) noexcept {
   return {a.linear_velocity, a.angular_velocity, b.linear_velocity, b.angular_velocity};
-}
-template <scalar_type T>
-velocity_pair<T> pseudo_velocities(solver_body<T>& a, solver_body<T>& b) noexcept {
-  return {a.bias_linear, a.bias_angular, b.bias_linear, b.bias_angular};
 }
 
 /// K⁻¹ of a 3×3 effective mass, or zero when K is singular (neither body

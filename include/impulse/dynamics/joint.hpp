@@ -178,7 +178,6 @@ struct joint_constraint {
   vec3<T> rotation_error{};    ///< rotation vector from where A holds B to where B is, rad
   T across_error[2] = {};      ///< m (slider) or rad (hinge)
   T position = T(0);           ///< hinge angle (rad), slider translation (m), distance (m)
-  T lower_bias_impulse = T(0), upper_bias_impulse = T(0);  ///< the position pass's
 };
 
 /// What one velocity pass asks of a joint's rows.
@@ -209,7 +208,6 @@ void prepare_joint(std::span<const solver_body<T>> bodies, joint_constraint<T>& 
   const solver_body<T>& b = bodies[j.body_b];
   const vec3<T> ra = rotate(a.orientation, j.local_anchor_a), rb = rotate(b.orientation, j.local_anchor_b);
   j.separation = (b.position + rb) - (a.position + ra);
-  j.lower_bias_impulse = j.upper_bias_impulse = T(0);
   const bool holds_point = j.type == joint_type::ball || j.type == joint_type::hinge || j.type == joint_type::fixed;
   const bool holds_rotation = j.type == joint_type::fixed || j.type == joint_type::slider;
   if (holds_point) j.point.prepare(a, b, ra, rb);

@@ -34,6 +34,10 @@
 //    a bounce, and a box landing in a stack would pop the one beneath.
 //    Non-linear Gauss–Seidel on positions (Box2D v2) does the same at the
 //    cost of a contact re-evaluation per iteration.
+// Joints (joint.hpp) take part in steps 3 and 4, before the contacts of
+// each iteration, rigid; their drift is removed once the bodies have moved
+// (project_joints: non-linear Gauss–Seidel on the poses, which sees the
+// drift that a pass planned from the start of the step cannot).
 // The world then moves the bodies with the solved velocities plus the
 // pseudo-velocities, by its integrator policy.
 #pragma once

@@ -10,11 +10,15 @@
 //                 the dispatcher of the config's shape_list; points that
 //                 keep their feature id keep their impulses (warm start).
 //                 Pairs that start or stop touching become events.
-//   islands       (sleeping on) union–find over touching contacts; an
-//                 island with any body awake is awake entirely.
+//   islands       (sleeping on) union–find over touching contacts and
+//                 joints; an island with any body awake is awake entirely.
 //   solver        the config's solver (sequential_impulse, soft_step)
-//                 applies this step's forces, solves the contacts and
-//                 moves the awake bodies.
+//                 applies this step's forces, solves the contacts and the
+//                 joints (joint.hpp) and moves the awake bodies; joints
+//                 that pulled harder than their thresholds break.
+//   continuous    (ccd on) fast bodies and bullets are swept from where
+//                 they started the step and put back short of what they
+//                 would have passed (continuous()).
 //   sleeping      (sleeping on) an island whose every body has been slow
 //                 for sleep_time goes to sleep: no forces, no contacts
 //                 solved, no narrow phase, until something wakes it.
@@ -28,7 +32,7 @@
 // accurately as the integrator (RK4: fourth order). Forces are held
 // constant over a step, so every integrator gives the same velocity
 // change, F·dt/m; the integrator matters for the rotation, and for forces
-// that depend on the state within a step (springs; issue 8's joints).
+// that depend on the state within a step (springs).
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure
@@ -57,8 +61,8 @@
 #include "../dynamics/joint.hpp"
 #include "../dynamics/rigid_body.hpp"
 #include "../narrowphase/dispatch.hpp"
-#include "../narrowphase/ray_cast.hpp"
 #include "../narrowphase/epa.hpp"
+#include "../narrowphase/ray_cast.hpp"
 #include "../narrowphase/time_of_impact.hpp"
 #include "body_def.hpp"
 #include "debug_draw.hpp"
@@ -943,10 +947,8 @@ class world {
 
   template <class Shape>
   static T thinnest_half_extent(const Shape& shape) noexcept {
-    if constexpr (requires { shape.radius; } && !requires { shape.half_height; }) {
-      return shape.radius;
-    } else if constexpr (requires { shape.radius; }) {
-      return shape.radius;  // a capsule is thinnest across
+    if constexpr (requires { shape.radius; }) {
+      return shape.radius;  // a ball's, and a capsule's across
     } else if constexpr (requires { shape.local_aabb(); }) {
       const aabb<T> box = shape.local_aabb();
       const vec3<T> half = (box.upper - box.lower) * T(0.5);
