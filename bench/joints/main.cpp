@@ -115,7 +115,7 @@ result run_bullet(const grid_spec& spec) {
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld world(&dispatcher, &broad_phase, &solver, &configuration);
   world.setGravity(btVector3(0, btScalar(-9.81), 0));
-  btSphereShape shape(btScalar(grid_spec::radius));
+  btSphereShape shape{btScalar(grid_spec::radius)};
   btVector3 inertia(0, 0, 0);
   shape.calculateLocalInertia(1, inertia);
   std::vector<std::unique_ptr<btRigidBody>> bodies;
