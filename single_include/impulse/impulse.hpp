@@ -755,6 +755,18 @@ T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
   return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
 }
 
+/// The rotation vector (world axis times angle, radians) of the shortest
+/// turn taking orientation `from` to `to`: the inverse of integrate, so
+/// integrate(from, rotation_between(from, to), 1) is `to` up to rounding.
+template <scalar_type T>
+vec3<T> rotation_between(const quat<T>& from, const quat<T>& to) noexcept {
+  quat<T> q = to * conjugate(from);
+  if (q.w < T(0)) q = q * T(-1);  // the short way round
+  const vec3<T> axis = q.vector_part();
+  const T sine = length(axis);
+  return sine > T(0) ? axis * (T(2) * std::atan2(sine, q.w) / sine) : vec3<T>{};
+}
+
 }  // namespace impulse
 // ---- end impulse/math/quat.hpp ----
 
@@ -14150,15 +14162,8 @@ struct sweep_motion {
       : center(apply(s.start, s.local_center)),
         translation(apply(s.end, s.local_center) - apply(s.start, s.local_center)),
         rotation(s.start.rotation),
-        local_center(s.local_center) {
-    // The shortest rotation taking the start orientation to the end one:
-    // q = end·start*, with w ≥ 0, is exp(angle/2).
-    quat<T> q = s.end.rotation * conjugate(s.start.rotation);
-    if (q.w < T(0)) q = q * T(-1);
-    const vec3<T> axis = q.vector_part();
-    const T sine = length(axis);
-    if (sine > T(0)) angle = axis * (T(2) * std::atan2(sine, q.w) / sine);
-  }
+        angle(rotation_between(s.start.rotation, s.end.rotation)),
+        local_center(s.local_center) {}
 
   /// The pose at time t: the centre moved by t·translation, the
   /// orientation turned by t·angle (exactly the end pose at t = 1, up to
@@ -16074,12 +16079,7 @@ class world {
       detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
     if (!is_normalized(target.rotation))
       detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
-    // The turn from here to there, the short way, as a rotation vector.
-    quat<T> turn = target.rotation * conjugate(r.body.orientation);
-    if (turn.w < T(0)) turn = turn * T(-1);
-    const vec3<T> axis = turn.vector_part();
-    const T sine = length(axis);
-    const vec3<T> rotation = sine > T(0) ? axis * (T(2) * std::atan2(sine, turn.w) / sine) : vec3<T>{};
+    const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
     r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
     if (r.target == target_state::none) state_.targeted.push_back(id);
     r.target = target_state::armed;

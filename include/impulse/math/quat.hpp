@@ -178,4 +178,16 @@ T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
   return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
 }
 
+/// The rotation vector (world axis times angle, radians) of the shortest
+/// turn taking orientation `from` to `to`: the inverse of integrate, so
+/// integrate(from, rotation_between(from, to), 1) is `to` up to rounding.
+template <scalar_type T>
+vec3<T> rotation_between(const quat<T>& from, const quat<T>& to) noexcept {
+  quat<T> q = to * conjugate(from);
+  if (q.w < T(0)) q = q * T(-1);  // the short way round
+  const vec3<T> axis = q.vector_part();
+  const T sine = length(axis);
+  return sine > T(0) ? axis * (T(2) * std::atan2(sine, q.w) / sine) : vec3<T>{};
+}
+
 }  // namespace impulse

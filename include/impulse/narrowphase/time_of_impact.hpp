@@ -86,15 +86,8 @@ struct sweep_motion {
       : center(apply(s.start, s.local_center)),
         translation(apply(s.end, s.local_center) - apply(s.start, s.local_center)),
         rotation(s.start.rotation),
-        local_center(s.local_center) {
-    // The shortest rotation taking the start orientation to the end one:
-    // q = end·start*, with w ≥ 0, is exp(angle/2).
-    quat<T> q = s.end.rotation * conjugate(s.start.rotation);
-    if (q.w < T(0)) q = q * T(-1);
-    const vec3<T> axis = q.vector_part();
-    const T sine = length(axis);
-    if (sine > T(0)) angle = axis * (T(2) * std::atan2(sine, q.w) / sine);
-  }
+        angle(rotation_between(s.start.rotation, s.end.rotation)),
+        local_center(s.local_center) {}
 
   /// The pose at time t: the centre moved by t·translation, the
   /// orientation turned by t·angle (exactly the end pose at t = 1, up to

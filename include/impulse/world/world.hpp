@@ -263,12 +263,7 @@ class world {
       detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
     if (!is_normalized(target.rotation))
       detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
-    // The turn from here to there, the short way, as a rotation vector.
-    quat<T> turn = target.rotation * conjugate(r.body.orientation);
-    if (turn.w < T(0)) turn = turn * T(-1);
-    const vec3<T> axis = turn.vector_part();
-    const T sine = length(axis);
-    const vec3<T> rotation = sine > T(0) ? axis * (T(2) * std::atan2(sine, turn.w) / sine) : vec3<T>{};
+    const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
     r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
     if (r.target == target_state::none) state_.targeted.push_back(id);
     r.target = target_state::armed;
