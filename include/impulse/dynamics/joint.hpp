@@ -178,6 +178,9 @@ struct joint_constraint {
   vec3<T> rotation_error{};    ///< rotation vector from where A holds B to where B is, rad
   T across_error[2] = {};      ///< m (slider) or rad (hinge)
   T position = T(0);           ///< hinge angle (rad), slider translation (m), distance (m)
+  /// Whether its holding rows are solved exactly with its tree's
+  /// (joint_tree.hpp), not here; its limit and motor still are.
+  bool in_tree = false;
 };
 
 /// What one velocity pass asks of a joint's rows.
@@ -325,10 +328,12 @@ void solve_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, const
       j.axial.solve(v, a, b, j.upper_impulse, upper_apart ? to_upper / pass.h : hold.bias_rate * to_upper,
                     upper_apart ? softness<T>::rigid() : hold, T(0), unbounded, T(-1));
     }
+  }
+  if (j.in_tree) return;
+  if (j.type == joint_type::hinge || j.type == joint_type::slider)
     for (int i = 0; i < 2; ++i)
       j.across[i].solve(v, a, b, j.across_impulse[i], hold.bias_rate * j.across_error[i], hold, -unbounded,
                         unbounded);
-  }
   switch (j.type) {
     case joint_type::ball:
     case joint_type::hinge:
@@ -374,7 +379,7 @@ struct position_nudge {
 /// the tangent by v²·dt²/(2r) a step (2.7 mm at 4.4 m/s on a 1 m
 /// pendulum at 60 Hz; a split-impulse pass at 0.2 left it 11.7 mm apart).
 template <scalar_type T>
-void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T fraction) noexcept {
+void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T fraction, bool limits = true) noexcept {
   solver_body<T>& a = bodies[j.body_a];
   solver_body<T>& b = bodies[j.body_b];
   prepare_joint(std::span<const solver_body<T>>(bodies), j);
@@ -385,12 +390,16 @@ void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T f
   // Each row is solved from no motion (v = 0 in the nudge) for an impulse
   // that removes `fraction` of its error.
   if (j.type == joint_type::hinge || j.type == joint_type::slider) {
-    if (j.enable_limit) {
+    if (j.enable_limit && limits) {
       const T to_lower = j.position - j.lower, to_upper = j.upper - j.position;
       T pushed = T(0);
       if (to_lower < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_lower, rigid, T(0), unbounded);
       pushed = T(0);
       if (to_upper < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_upper, rigid, T(0), unbounded, T(-1));
+    }
+    if (j.in_tree) {
+      n.move(a, b);
+      return;
     }
     for (int i = 0; i < 2; ++i) {
       T pushed = T(0);
