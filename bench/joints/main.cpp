@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     else
       std::printf("ragdoll_pile %d ragdolls", pile.columns * pile.columns * pile.layers);
     std::printf(", %d steps, %d run(s); ms/step is the median of the last %d steps\n", steps, runs, steps - steps / 2);
-    std::printf("%-10s %4s %10s %14s %10s %7s\n", "engine", "run", "ms/step", "worst gap (m)", "lowest y", "moving");
+    std::printf("%-12s %4s %10s %14s %10s %7s\n", "engine", "run", "ms/step", "worst gap (m)", "lowest y", "moving");
     for (int run = 1; run <= runs; ++run)
       for (const std::string& engine : engines) {
         result r;
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "joints: no engine %s in this build\n", engine.c_str());
           return 2;
         }
-        std::printf("%-10s %4d %10.3f %14.5f %10.3f %7d\n", engine.c_str(), run, r.ms_per_step, r.worst_gap, r.lowest,
+        std::printf("%-12s %4d %10.3f %14.5f %10.3f %7d\n", engine.c_str(), run, r.ms_per_step, r.worst_gap, r.lowest,
                     r.moving);
         std::fflush(stdout);
       }

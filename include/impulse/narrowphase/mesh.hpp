@@ -124,6 +124,20 @@ constexpr std::uint32_t mesh_feature(std::uint32_t triangle, mesh_contact kind, 
 template <scalar_type T>
 inline constexpr T same_normal_cosine = T(0.999);
 
+/// One triangle of a mesh as a convex shape, in the mesh's frame: the
+/// support and vertices that GJK, EPA and time_of_impact ask of a shape,
+/// for the sweeps of continuous collision against a mesh.
+template <scalar_type T>
+struct convex_triangle {
+  std::array<vec3<T>, 3> v;
+
+  [[nodiscard]] vec3<T> support(const vec3<T>& d) const noexcept {
+    const T a = dot(v[0], d), b = dot(v[1], d), c = dot(v[2], d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return v; }
+};
+
 /// A triangle in the working frame: its corners, unit front normal, which
 /// of its edges are active (triangle_mesh::edge_ab …) and its index.
 template <scalar_type T>

@@ -949,7 +949,7 @@ class world {
       const vec3<T> half = (box.upper - box.lower) * T(0.5);
       return std::min({half.x, half.y, half.z});
     } else {
-      return std::numeric_limits<T>::infinity();  // planes and meshes are never swept
+      return std::numeric_limits<T>::infinity();  // planes and meshes are static or kinematic: never swept
     }
   }
 
@@ -997,50 +997,76 @@ class world {
   }
 
   /// When r, moving along path, first comes within ccd_gap of o moving along
-  /// its own; 1 if not within the step. A ball against a body that does not
-  /// turn is a sphere cast, exact; other convex pairs are conservative
-  /// advancement (narrowphase/time_of_impact.hpp). Planes are half-spaces,
-  /// which nothing can cross unseen; meshes are not swept yet.
+  /// its own; 1 if not within the step. Convex pairs by convex_impact_time;
+  /// a mesh triangle by triangle (mesh_impact_time). Planes are
+  /// half-spaces, which nothing can cross unseen.
   T impact_time(const body_record& r, const narrowphase::sweep<T>& path, const body_record& o,
                 const narrowphase::sweep<T>& other_path) const {
-    const T gap = state_.settings.ccd_gap;
     return state_.shape_store.visit(r.shape, [&](const auto& mover) {
       return state_.shape_store.visit(o.shape, [&](const auto& target) {
         using M = std::decay_t<decltype(mover)>;
         using O = std::decay_t<decltype(target)>;
-        constexpr bool convex = requires(const M& m, const O& t, vec3<T> d) {
-          m.support(d);
-          t.support(d);
-        };
-        if constexpr (!convex) {
-          return T(1);
+        constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
+        constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
+        if constexpr (convex_mover && std::is_same_v<O, triangle_mesh<T>>) {
+          return mesh_impact_time(mover, path, target, other_path);
+        } else if constexpr (convex_mover && convex_target) {
+          return convex_impact_time(mover, path, target, other_path);
         } else {
-          if constexpr (std::is_same_v<M, sphere<T>>) {
-            if (other_path.start == other_path.end) {
-              // The ball's centre against the body grown by its radius.
-              const vec3<T> from = path.start.position, to = path.end.position;
-              const T distance = length(to - from);
-              const narrowphase::ray_hit<T> hit =
-                  narrowphase::sphere_cast(ray<T>{from, to - from}, mover.radius, target, other_path.start);
-              // Starting within the grown body: the discrete contact has it
-              // (a ball rolling fast on the ground is not stopped by it).
-              if (!hit.hit || !(hit.fraction > T(0))) return T(1);
-              const T t = hit.fraction - gap / distance;
-              if (t > T(0)) return t;
-              return passed(mover, path, target, other_path, -hit.normal) ? T(0) : T(1);
-            }
-          }
-          narrowphase::toi_options<T> options;
-          options.target = gap;
-          options.tolerance = gap * T(0.25);
-          const narrowphase::toi_result<T> hit = narrowphase::time_of_impact(mover, path, target, other_path, options);
-          if (hit.state == narrowphase::toi_state::overlapping) return T(1);  // the discrete contacts have it
-          if (hit.state == narrowphase::toi_state::separated) return T(1);
-          if (hit.t > T(0)) return hit.t;
-          return passed(mover, path, target, other_path, hit.normal) ? T(0) : T(1);
+          return T(1);
         }
       });
     });
+  }
+
+  /// A convex pair. A ball against a body that does not turn is a sphere
+  /// cast, exact; other pairs are conservative advancement
+  /// (narrowphase/time_of_impact.hpp).
+  template <class M, class O>
+  T convex_impact_time(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+                       const narrowphase::sweep<T>& other_path) const {
+    const T gap = state_.settings.ccd_gap;
+    if constexpr (std::is_same_v<M, sphere<T>>) {
+      if (other_path.start == other_path.end) {
+        // The ball's centre against the body grown by its radius.
+        const vec3<T> from = path.start.position, to = path.end.position;
+        const T distance = length(to - from);
+        const narrowphase::ray_hit<T> hit =
+            narrowphase::sphere_cast(ray<T>{from, to - from}, mover.radius, target, other_path.start);
+        // Starting within the grown body: the discrete contact has it (a
+        // ball rolling fast on the ground is not stopped by it).
+        if (!hit.hit || !(hit.fraction > T(0))) return T(1);
+        const T t = hit.fraction - gap / distance;
+        if (t > T(0)) return t;
+        return passed(mover, path, target, other_path, -hit.normal) ? T(0) : T(1);
+      }
+    }
+    narrowphase::toi_options<T> options;
+    options.target = gap;
+    options.tolerance = gap * T(0.25);
+    const narrowphase::toi_result<T> hit = narrowphase::time_of_impact(mover, path, target, other_path, options);
+    if (hit.state == narrowphase::toi_state::overlapping) return T(1);  // the discrete contacts have it
+    if (hit.state == narrowphase::toi_state::separated) return T(1);
+    if (hit.t > T(0)) return hit.t;
+    return passed(mover, path, target, other_path, hit.normal) ? T(0) : T(1);
+  }
+
+  /// The earliest impact on any triangle of the mesh near the mover's
+  /// sweep, each triangle a convex shape of its own.
+  template <class M>
+  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const triangle_mesh<T>& mesh,
+                     const narrowphase::sweep<T>& other_path) const {
+    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
+    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
+    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
+    const vec3<T> gap = vec3<T>::splat(state_.settings.ccd_gap);
+    T first = T(1);
+    mesh.for_each_overlapping({near.lower - gap, near.upper + gap}, [&](std::size_t t) {
+      narrowphase::detail::convex_triangle<T> triangle;
+      mesh.triangle(t, triangle.v[0], triangle.v[1], triangle.v[2]);
+      first = std::min(first, convex_impact_time(mover, path, triangle, other_path));
+    });
+    return first;
   }
 
   /// For a pair that starts the step within ccd_gap (normal: from the
