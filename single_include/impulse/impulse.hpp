@@ -8207,7 +8207,9 @@ void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
 // the nodes, with blocks of at most 6×6: a body's mass matrix, a joint's
 // rows. Bodies are symmetric positive definite blocks and joints negative
 // definite ones (the matrix is quasi-definite), so each pivot block is
-// factored by Cholesky, of D or of −D.
+// factored by Cholesky, of D or of −D. Each tree is rooted at its joint to
+// the world if it has one, else at a body, so that every joint has a body
+// below it: a joint eliminated with none would have a zero pivot.
 //
 // Which joints: the rows that hold (point, rotation, across, a rigid
 // distance) of the joints of each group of bodies they join that forms a
@@ -16328,7 +16330,9 @@ template <class Config = default_config> class world;
 //                 joints; an island with any body awake is awake entirely.
 //   solver        the config's solver (sequential_impulse, soft_step)
 //                 applies this step's forces, solves the contacts and the
-//                 joints (joint.hpp) and moves the awake bodies; joints
+//                 joints (joint.hpp; trees of joints exactly,
+//                 joint_tree.hpp) and moves the awake bodies, then moves
+//                 them back onto their joints (project_joints); joints
 //                 that pulled harder than their thresholds break.
 //   continuous    (ccd on) fast bodies and bullets are swept from where
 //                 they started the step and put back short of what they
@@ -16346,7 +16350,10 @@ template <class Config = default_config> class world;
 // accurately as the integrator (RK4: fourth order). Forces are held
 // constant over a step, so every integrator gives the same velocity
 // change, F·dt/m; the integrator matters for the rotation, and for forces
-// that depend on the state within a step (springs).
+// that depend on the state within a step (springs). A solver that moves the
+// bodies itself (soft_step) holds ω through its substeps: ω is then the
+// state, written back as L = I_w·ω at the pose reached, and the gyroscopic
+// term is taken once a step, implicitly (gyroscopic_turn).
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure

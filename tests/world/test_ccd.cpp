@@ -106,6 +106,27 @@ TEST_CASE("a thin box flying fast and spinning never passes through a thin wall 
   }
 }
 
+TEST_CASE("a ball stopped short of a wall by its sweep bounces off it at e times its speed the next step") {
+  // The sweep stops it 5 mm short and keeps its velocity; the next step's
+  // speculative contact meets the impact, with restitution: the rest of
+  // the motion is resolved one step late, at the right speed.
+  world<ccd_config> w(weightless());
+  body_def<float> d;
+  d.type = body_type::static_body;
+  d.pose.position = {5.005f, 0, 0};
+  d.material.restitution = 0.8f;
+  w.create_body(d, box<float>::make({0.005f, 100, 100}));
+  body_def<float> b;
+  b.linear_velocity = {500, 0, 0};
+  b.material.restitution = 0.8f;
+  const body_id ball = w.create_body(b, sphere<float>::make(0.05f));
+  w.step(::test::step_dt<float>);
+  CHECK(w.body(ball).position.x == doctest::Approx(4.945f).epsilon(1e-4));
+  CHECK(w.body(ball).linear_velocity().x == doctest::Approx(500.0f));
+  w.step(::test::step_dt<float>);
+  CHECK(w.body(ball).linear_velocity().x == doctest::Approx(-400.0f).epsilon(1e-4));
+}
+
 TEST_CASE("a bullet fired at a stack strikes the box in its path instead of passing through it") {
   // Five cubes stacked at x = 10; a 0.1 m ball at 300 m/s (5 m a step)
   // aimed at the second.

@@ -19,7 +19,9 @@
 // the nodes, with blocks of at most 6×6: a body's mass matrix, a joint's
 // rows. Bodies are symmetric positive definite blocks and joints negative
 // definite ones (the matrix is quasi-definite), so each pivot block is
-// factored by Cholesky, of D or of −D.
+// factored by Cholesky, of D or of −D. Each tree is rooted at its joint to
+// the world if it has one, else at a body, so that every joint has a body
+// below it: a joint eliminated with none would have a zero pivot.
 //
 // Which joints: the rows that hold (point, rotation, across, a rigid
 // distance) of the joints of each group of bodies they join that forms a
