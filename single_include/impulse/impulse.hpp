@@ -16655,6 +16655,13 @@ class world {
                               normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
     return {centre.position - rotate(centre.rotation, r.center), centre.rotation};
   }
+  /// Calls f(shape) with the body's shape (one of the config's shape
+  /// list, in the body's shape frame) and returns what f returns.
+  template <class F>
+  decltype(auto) visit_shape(body_id id, F&& f) const {
+    require(id, "world::visit_shape: no such body");
+    return state_.shape_store.visit(state_.bodies[id].shape, std::forward<F>(f));
+  }
   [[nodiscard]] const impulse::material<T>& material_of(body_id id) const {
     require(id, "world::material_of: no such body");
     return state_.bodies[id].material;

@@ -54,6 +54,7 @@
 #include <optional>
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../broadphase/broad_phase.hpp"
@@ -212,6 +213,13 @@ class world {
     const transform<T> centre{lerp(r.previous.position, now.position, alpha),
                               normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
     return {centre.position - rotate(centre.rotation, r.center), centre.rotation};
+  }
+  /// Calls f(shape) with the body's shape (one of the config's shape
+  /// list, in the body's shape frame) and returns what f returns.
+  template <class F>
+  decltype(auto) visit_shape(body_id id, F&& f) const {
+    require(id, "world::visit_shape: no such body");
+    return state_.shape_store.visit(state_.bodies[id].shape, std::forward<F>(f));
   }
   [[nodiscard]] const impulse::material<T>& material_of(body_id id) const {
     require(id, "world::material_of: no such body");
