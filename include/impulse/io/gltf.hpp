@@ -115,8 +115,8 @@ class gltf_recorder {
   [[nodiscard]] std::size_t body_count() const noexcept { return tracks_.size(); }
   [[nodiscard]] std::size_t mesh_count() const noexcept { return meshes_.size(); }
 
-  /// The .glb file's bytes: a 12-byte header, the JSON chunk, the binary
-  /// chunk.
+  /// The .glb file's bytes: a 12-byte header, the JSON chunk, and the
+  /// binary chunk unless there is nothing to put in it.
   [[nodiscard]] std::vector<std::uint8_t> glb() const {
     static_assert(std::endian::native == std::endian::little, "gltf_recorder writes little-endian words");
     document d;
@@ -132,8 +132,7 @@ class gltf_recorder {
                 ",\"material\":" + std::to_string(meshes_[m].material) + "}]}";
     }
     const bool animated = times_.size() > 1;
-    const int time = animated ? d.time_accessor(times_) : -1;
-    int sampler = 0;
+    int time = -1, sampler = 0;
     for (std::size_t n = 0; n < tracks_.size(); ++n) {
       const track& t = tracks_[n];
       if (n > 0) nodes += ',';
@@ -144,6 +143,7 @@ class gltf_recorder {
       detail::append_numbers(nodes, t.rotations.data(), 4);
       nodes += '}';
       if (!animated || t.kind == body_type::static_body) continue;
+      if (time < 0) time = d.time_accessor(times_);
       const int moved = d.float_accessor(t.translations, "VEC3");
       const int turned = d.float_accessor(t.rotations, "VEC4");
       for (const auto& [output, path] : {std::pair{moved, "translation"}, std::pair{turned, "rotation"}}) {
@@ -155,11 +155,19 @@ class gltf_recorder {
         ++sampler;
       }
     }
-    std::string json = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"impulse\"},\"scene\":0,\"scenes\":[{\"nodes\":[";
-    for (std::size_t n = 0; n < tracks_.size(); ++n) json += (n > 0 ? "," : "") + std::to_string(n);
-    json += "]}],\"nodes\":[" + nodes + "],\"meshes\":[" + meshes + "],\"materials\":[" + materials() +
-            "],\"accessors\":[" + d.accessors + "],\"bufferViews\":[" + d.views +
-            "],\"buffers\":[{\"byteLength\":" + std::to_string(d.bin.size()) + "}]";
+    // glTF's arrays may not be empty: a world with no bodies is a scene
+    // with no nodes and no buffer.
+    std::string json = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"impulse\"},\"scene\":0,\"scenes\":[{";
+    if (!tracks_.empty()) {
+      json += "\"nodes\":[";
+      for (std::size_t n = 0; n < tracks_.size(); ++n) json += (n > 0 ? "," : "") + std::to_string(n);
+      json += "]";
+    }
+    json += "}]";
+    if (!tracks_.empty())
+      json += ",\"nodes\":[" + nodes + "],\"meshes\":[" + meshes + "],\"materials\":[" + materials() +
+              "],\"accessors\":[" + d.accessors + "],\"bufferViews\":[" + d.views +
+              "],\"buffers\":[{\"byteLength\":" + std::to_string(d.bin.size()) + "}]";
     if (sampler > 0) json += ",\"animations\":[{\"name\":\"run\",\"channels\":[" + channels + "],\"samplers\":[" + samplers + "]}]";
     json += '}';
     while (json.size() % 4 != 0) json += ' ';
@@ -172,13 +180,16 @@ class gltf_recorder {
     };
     word(0x46546C67u);  // "glTF"
     word(2);
-    word(std::uint32_t(12 + 8 + json.size() + 8 + d.bin.size()));
+    const bool has_bin = !d.bin.empty();
+    word(std::uint32_t(12 + 8 + json.size() + (has_bin ? 8 + d.bin.size() : 0)));
     word(std::uint32_t(json.size()));
     word(0x4E4F534Au);  // "JSON"
     out.insert(out.end(), json.begin(), json.end());
-    word(std::uint32_t(d.bin.size()));
-    word(0x004E4942u);  // "BIN"
-    out.insert(out.end(), d.bin.begin(), d.bin.end());
+    if (has_bin) {
+      word(std::uint32_t(d.bin.size()));
+      word(0x004E4942u);  // "BIN"
+      out.insert(out.end(), d.bin.begin(), d.bin.end());
+    }
     return out;
   }
 
