@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The README's quick start on a fresh Debian 12 machine:
-#   tools/quickstart.sh demo   builds and runs the demo
+#   tools/quickstart.sh demo   builds and runs the demo (the Rube Goldberg machine;
+#                              writes out/rube_goldberg.glb)
 #   tools/quickstart.sh test   builds and runs the test suite (CMake release preset)
 # Installs the Debian packages it needs first if any is missing (apt-get, via
 # sudo when not root), and says which.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-needed=(g++ cmake ninja-build doctest-dev)
+needed=(g++ cmake ninja-build doctest-dev nlohmann-json3-dev)
 missing=()
 for package in "${needed[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \
@@ -24,8 +25,8 @@ fi
 case "${1:-}" in
   demo)
     cmake --preset release >/dev/null
-    cmake --build --preset release --target spin
-    exec build/release/examples/spin
+    cmake --build --preset release --target rube_goldberg
+    exec build/release/examples/rube_goldberg
     ;;
   test)
     exec cmake --workflow --preset release
