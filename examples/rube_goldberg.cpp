@@ -3,8 +3,9 @@
 // eight dominoes; the last falls on a shelf held to the table by a weld that
 // breaks past 1 200 N·m and drops a 96 kg block on a seesaw, whose far end
 // throws a ball into a cup. Prints each stage as it happens, with the time
-// the steps took, and writes the run to out/rube_goldberg.glb: open it in
-// viewer/ (see README.md) or any glTF viewer.
+// the steps took, and writes the run to out/rube_goldberg.glb (open it in
+// any glTF viewer) and a picture of the ball at the top of its flight to
+// out/rube_goldberg.png.
 //
 //   build/native/examples/rube_goldberg [scene.json] [out.glb]
 #include <algorithm>
@@ -17,6 +18,7 @@
 
 #include "impulse/io/gltf.hpp"
 #include "impulse/io/scene.hpp"
+#include "impulse/io/snapshot.hpp"
 
 using T = float;
 struct config : impulse::default_config {
@@ -64,7 +66,11 @@ int main(int argc, char** argv) {
               world.joint_count(), double(1 / scene.settings.fixed_dt), double(scene.duration));
   impulse::io::gltf_recorder recording(world);
   const auto report = [&](const char* what) { std::printf("  %6.3f s  %s\n", double(world.time()), what); };
-  bool lever_hit = false, seesaw_hit = false, in_cup = false;
+  bool lever_hit = false, seesaw_hit = false, in_cup = false, pictured = false;
+  // Side on to the chain, the cup in front.
+  const impulse::io::camera<T> eye{.position = {1.5, 5.5, 11}, .target = {-0.2, 1.8, 0}, .vertical_fov_degrees = 50};
+  const std::string picture_file = out_file.substr(0, out_file.rfind('.')) + ".png";
+  impulse::io::image picture;
   std::size_t toppled = 0;
   std::vector<double> step_ms;
   const T dt = scene.settings.fixed_dt;
@@ -93,6 +99,11 @@ int main(int argc, char** argv) {
       seesaw_hit = true;
       report("the block lands on the seesaw");
     }
+    if (seesaw_hit && !pictured && world.body(projectile).linear_velocity().y < 0) {
+      pictured = true;
+      picture = impulse::io::snapshot(world, eye);
+      report("the ball is at the top of its flight (the picture)");
+    }
     if (!in_cup && cup.holds(world.body(projectile).position)) {
       in_cup = true;
       report("the ball drops into the cup");
@@ -109,5 +120,8 @@ int main(int argc, char** argv) {
   const bool saved = recording.save(out_file.c_str());
   std::printf("  wrote %s (%zu frames, %.1f MB)\n", out_file.c_str(), recording.frame_count(),
               double(recording.glb().size()) / 1e6);
-  return stays && lever_hit && seesaw_hit && saved ? 0 : 1;
+  if (!pictured) picture = impulse::io::snapshot(world, eye);
+  const bool drawn = impulse::io::save_png(picture, picture_file);
+  std::printf("  wrote %s (%d x %d)\n", picture_file.c_str(), picture.width, picture.height);
+  return stays && lever_hit && seesaw_hit && saved && drawn ? 0 : 1;
 }
