@@ -1,4 +1,4 @@
-// plume — particles resting on a rough floor (friction 0.95, no bounce) under
+// particles_plume — particles resting on a rough floor (friction 0.95, no bounce) under
 // an attractor 2 m above them whose strength ramps up from zero; the plume
 // lifts off once the pull at the floor beats gravity.
 //
@@ -10,11 +10,13 @@
 // formula predicts if none had slid; at the end, the strength at which the
 // first particle lifted against the analytic threshold.
 //
-//   cmake --build build/debug --target plume && build/debug/examples/plume
+//   cmake --build build/debug --target particles_plume && build/debug/examples/particles_plume
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <vector>
 
+#include "impulse/io/particle_recording.hpp"
 #include "impulse/particles.hpp"
 
 using namespace impulse::particles;
@@ -55,10 +57,12 @@ int main() {
               "strength %.0f·t N·m²\n", plume.size(), double(radius), double(h), double(ramp));
   std::printf("   t   strength  pull below / g  lifted  predicted  slid in, m (mean)\n");
   double first_lift = -1;
+  impulse::io::particle_recorder recording(impulse::io::colour_by::speed, 8);
   for (int step = 0; step < 12 * 120; ++step) {
     const T strength = ramp * T(plume.time());
     plume.force<point_forces>().points[0].strength = strength;
     plume.step(dt);
+    if (step % 4 == 3) recording.record(plume);  // 30 frames a second
 
     const auto x = plume.positions();
     std::size_t lifted = 0;
@@ -91,5 +95,8 @@ int main() {
   std::printf("analytic threshold below the point, g·(h² + ε)^1.5 / h = %.3f\n", s_star);
   std::printf("last strength that held: %.3f, first that lifted a particle: %.3f (%+.2f%%): %s\n", held, first_lift,
               100 * (first_lift - s_star) / s_star, agrees ? "ok, the threshold lies between" : "FAILED");
-  return agrees ? 0 : 1;
+  std::filesystem::create_directories("out");
+  const bool recorded = recording.save("out/particles_plume.ipr");
+  std::printf("wrote out/particles_plume.ipr (%zu frames)\n", recording.frame_count());
+  return agrees && recorded ? 0 : 1;
 }

@@ -1,4 +1,5 @@
-// snow — a minute of snowfall from a 30 m × 30 m cloud, blown by a gusty wind
+// particles_snow — a minute of snowfall from a 30 m × 30 m cloud, blown by a
+// gusty wind
 // onto a floor that neither bounces nor lets it slide back (restitution 0,
 // friction 1). Flakes age and die; the emitter reuses their slots.
 //
@@ -9,11 +10,13 @@
 // the flakes on the ground have drifted. The count settles at rate × mean
 // lifetime inside the capacity fixed at creation: memory stays constant.
 //
-//   cmake --build build/debug --target snow && build/debug/examples/snow
+//   cmake --build build/debug --target particles_snow && build/debug/examples/particles_snow
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "impulse/io/particle_recording.hpp"
 #include "impulse/particles.hpp"
 
 using namespace impulse::particles;
@@ -37,8 +40,10 @@ int main() {
               double(expected));
   std::printf("   t   live  dropped  in air  on ground  drift speed (m/s)  spread (expect %.2f)  "
               "ground drift (m)\n", double(breeze.velocity.x * breeze.variation / std::sqrt(T(3))));
+  impulse::io::particle_recorder recording(impulse::io::colour_by::age);
   while (snow.time() < 60 - dt / 2) {
     snow.step(dt);
+    if (std::lround(snow.time() / dt) % 12 == 0) recording.record(snow);  // 5 frames a second
     const long step = std::lround(snow.time() / dt);
     if (step % 300 != 0) continue;
 
@@ -67,5 +72,8 @@ int main() {
   const bool steady = off < 0.03 && snow.emitters()[0].dropped == 0;
   std::printf("after %.0f s: %zu flakes (%.1f%% from rate × lifetime) in %zu slots, none dropped: %s\n",
               snow.time(), snow.size(), 100 * off, snow.capacity(), steady ? "ok" : "FAILED");
-  return steady ? 0 : 1;
+  std::filesystem::create_directories("out");
+  const bool recorded = recording.save("out/particles_snow.ipr");
+  std::printf("wrote out/particles_snow.ipr (%zu frames)\n", recording.frame_count());
+  return steady && recorded ? 0 : 1;
 }

@@ -1,4 +1,4 @@
-// attractors — 4000 particles under gravity and drag, pulled and pushed by
+// particles_attractors — 4000 particles under gravity and drag, pulled and pushed by
 // three softened inverse-square points, inside a floor and two tilted walls.
 //
 // While it runs, point A circles the middle of the box, point B turns from an
@@ -10,11 +10,13 @@
 // the other; the planes still promise no particle behind any of them beyond
 // float rounding, and the run fails if one is.
 //
-//   cmake --build build/debug --target attractors && build/debug/examples/attractors
+//   cmake --build build/debug --target particles_attractors && build/debug/examples/particles_attractors
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "impulse/io/particle_recording.hpp"
 #include "impulse/particles.hpp"
 
 using namespace impulse::particles;
@@ -55,6 +57,7 @@ int main() {
   // projection leaves, plane_collider::rounding_at(x); `worst` ≤ 1 is that promise.
   T worst = 0, deepest = 0;  // over the run, in budgets; this second, in m
   const int steps_per_second = int(std::lround(1 / dt));
+  impulse::io::particle_recorder recording(impulse::io::colour_by::speed, 8);
   for (int step = 1; step <= int(seconds) * steps_per_second; ++step) {
     const T t = T(lab.time());
     auto& f = lab.force<point_forces>();
@@ -62,6 +65,7 @@ int main() {
     f.points[1].strength = t < 5 ? T(200) : T(-200);
     f.points[2].enabled = t < 3 || t >= 6;
     lab.step(dt);
+    if (step % 4 == 0) recording.record(lab);  // 30 frames a second
 
     const auto x = lab.positions();
     for (std::size_t i = 0; i < lab.size(); ++i)
@@ -89,5 +93,8 @@ int main() {
   std::printf("(+ attracts, - repels; near = within %.1f m)\n", double(near));
   std::printf("deepest behind a plane over all %d steps: %.2f of the rounding allowance: %s\n",
               int(seconds) * steps_per_second, double(worst), worst <= 1 ? "ok" : "FAILED");
-  return worst <= 1 ? 0 : 1;
+  std::filesystem::create_directories("out");
+  const bool recorded = recording.save("out/particles_attractors.ipr");
+  std::printf("wrote out/particles_attractors.ipr (%zu frames)\n", recording.frame_count());
+  return worst <= 1 && recorded ? 0 : 1;
 }
