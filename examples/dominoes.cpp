@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
 
   // A domino has toppled when its long axis leans 45° from the vertical.
   std::vector<double> toppled(dominoes.size(), -1);
-  impulse::io::gltf_recorder recording(world);
+  impulse::io::gltf_recorder recording(world, {.contacts = true});
   const T dt = scene.settings.fixed_dt;
   const int steps = int(std::lround(scene.duration / dt));
   const auto start = std::chrono::steady_clock::now();

@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
 
   std::printf("rube_goldberg: %zu bodies, %zu joints, %.0f Hz for %.1f s\n", world.body_count(),
               world.joint_count(), double(1 / scene.settings.fixed_dt), double(scene.duration));
-  impulse::io::gltf_recorder recording(world);
+  impulse::io::gltf_recorder recording(world, {.contacts = true});
   const auto report = [&](const char* what) { std::printf("  %6.3f s  %s\n", double(world.time()), what); };
   bool lever_hit = false, seesaw_hit = false, in_cup = false, pictured = false;
   // Side on to the chain, the cup in front.

@@ -178,3 +178,47 @@ TEST_CASE("an empty world records as a valid GLB with no nodes and no buffer") {
   for (const char* key : {"nodes", "meshes", "accessors", "bufferViews", "buffers", "animations"})
     CHECK_FALSE(file.document.contains(key));
 }
+
+TEST_CASE("a recording with contacts carries each frame's contact points where the bodies touch") {
+  // A box of half-height 0.5 dropped onto the ground (top at y = 0): once it
+  // rests, each frame holds its four corner contacts, all at y = 0 (midway
+  // between the surfaces, within the speculative margin).
+  world<awake> w;
+  body_def<float> ground;
+  ground.type = body_type::static_body;
+  ground.pose.position = {0, -0.5f, 0};
+  w.create_body(ground, box<float>::make({10, 0.5f, 10}));
+  body_def<float> d;
+  d.pose.position = {0, 0.6f, 0};
+  w.create_body(d, box<float>::make({0.5f, 0.5f, 0.5f}));
+  io::gltf_recorder recording(w, {.contacts = true});
+  for (int i = 0; i < 60; ++i) {
+    w.step(1.0f / 60);
+    recording.record(w);
+  }
+  CHECK(recording.contact_point_count() > 0);
+  const glb_file file(recording.glb());
+  const json& contacts = file.document["extras"]["impulse"]["contacts"];
+  const std::vector<float> points = file.floats(contacts["points"].get<int>());
+  const json& offsets_accessor = file.document["accessors"][contacts["offsets"].get<std::size_t>()];
+  CHECK(offsets_accessor["componentType"] == 5125);
+  REQUIRE(offsets_accessor["count"] == 62);  // frames + 1
+  std::vector<std::uint32_t> offsets(62);
+  const json& view = file.document["bufferViews"][offsets_accessor["bufferView"].get<std::size_t>()];
+  std::memcpy(offsets.data(), file.bin.data() + view["byteOffset"].get<std::size_t>(), 62 * 4);
+  CHECK(offsets.front() == 0);
+  CHECK(offsets.back() * 3 == points.size());
+  for (std::size_t f = 1; f < offsets.size(); ++f) CHECK(offsets[f] >= offsets[f - 1]);
+  CHECK(offsets[61] - offsets[60] == 4);  // resting on its face: four corners
+  for (std::uint32_t p = offsets[60]; p < offsets[61]; ++p) {
+    CHECK(std::abs(points[3 * p + 1]) < 0.01f);
+    CHECK(std::abs(std::abs(points[3 * p]) - 0.5f) < 0.01f);
+    CHECK(std::abs(std::abs(points[3 * p + 2]) - 0.5f) < 0.01f);
+  }
+  // Without the option there are no extras.
+  io::gltf_recorder plain(w);
+  plain.record(w);
+  CHECK(!glb_file(plain.glb()).document.contains("extras"));
+  // A file that cannot be written is reported, not thrown.
+  CHECK(!plain.save("/nonexistent-directory/run.glb"));
+}

@@ -448,3 +448,47 @@ TEST_CASE_TEMPLATE("the rube goldberg machine runs its stages in order and the b
   CHECK(run.cup > run.seesaw);
   CHECK(run.rests_in_cup);
 }
+
+TEST_CASE("a newtons cradle passes the first ball's energy down the row to the last") {
+  // The first ball falls h = 1 - cos 40° = 0.234 m and strikes the row a
+  // quarter period (0.5 s) later. Elastic (e = 1) and 1 mm apart, the
+  // impacts pass its momentum ball by ball: the last ball rises to h, less
+  // what the contacts lose (1.2 % here), while the middle three and the
+  // first stay where they are.
+  const io::scene<double> scene = io::read_scene<double>(scenes_dir() + "/newtons_cradle.json");
+  world<awake_double> w;
+  const io::scene_ids ids = io::add_scene(w, scene);
+  const body_id first = ids.body("striker"), last = ids.body("ball[3]");
+  const double rest = w.body(last).position.y, drop = w.body(first).position.y - rest;
+  CHECK(drop == doctest::Approx(1 - std::cos(40 * std::numbers::pi / 180)));
+  double last_rise = 0, first_after = 0, middle = 0;
+  for (int i = 0; i < int(std::lround(1.5 / scene.settings.fixed_dt)); ++i) {
+    w.step(scene.settings.fixed_dt);
+    last_rise = std::max(last_rise, w.body(last).position.y - rest);
+    if (w.time() > 0.6) first_after = std::max(first_after, w.body(first).position.y - rest);
+    for (const char* name : {"ball[0]", "ball[1]", "ball[2]"})
+      middle = std::max(middle, std::abs(w.body(ids.body(name)).position.y - rest));
+  }
+  CHECK(last_rise / drop > 0.97);
+  CHECK(last_rise / drop < 1.0);  // never more energy than it was given
+  CHECK(first_after / drop < 0.01);
+  CHECK(middle < 1e-4);
+}
+
+TEST_CASE("the tower and the pyramid of stacking.json stand within 1 mm and sleep within 1 s") {
+  const io::scene<float> scene = io::read_scene<float>(scenes_dir() + "/stacking.json");
+  world<default_config> w;
+  const io::scene_ids ids = io::add_scene(w, scene);
+  REQUIRE(ids.bodies.size() == 1 + 12 + 36);
+  std::vector<vec3<float>> placed;
+  for (const body_id id : ids.bodies) placed.push_back(w.body(id).position);
+  float drift = 0, asleep = -1;
+  for (int i = 0; i < int(std::lround(scene.duration / scene.settings.fixed_dt)); ++i) {
+    w.step(scene.settings.fixed_dt);
+    for (std::size_t k = 0; k < placed.size(); ++k) drift = std::max(drift, length(w.body(ids.bodies[k]).position - placed[k]));
+    if (asleep < 0 && w.awake_body_count() == 0) asleep = w.time();
+  }
+  CHECK(drift < 0.001f);
+  CHECK(asleep > 0);
+  CHECK(asleep < 1.0f);
+}

@@ -76,13 +76,20 @@ inline void append_numbers(std::string& out, const float* x, int n) {
 
 }  // namespace detail
 
+/// What a gltf_recorder records besides the bodies.
+struct gltf_options {
+  /// Every touching contact point at each frame, in the root's extras
+  /// (viewer/ draws them): 12 bytes a point a frame.
+  bool contacts = false;
+};
+
 template <class World>
 class gltf_recorder {
  public:
   using scalar = typename World::scalar;
 
   /// Takes every body of the world, and records frame 0.
-  explicit gltf_recorder(const World& w) {
+  explicit gltf_recorder(const World& w, const gltf_options& choice = {}) : options_(choice) {
     for (const body_id id : w.body_ids()) {
       track t;
       t.id = id;
@@ -109,7 +116,19 @@ class gltf_recorder {
       t.translations.insert(t.translations.end(), {float(p.x), float(p.y), float(p.z)});
       t.rotations.insert(t.rotations.end(), {float(q.x), float(q.y), float(q.z), float(q.w)});
     }
+    if (options_.contacts) {
+      if (contact_offsets_.empty()) contact_offsets_.push_back(0);
+      w.for_each_contact([&](body_id, body_id, const auto& manifolds) {
+        for (const auto& m : manifolds)
+          for (const auto& c : m.contacts())
+            contact_points_.push_back({float(c.position.x), float(c.position.y), float(c.position.z)});
+      });
+      contact_offsets_.push_back(std::uint32_t(contact_points_.size()));
+    }
   }
+
+  /// Contact points recorded so far (options::contacts).
+  [[nodiscard]] std::size_t contact_point_count() const noexcept { return contact_points_.size(); }
 
   [[nodiscard]] std::size_t frame_count() const noexcept { return times_.size(); }
   [[nodiscard]] std::size_t body_count() const noexcept { return tracks_.size(); }
@@ -155,6 +174,17 @@ class gltf_recorder {
         ++sampler;
       }
     }
+    // Contacts (viewer/ reads them): the points of frame i are
+    // points[offsets[i] .. offsets[i + 1]). None at all: no extras, as an
+    // accessor may not be empty.
+    std::string extras;
+    if (!contact_points_.empty() && !tracks_.empty()) {
+      const int points = d.vec3_accessor(contact_points_, false, 0);
+      const int offsets = d.accessor(d.view(contact_offsets_.data(), contact_offsets_.size() * 4, 0), 5125,
+                                     contact_offsets_.size(), "SCALAR", "");
+      extras = ",\"extras\":{\"impulse\":{\"contacts\":{\"points\":" + std::to_string(points) +
+               ",\"offsets\":" + std::to_string(offsets) + "}}}";
+    }
     // glTF's arrays may not be empty: a world with no bodies is a scene
     // with no nodes and no buffer.
     std::string json = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"impulse\"},\"scene\":0,\"scenes\":[{";
@@ -169,7 +199,7 @@ class gltf_recorder {
               "],\"accessors\":[" + d.accessors + "],\"bufferViews\":[" + d.views +
               "],\"buffers\":[{\"byteLength\":" + std::to_string(d.bin.size()) + "}]";
     if (sampler > 0) json += ",\"animations\":[{\"name\":\"run\",\"channels\":[" + channels + "],\"samplers\":[" + samplers + "]}]";
-    json += '}';
+    json += extras + '}';
     while (json.size() % 4 != 0) json += ' ';
 
     std::vector<std::uint8_t> out;
@@ -302,6 +332,9 @@ class gltf_recorder {
     return out;
   }
 
+  gltf_options options_;
+  std::vector<vec3<float>> contact_points_;
+  std::vector<std::uint32_t> contact_offsets_;
   std::vector<float> times_;
   std::vector<track> tracks_;
   std::vector<mesh_entry> meshes_;

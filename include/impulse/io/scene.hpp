@@ -421,11 +421,12 @@ class scene_parser {
         r_.fail(count, "more than " + std::to_string(max_scene_bodies) + " copies");
       plan.spacing = r_.vector(rep["spacing"]);
     } else {
-      if (for_joint) r_.object(rep, {"count", "index_step"});
+      if (for_joint) r_.object(rep, {"count", "index_step", "step"});
       else r_.object(rep, {"count", "step"});
       plan.nx = std::size_t(r_.integer(count, 1, for_joint ? max_scene_joints : max_scene_bodies));
       if (for_joint) {
         if (rep.has("index_step")) plan.index_step = std::size_t(r_.integer(rep["index_step"], 0, max_scene_bodies));
+        if (rep.has("step")) plan.spacing = r_.vector(rep["step"]);  // moves the world anchors
       } else {
         const json_at step = rep["step"];
         r_.object(step, {"position", "rotation"});
@@ -488,13 +489,13 @@ class scene_parser {
   }
 
   /// A body named in a joint; in copy k of a repeated joint, "link[i]"
-  /// means "link[i + k·index_step]".
+  /// means "link[i + k·index_step]", and a name without brackets (a frame
+  /// every copy hangs from) the same body.
   std::size_t body_reference(const json_at& at, std::size_t k, std::size_t index_step) {
     std::string name = r_.string(at);
-    if (k > 0) {
+    if (k > 0 && !name.empty() && name.back() == ']') {
       const std::size_t open = name.rfind('[');
-      if (open == std::string::npos || name.back() != ']')
-        r_.fail(at, "a repeated joint names its bodies as copies, \"name[i]\"");
+      if (open == std::string::npos) r_.fail_expected(at, "\"name[i]\" with i a whole number");
       const json index = json::parse(name.substr(open + 1, name.size() - open - 2), nullptr, false);
       if (!index.is_number_unsigned()) r_.fail_expected(at, "\"name[i]\" with i a whole number");
       name = name.substr(0, open + 1) + std::to_string(index.get<std::uint64_t>() + k * index_step) + "]";
@@ -579,9 +580,12 @@ class scene_parser {
       if (a.type != body_type::dynamic && b.type != body_type::dynamic)
         r_.fail(at, "at least one of a joint's bodies must be dynamic");
       j.def = def;
-      j.def.anchor_a = at.has("anchor") ? r_.vector(at["anchor"]) : apply(a.pose, r_.vector(at["anchor_on_a"]));
+      // World anchors of copy k move by k steps; anchors on a body move with it.
+      const vec3<T> moved = plan.spacing * T(k);
+      j.def.anchor_a = at.has("anchor") ? r_.vector(at["anchor"]) + moved : apply(a.pose, r_.vector(at["anchor_on_a"]));
       if (two_ends) {
-        j.def.anchor_b = at.has("anchor_b") ? r_.vector(at["anchor_b"]) : apply(b.pose, r_.vector(at["anchor_on_b"]));
+        j.def.anchor_b =
+            at.has("anchor_b") ? r_.vector(at["anchor_b"]) + moved : apply(b.pose, r_.vector(at["anchor_on_b"]));
         j.def.axis = j.def.anchor_b - j.def.anchor_a;
         j.def.length = at.has("length") ? r_.non_negative(at["length"]) : length(j.def.anchor_b - j.def.anchor_a);
       } else if (axial) {
