@@ -456,6 +456,16 @@ TEST_CASE("a newtons cradle passes the first ball's energy down the row to the l
   // what the contacts lose (1.2 % here), while the middle three and the
   // first stay where they are.
   const io::scene<double> scene = io::read_scene<double>(scenes_dir() + "/newtons_cradle.json");
+  // One repeated joint hangs the four balls: the beam (no brackets) in every
+  // copy, the anchor stepped 0.201 m along x each time.
+  REQUIRE(scene.joints.size() == 5);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const io::scene_joint<double>& rod = scene.joints[1 + k];
+    CHECK(rod.name == "rod[" + std::to_string(k) + "]");
+    CHECK(scene.bodies[rod.body_a].name == "beam");
+    CHECK(scene.bodies[rod.body_b].name == "ball[" + std::to_string(k) + "]");
+    CHECK(length(rod.def.anchor_a - vec3<double>{0.201 * double(k + 1), 1.5, 0}) < 1e-12);
+  }
   world<awake_double> w;
   const io::scene_ids ids = io::add_scene(w, scene);
   const body_id first = ids.body("striker"), last = ids.body("ball[3]");
