@@ -2,11 +2,11 @@
 # Makes the README's pictures from recordings, drawn by viewer/ in headless
 # Chromium (tools/viewer_picture.mjs): runs the examples that write them,
 # then renders one frame of each into docs/images/.
-#   tools/readme_pictures.sh [build dir, default build/release]
+#   tools/readme_pictures.sh [build dir, default build/native: the quick start's]
 # Needs the examples built, `apt-get install chromium` and `npm ci --prefix viewer`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build/release}
+build=${1:-build/native}
 mkdir -p docs/images
 "$build/examples/rube_goldberg" >/dev/null
 "$build/examples/particles_plume" >/dev/null

@@ -1,4 +1,5 @@
-// bench/particles — particle-steps per second on DESIGN.md's `particles` scene.
+// bench/particles — particle-steps per second on the standard `particles` scene
+// (docs/standard_scenes.md).
 //
 // For N = 10^3 … 4·10^6, float and double, and every integrator, times
 // particle_system::step (the fused SoA kernel at the native batch width) and

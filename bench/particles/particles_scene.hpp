@@ -1,4 +1,4 @@
-// The `particles` scene of DESIGN.md ("Standard benchmark scenes"), built
+// The `particles` scene of docs/standard_scenes.md, built
 // exactly: gravity (0, −9.81, 0), drag k = 0.1, three softened (ε = 0.05)
 // inverse-square attractors, three planes with restitution 0.5 and friction
 // 0.2, unit masses; start positions uniform in x, z ∈ [−8, 8], y ∈ [0.5, 15]

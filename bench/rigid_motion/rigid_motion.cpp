@@ -46,7 +46,7 @@ using namespace impulse;
 using rigid_motion::settings;
 using rigid_motion::stretch_timing;
 
-constexpr double dt = 1.0 / 60;  // DESIGN.md's fixed step for the standard scenes
+constexpr double dt = 1.0 / 60;  // the standard scenes' fixed step (docs/standard_scenes.md)
 constexpr long warm_steps = 10, timed_steps = 30;
 constexpr double stiffness = 100, damping = 2, rest_length = 0.5;
 

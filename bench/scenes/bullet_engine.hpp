@@ -21,8 +21,9 @@
 //
 // Materials. Bullet 3.24 combines a pair's values by multiplying them
 // (btManifoldResult::calculateCombinedFriction: f0·f1, clamped to ±10;
-// calculateCombinedRestitution: e0·e1), where DESIGN.md combines friction
-// as sqrt(f0·f1) and restitution as max(e0, e1). With every body of a scene
+// calculateCombinedRestitution: e0·e1), where the standard scenes
+// (docs/standard_scenes.md) combine friction as sqrt(f0·f1) and restitution
+// as max(e0, e1). With every body of a scene
 // holding the scene's value v, the spec's pair value is v, and Bullet's
 // would be v² (0.36 for friction 0.6, 0.64 for restitution 0.8). So each
 // body gets sqrt(v): Bullet's product is then v, the spec's effective

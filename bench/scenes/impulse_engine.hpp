@@ -22,8 +22,8 @@
 // - one step is world::step(dt): exactly one step, no accumulator.
 //
 // Materials need no translation: impulse combines friction as sqrt(f0·f1)
-// and restitution as max(e0, e1), DESIGN.md's rules, so each body is given
-// the spec's values as they are.
+// and restitution as max(e0, e1), the standard scenes' rules, so each body
+// is given the spec's values as they are.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
-// bench/scenes: DESIGN.md's standard rigid-body scenes (scene_spec.hpp) on
-// every engine compiled in, judged by the same metrics (metrics.hpp).
+// bench/scenes: the standard rigid-body scenes (docs/standard_scenes.md,
+// scene_spec.hpp) on every engine compiled in, judged by the same metrics (metrics.hpp).
 //
 //   scenes [--scene NAME]... [--engine NAME]... [--csv FILE]
 //

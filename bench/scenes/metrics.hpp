@@ -34,7 +34,7 @@
 //                   kinetic_energy_ratio (final over initial)
 //
 // Column height: a settled column of ten unit boxes has its top face at
-// y = 10 and its top box's centre at 9.5 (DESIGN.md's "nominal 9.5"); the
+// y = 10 and its top box's centre at 9.5 (the `pile` scene's "nominal 9.5"); the
 // two pile heights here are top faces, so their nominal value is 10.
 #pragma once
 

@@ -24,8 +24,8 @@
 //   callback, which is what makes disabled bodies cheap; a contact with an
 //   enabled body re-enables a disabled one in ODE's island step.
 //
-// ODE keeps no material per geom, so the near callback applies DESIGN.md's
-// combine directly: friction sqrt(f0·f1), restitution max(e0, e1).
+// ODE keeps no material per geom, so the near callback applies the standard
+// scenes' combine directly: friction sqrt(f0·f1), restitution max(e0, e1).
 //
 // Precision: the adapter is written in dReal, so it builds against a
 // single- or double-precision ODE; the constructor checks that the

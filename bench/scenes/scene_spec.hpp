@@ -1,5 +1,5 @@
-// bench/scenes/scene_spec.hpp — the standard rigid-body scenes of DESIGN.md
-// ("Standard benchmark scenes") as plain data that any engine can build:
+// bench/scenes/scene_spec.hpp — the standard rigid-body scenes of
+// docs/standard_scenes.md as plain data that any engine can build:
 // a list of boxes and spheres with their pose, mass and material, the time
 // step, gravity, step count, whether sleeping is on, and which metrics the
 // scene is judged by (metrics.hpp).
@@ -10,17 +10,17 @@
 // metrics find "the top box" or "the last ball" as the last dynamic entry.
 //
 // Materials are per body, and every body of a scene has the scene's value:
-// DESIGN.md defines the *effective* pair values (friction combined as
-// sqrt(a·b), restitution as max(a, b)), which with equal values are the
-// values themselves. An engine that combines differently must set its
+// docs/standard_scenes.md defines the *effective* pair values (friction
+// combined as sqrt(a·b), restitution as max(a, b)), which with equal values
+// are the values themselves. An engine that combines differently must set its
 // per-body values so that its own combine gives these (bullet_engine.hpp).
 //
-// Scenes DESIGN.md leaves open are settled by the benchmark's brief:
-// `incline` geometry, the `bounce` ground and material, and the hard cases
-// `tower10`, `heavy_on_light` and `cradle`. The choices made here where the
-// brief is silent too are marked "choice:". One of them: the single-purpose
-// scenes (bounce, incline, incline_static, tower10, heavy_on_light, cradle)
-// run with sleeping off, so that a figure measures the solver and not a
+// What the table of docs/standard_scenes.md leaves open is settled here, and
+// listed on that page: the `incline` geometry, the `bounce` ground and
+// material, and the hard cases `tower10`, `heavy_on_light` and `cradle`.
+// Choices this file makes on its own are marked "choice:". One of them: the
+// single-purpose scenes (bounce, incline, incline_static, tower10,
+// heavy_on_light, cradle) run with sleeping off, so that a figure measures the solver and not a
 // sleep timer (a box that fell asleep on the incline would "hold" at any
 // friction; a sleeping tower cannot drift).
 #pragma once
@@ -127,7 +127,7 @@ inline body_spec make_sphere(double radius, vec3 position, double mass, material
   return b;
 }
 
-/// DESIGN.md's ground: a static box whose top face is y = 0.
+/// The standard ground: a static box whose top face is y = 0.
 inline body_spec make_ground(material m, double half_extent_xz = 100) {
   return make_static_box({half_extent_xz, 1, half_extent_xz}, {0, -1, 0}, m);
 }

@@ -1,5 +1,5 @@
 // bench/speed_vs_error/speed_vs_error.cpp — error at the end time against cost
-// per particle-step, for every integrator × scalar × time step (issue 3).
+// per particle-step, for every integrator × scalar × time step.
 //
 // For each closed-form problem (the three of tests/integrators/problems.hpp,
 // copied here because a benchmark does not include test files), integrator,

@@ -14,6 +14,7 @@
 // concepts in core/policy.hpp when a config names them.
 #pragma once
 
+#include "core/extern_templates.hpp"
 #include "core/policy.hpp"
 #include "integrators/symplectic_euler.hpp"
 
@@ -28,6 +29,14 @@ struct default_config {
   using integrator = integrators::symplectic_euler;
 };
 
+/// default_config in double precision. Like default_config, it has its
+/// compiled instantiations under IMPULSE_EXTERN_TEMPLATES
+/// (core/extern_templates.hpp).
+struct default_double_config : default_config {
+  using scalar = double;
+};
+
 static_assert(check_config<default_config>());
+static_assert(check_config<default_double_config>());
 
 }  // namespace impulse

@@ -15,3 +15,12 @@
 #include "particles/point_forces.hpp"
 #include "particles/springs.hpp"
 #include "particles/wind.hpp"
+
+#if IMPULSE_EXTERN_TEMPLATES
+// The default configurations' system with the forces of the README's example
+// (core/extern_templates.hpp).
+IMPULSE_DECLARE_PARTICLE_SYSTEM(impulse::default_config, impulse::particles::gravity, impulse::particles::drag,
+                                impulse::particles::point_forces);
+IMPULSE_DECLARE_PARTICLE_SYSTEM(impulse::default_double_config, impulse::particles::gravity,
+                                impulse::particles::drag, impulse::particles::point_forces);
+#endif

@@ -10,7 +10,7 @@
 // (every broad phase must report ray_enters on the proxy's own box, not on a
 // fattened one).
 //
-// The scenes are the hard cases named in issue 5: uniform, clustered, mixed
+// The scenes are the hard cases: uniform, clustered, mixed
 // huge and tiny boxes (1000:1), everything in one spot, zero-size boxes on a
 // lattice (coincident points and exactly touching faces), far from the
 // origin (1e5), and heavy adding and removing mid-run. In every scene a

@@ -1,47 +1,191 @@
 #!/usr/bin/env bash
-# Builds and runs tests/consumer/main.cpp the ways a downstream project uses
-# impulse: (a) find_package against an install into a temporary prefix, and
-# pkg-config against the same install; (b) add_subdirectory; (c) a Meson
-# subproject; (d) nothing but -I single_include.
+# Builds and runs the consumer programs the ways a downstream project uses
+# impulse, each in a fresh temporary directory:
+#   (a)  find_package(impulse) against an install made with
+#        `cmake --install --prefix`, and find_package(impulse COMPONENTS scene)
+#        with impulse::scene (scene_main.cpp);
+#   (a') pkg-config against the same install, then against a copy of it
+#        moved elsewhere (the .pc file is relocatable);
+#   (b)  add_subdirectory, whose `cmake --install` must not install impulse
+#        (IMPULSE_INSTALL is off there) unless the consumer turns it on;
+#   (b') FetchContent, pointed at this checkout, configured only (it is
+#        add_subdirectory underneath);
+#   (c)  a Meson subproject;
+#   (d)  the single headers alone: impulse_io.hpp (with impulse.hpp) and
+#        impulse_scene.hpp, copied out of the repository.
+# main.cpp makes a world, drops a box on the ground and records the run as
+# .glb; scene_main.cpp loads a scene from JSON. The scene checks need
+# nlohmann-json and are skipped without it.
+#
+#   tests/consumer/run.sh               (CXX=clang++ tests/consumer/run.sh)
+#
+# With IMPULSE_CONSUMER_RECORDING=FILE, the single-header program's .glb is
+# kept there (CI then opens it in the viewer).
+#
+# One line per check, then a summary line; a failed check's log is printed
+# after its line. Exits 1 if any check failed.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 consumer=$repo/tests/consumer
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cxx=${CXX:-g++}
+warnings=(-Wall -Wextra -Wpedantic -Werror)
+export CXX=$cxx
 
-echo "consumer (a): find_package against an installed prefix"
-cmake -S "$repo" -B "$work/impulse-build" -G Ninja -DCMAKE_INSTALL_PREFIX="$work/prefix" \
-  -DIMPULSE_BUILD_TESTS=OFF -DIMPULSE_BUILD_EXAMPLES=OFF -DIMPULSE_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --install "$work/impulse-build" >/dev/null
-test -f "$work/prefix/share/cmake/impulse/impulseConfigVersion.cmake"
-cmake -S "$consumer" -B "$work/package" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
-  -DIMPULSE_CONSUMER_MODE=package -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
-cmake --build "$work/package" >/dev/null
-"$work/package/consumer"
+if printf '#include <nlohmann/json.hpp>\n' | "$cxx" -std=c++20 -fsyntax-only -x c++ - 2>/dev/null; then
+  json=1
+else
+  json=0
+fi
 
-echo "consumer (a'): pkg-config against the same prefix"
-flags=$(PKG_CONFIG_PATH="$work/prefix/share/pkgconfig" pkg-config --cflags impulse)
-"$cxx" $flags "$consumer/main.cpp" -o "$work/pkgconfig-consumer"
-"$work/pkgconfig-consumer"
+passed=0 failed=0 skipped=0 start=$SECONDS
+# check LABEL FUNCTION: runs FUNCTION under set -e in a subshell, its output in a log.
+check() {
+  local label=$1 function=$2 began=$SECONDS status
+  set +e
+  (set -e; "$function") >"$work/$function.log" 2>&1
+  status=$?
+  set -e
+  if ((status == 0)); then
+    passed=$((passed + 1))
+    printf 'consumer %-60s ok (%d s)\n' "$label" $((SECONDS - began))
+  else
+    failed=$((failed + 1))
+    printf 'consumer %-60s FAILED (%d s)\n' "$label" $((SECONDS - began))
+    tail -n 40 "$work/$function.log" | sed 's/^/    /'
+  fi
+}
+skip() {
+  skipped=$((skipped + 1))
+  printf 'consumer %-60s skipped (%s)\n' "$1" "$2"
+}
 
-echo "consumer (b): add_subdirectory"
-cmake -S "$consumer" -B "$work/subdirectory" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
-  -DIMPULSE_CONSUMER_MODE=subdirectory -DIMPULSE_SOURCE_DIR="$repo" >/dev/null
-cmake --build "$work/subdirectory" >/dev/null
-"$work/subdirectory/consumer"
+cmake_consumer() {  # cmake_consumer BUILD_DIR ARGS...: configure tests/consumer
+  local build=$1
+  shift
+  cmake -S "$consumer" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_CXX_FLAGS="${warnings[*]}" "$@"
+}
 
-echo "consumer (c): Meson subproject"
-mkdir -p "$work/meson-consumer/subprojects"
-cp "$consumer/meson.build" "$consumer/main.cpp" "$work/meson-consumer/"
-ln -s "$repo" "$work/meson-consumer/subprojects/impulse"
-CXX="$cxx" meson setup "$work/meson-consumer/build" "$work/meson-consumer" >/dev/null
-meson test -C "$work/meson-consumer/build" --print-errorlogs >/dev/null
-"$work/meson-consumer/build/consumer"
+same_dir() { [ "$(cd "$1" && pwd -P)" = "$(cd "$2" && pwd -P)" ]; }
 
-echo "consumer (d): the single header alone"
-"$cxx" -std=c++20 -Wall -Wextra -Wpedantic -Werror -I "$repo/single_include" \
-  "$consumer/main.cpp" -o "$work/single-header-consumer"
-"$work/single-header-consumer"
+# (a) impulse configured for the default prefix and installed elsewhere with --prefix.
+package() {
+  cmake -S "$repo" -B "$work/impulse-build" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
+    -DIMPULSE_BUILD_TESTS=OFF -DIMPULSE_BUILD_EXAMPLES=OFF -DIMPULSE_BUILD_BENCHMARKS=OFF
+  cmake --install "$work/impulse-build" --prefix "$work/prefix"
+  test -f "$work/prefix/include/impulse/impulse.hpp"
+  test -f "$work/prefix/include/impulse/io/scene.hpp"
+  test -f "$work/prefix/share/cmake/impulse/impulseConfigVersion.cmake"
+  test -f "$work/prefix/share/cmake/impulse/impulseSceneTargets.cmake"
+  test -f "$work/prefix/share/pkgconfig/impulse.pc"
+  cmake_consumer "$work/package" -DIMPULSE_CONSUMER_MODE=package -DCMAKE_PREFIX_PATH="$work/prefix"
+  grep -qx "impulse_DIR:PATH=$work/prefix/share/cmake/impulse" "$work/package/CMakeCache.txt"
+  cmake --build "$work/package" --target consumer
+  "$work/package/consumer" "$work/package/run.glb"
+}
 
-echo "consumer checks: 5 passed, 0 failed"
+package_scene() {  # the same build, reconfigured with COMPONENTS scene
+  cmake_consumer "$work/package" -DIMPULSE_CONSUMER_SCENE=ON
+  cmake --build "$work/package" --target scene_consumer
+  "$work/package/scene_consumer"
+}
+
+pkgconfig() {
+  export PKG_CONFIG_PATH=$work/prefix/share/pkgconfig
+  same_dir "$(pkg-config --variable=includedir impulse)" "$work/prefix/include"
+  # shellcheck disable=SC2046  # the flags are words
+  "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/pkgconfig-consumer"
+  "$work/pkgconfig-consumer" "$work/pkgconfig.glb"
+}
+
+pkgconfig_relocated() {  # the install copied elsewhere, the original gone
+  mkdir "$work/elsewhere"
+  cp -R "$work/prefix" "$work/elsewhere/impulse"
+  rm -rf "$work/prefix"
+  export PKG_CONFIG_PATH=$work/elsewhere/impulse/share/pkgconfig
+  same_dir "$(pkg-config --variable=includedir impulse)" "$work/elsewhere/impulse/include"
+  # shellcheck disable=SC2046
+  "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/relocated-consumer"
+  "$work/relocated-consumer" "$work/relocated.glb"
+}
+
+subdirectory() {
+  local scene=OFF
+  ((json)) && scene=ON  # impulse::scene must then exist, and resolve, in the consumer
+  cmake_consumer "$work/subdirectory" -DIMPULSE_CONSUMER_MODE=subdirectory -DIMPULSE_SOURCE_DIR="$repo" \
+    -DIMPULSE_CONSUMER_SCENE=$scene
+  cmake --build "$work/subdirectory" --target consumer
+  "$work/subdirectory/consumer" "$work/subdirectory/run.glb"
+  # The consumer's install holds the consumer and nothing of impulse's...
+  cmake --install "$work/subdirectory" --prefix "$work/consumer-prefix"
+  installed=$(cd "$work/consumer-prefix" && find . -type f)
+  if [ "$installed" != "./bin/consumer" ]; then
+    printf "the consumer's install holds more than bin/consumer:\n%s\n" "$(head -n 10 <<<"$installed")" >&2
+    exit 1
+  fi
+  # ...unless the consumer asks for it.
+  cmake_consumer "$work/subdirectory" -DIMPULSE_INSTALL=ON
+  cmake --install "$work/subdirectory" --prefix "$work/consumer-prefix-with-impulse"
+  test -f "$work/consumer-prefix-with-impulse/include/impulse/impulse.hpp"
+  test -f "$work/consumer-prefix-with-impulse/share/pkgconfig/impulse.pc"
+}
+
+fetchcontent() {  # configure only: the same targets and options as add_subdirectory
+  local scene=OFF
+  ((json)) && scene=ON
+  cmake_consumer "$work/fetchcontent" -DIMPULSE_CONSUMER_MODE=fetchcontent \
+    -DFETCHCONTENT_SOURCE_DIR_IMPULSE="$repo" -DIMPULSE_CONSUMER_SCENE=$scene
+  grep -qx "IMPULSE_INSTALL:BOOL=OFF" "$work/fetchcontent/CMakeCache.txt"
+  grep -qx "IMPULSE_BUILD_TESTS:BOOL=OFF" "$work/fetchcontent/CMakeCache.txt"
+}
+
+meson_subproject() {
+  mkdir -p "$work/meson-consumer/subprojects"
+  cp "$consumer/meson.build" "$consumer/main.cpp" "$work/meson-consumer/"
+  ln -s "$repo" "$work/meson-consumer/subprojects/impulse"
+  meson setup "$work/meson-consumer/build" "$work/meson-consumer" -Dwarning_level=3 -Dwerror=true
+  meson compile -C "$work/meson-consumer/build"
+  "$work/meson-consumer/build/consumer" "$work/meson-consumer/run.glb"
+}
+
+single_io() {  # the three single headers copied out alone; main.cpp includes impulse_io.hpp
+  mkdir -p "$work/single/impulse"
+  cp "$repo"/single_include/impulse/impulse.hpp "$repo"/single_include/impulse/impulse_io.hpp \
+    "$repo"/single_include/impulse/impulse_scene.hpp "$work/single/impulse/"
+  "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
+    "$consumer/main.cpp" -o "$work/single-header-consumer"
+  "$work/single-header-consumer" "$work/single.glb"
+  # CI opens this recording in the viewer (viewer/test): IMPULSE_CONSUMER_RECORDING names where to keep it.
+  if [ -n "${IMPULSE_CONSUMER_RECORDING:-}" ]; then
+    mkdir -p "$(dirname "$IMPULSE_CONSUMER_RECORDING")"
+    cp "$work/single.glb" "$IMPULSE_CONSUMER_RECORDING"
+  fi
+}
+
+single_scene() {
+  "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
+    "$consumer/scene_main.cpp" -o "$work/single-header-scene-consumer"
+  "$work/single-header-scene-consumer"
+}
+
+echo "consumer checks with $cxx ($("$cxx" --version | head -n 1))"
+check "(a)  find_package(impulse), installed with --prefix" package
+if ((json)); then
+  check "(a)  find_package(impulse COMPONENTS scene), impulse::scene" package_scene
+else
+  skip "(a)  find_package(impulse COMPONENTS scene), impulse::scene" "no nlohmann-json"
+fi
+check "(a') pkg-config, the same install" pkgconfig
+check "(a') pkg-config, the install copied elsewhere" pkgconfig_relocated
+check "(b)  add_subdirectory, impulse's install rules off" subdirectory
+check "(b') FetchContent (configured, not built)" fetchcontent
+check "(c)  Meson subproject" meson_subproject
+check "(d)  single headers alone: impulse_io.hpp + impulse.hpp" single_io
+if ((json)); then
+  check "(d)  single headers alone: impulse_scene.hpp" single_scene
+else
+  skip "(d)  single headers alone: impulse_scene.hpp" "no nlohmann-json"
+fi
+echo "consumer checks: $passed passed, $failed failed, $skipped skipped ($((SECONDS - start)) s)"
+((failed == 0))

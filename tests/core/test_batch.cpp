@@ -97,7 +97,8 @@ TEST_CASE_TEMPLATE("any all and none read every lane of a mask", B, IMPULSE_BATC
 
 TEST_CASE_TEMPLATE("batch select takes each lane from the side its mask names", B, IMPULSE_BATCH_TYPES) {
   // The masked path that clang 14 miscompiles with <experimental/simd> on
-  // AVX-512 (DESIGN.md): run it under both compilers at -march=native.
+  // AVX-512 (docs/architecture.md, toolchain facts): run it under both
+  // compilers at -march=native.
   using T = typename B::scalar;
   const lane_data<B> d;
   const B a = B::load(d.a), b = B::load(d.b);

@@ -123,7 +123,7 @@ double pendulum_period() {
 TEST_CASE_TEMPLATE("a rod hung on a stiff spring swings with the physical pendulum's period", T, float, double) {
   const double m = 1, d = 0.5, g = 9.81, inertia = m * (0.25 + 0.0025) / 3;
   const double analytic = 2 * std::numbers::pi * std::sqrt((inertia + m * d * d) / (m * g * d));
-  // The bound for RK4: 0.5 %. Measured +2.1e-4 in both scalars, of
+  // The bound for RK4: 0.5 %. Measured +2.1e-4 in both scalars, of
   // which the amplitude term above accounts for 1.6e-4.
   CHECK(pendulum_period<T>() == doctest::Approx(analytic).epsilon(0.005));
 }

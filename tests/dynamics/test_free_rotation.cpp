@@ -101,7 +101,7 @@ double energy_drift(double dt) {
 
 TEST_CASE_TEMPLATE("a body spun about its intermediate axis flips with the elliptic-function period under RK4",
                    T, float, double) {
-  // The bound is 2 %; measured: 2.7e-7 in double, 9.5e-4 in float
+  // The bound is 2 %; measured: 2.7e-7 in double, 9.5e-4 in float
   // (the period near the separatrix is logarithmically sensitive to the
   // energy, so float's rounding shows).
   const double analytic = flip_period();
@@ -227,8 +227,8 @@ TEST_CASE_TEMPLATE("a tumbling box keeps its shape for a million steps", T, floa
   // The orientation is renormalised every step and the rotation matrix is
   // taken from the unit quaternion, so no shear or growth can accumulate:
   // every edge and diagonal keeps its length to a few roundings of the
-  // box's size, whatever the integrator's error in the angle. Bounds (the
-  // issue's): 1e-5 relative in float, 1e-12 in double; measured 1.5e-7 and
+  // box's size, whatever the integrator's error in the angle. Bounds:
+  // 1e-5 relative in float, 1e-12 in double; measured 1.5e-7 and
   // 2.2e-16.
   body_system<T, symplectic_euler> system;
   system.gravity = {};

@@ -394,7 +394,7 @@ TEST_CASE_TEMPLATE("integrating constant angular velocity follows the closed for
 }
 
 TEST_CASE_TEMPLATE("integration keeps a spinning orientation unit for a million steps", T, float, double) {
-  // The issue's requirement: |q| = 1 within 1e-6 (float) and 1e-14 (double).
+  // The requirement: |q| = 1 within 1e-6 (float) and 1e-14 (double).
   // Measured: the worst | |q| - 1 | over all steps is one epsilon.
   const T unit_after_spin = std::is_same_v<T, float> ? T(1e-6) : T(1e-14);
   const spin_result<T> r = spin(quat<T>::identity(), vec3<T>{3, -7, 11}, T(1) / 240, 1000000);

@@ -32,7 +32,7 @@ using test::at;
 template <class T>
 constexpr T tolerance = test::contact_tolerance<T>;
 
-/// The brief's bound on a normal's tilt: 1e-5 rad (|n − n'| ≈ the angle).
+/// The bound on a normal's tilt: 1e-5 rad (|n − n'| ≈ the angle).
 template <class T>
 constexpr T normal_tolerance = T(1e-5);
 

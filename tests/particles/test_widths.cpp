@@ -10,8 +10,9 @@ namespace {
 using namespace impulse::particles;
 using impulse::vec3;
 
-/// The particles scene of DESIGN.md with n particles (not a multiple of any
-/// width, so the last batch is partly padding), stepped `steps` times.
+/// The standard particles scene (docs/standard_scenes.md) with n particles
+/// (not a multiple of any width, so the last batch is partly padding),
+/// stepped `steps` times.
 template <class C>
 auto run_scene(int n, int steps) {
   using T = typename C::scalar;

@@ -57,7 +57,7 @@ namespace {
 
 using namespace peers;
 
-/// The agreement the issue asks for, relative with a 1 cm floor (above).
+/// The agreement required, relative with a 1 cm floor (above).
 constexpr double agreement = 1e-4;
 /// Ours against the brute-force exact answer: our GJK and EPA end within
 /// 1e-12 and 1e-10 relative in double (gjk.hpp, epa.hpp); 1e-8 leaves

@@ -1,5 +1,5 @@
-// The standard scenes of DESIGN.md and the hard cases of the world tests,
-// built as the design specifies them, with what the tests measure of them.
+// The standard scenes and the hard cases of the world tests, built as
+// docs/standard_scenes.md specifies them, with what the tests measure of them.
 #pragma once
 
 #include <algorithm>
@@ -77,6 +77,21 @@ std::vector<impulse::body_id> add_pile(World& w) {
       for (int k = 0; k < 10; ++k)
         ids.push_back(add_cube(w, {(T(i) - T(4.5)) * T(1.2), T(1) + T(1.2) * T(j), (T(k) - T(4.5)) * T(1.2)}));
   return ids;
+}
+
+/// Steps of a scene that must hold for a long time: all of them in
+/// optimised builds (NDEBUG), a quarter in debug and sanitizer builds, which
+/// check the same assertions over the shorter run. Those builds are there
+/// for what assertions and sanitizers catch, and the first seconds of a
+/// scene reach the same code as the last; its stability over the whole run
+/// is the optimised builds' to show, where it costs a fifth of the time.
+/// Test names give the full length.
+constexpr int long_run(int steps) {
+#ifdef NDEBUG
+  return steps;
+#else
+  return steps / 4;
+#endif
 }
 
 template <class World>

@@ -90,7 +90,7 @@ TEST_CASE_TEMPLATE("a hinge pendulum swings at the small-angle period of a physi
 
 namespace {
 
-/// The issue's chain: 20 links of 0.5 m (boxes of half-extents 0.05, 0.25,
+/// The test chain: 20 links of 0.5 m (boxes of half-extents 0.05, 0.25,
 /// 0.05), 10 kg and 1 kg in turn from the top, joined end to end by ball
 /// joints and hung from a static body at y = 20; hanging down, or held out
 /// along x. Returns the largest gap any joint opened over `steps`.
@@ -128,7 +128,7 @@ typename World::scalar chain_gap(bool held_out, int steps, bool exact = true) {
 TEST_CASE_TEMPLATE("a chain of 20 ball joints at 10 to 1 between neighbours stays within 1 mm hanging and swinging",
                    World, world<::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
-  // The issue's bound. Each link's joints solved one at a time (Gauss–
+  // The bound: 1 mm. Each link's joints solved one at a time (Gauss–
   // Seidel, 20 iterations) opened the hanging chain 13 mm; its tree solved
   // exactly (joint_tree.hpp) keeps it within 0.01 mm, and let go from
   // horizontal, the whip of its tail within 0.022 mm (sequential_impulse

@@ -61,7 +61,7 @@ TEST_CASE("soft step: the 20-row pyramid stands for 20 s without spreading more 
   test::add_ground(w);
   const std::vector<body_id> boxes = test::add_pyramid(w, 20);
   const auto start = test::positions(w, boxes);
-  test::run(w, 1200);
+  test::run(w, test::long_run(1200));
   const vec3<float> worst = test::largest_displacement(w, boxes, start);
   CHECK(worst.x < 0.02f);
   CHECK(worst.z < 0.02f);

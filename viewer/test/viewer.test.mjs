@@ -226,6 +226,32 @@ test('an .ipr: particles drawn in their colours, info counts, frames advance', a
   console.log(`# checked: ipr info, colours, frame 2 moved the cloud by ${moved.map((v) => v | 0)} px, AABB`);
 });
 
+// Recordings written by impulse itself, named (relative to the repository)
+// in IMPULSE_VIEWER_RECORDINGS, separated by ':'. CI names the one that
+// tests/consumer's single-header program writes: a ground and a box dropped
+// on it, so two nodes, one of them moving.
+const recordings = (process.env.IMPULSE_VIEWER_RECORDINGS ?? '').split(':').filter((p) => p);
+for (const recording of recordings) {
+  test(`a recording written by impulse opens and is drawn: ${recording}`, async () => {
+    await openViewer(page, `${url}?file=/repo/${recording}`);
+    const info = await viewer(() => window.viewer.info);
+    assert.equal(info.kind, 'glb');
+    assert.equal(info.nodes, 2, 'the ground and the box');
+    assert.equal(info.movingNodes, 1, 'the box falls, the ground does not move');
+    assert.ok(info.frames > 100, `one frame per step (${info.frames})`);
+    // The dynamic box is orange (docs/recording.md), the static ground grey.
+    const isOrange = ([r, g, b]) => r > g + 20 && g > b + 20 && r - b > 60;
+    await viewer(() => (window.viewer.pause(), window.viewer.setTime(0)));
+    const start = survey(await grab('recording-start'), isOrange);
+    await viewer(() => window.viewer.setTime(window.viewer.duration));
+    const end = survey(await grab('recording-end'), isOrange);
+    assert.ok(start.count > 500 && end.count > 500, `the box is drawn (${start.count} and ${end.count} px)`);
+    assert.ok(end.y > start.y + 20, `the box falls down the picture (from y = ${start.y | 0} to ${end.y | 0} px)`);
+    console.log(`# checked: ${recording}: ${info.nodes} nodes, ${info.frames} frames, the box falls from y = ` +
+      `${start.y | 0} to ${end.y | 0} px`);
+  });
+}
+
 test('a file that is no recording, or is missing, is reported', async () => {
   const message = (u) => viewer((u) => window.viewer.load(u).then(() => null, () => window.viewer.error), u);
   assert.match(await message('/fixtures/neither.bin'), /neither a \.glb/);

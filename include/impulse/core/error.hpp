@@ -1,7 +1,7 @@
 // impulse/core/error.hpp — how bad input is reported at the API boundary.
 //
-// Invalid input never silently corrupts a world (DESIGN.md, "Errors and bad
-// input"): a function that receives a NaN position, a zero mass or a
+// Invalid input never silently corrupts a world (docs/architecture.md,
+// "Errors and bad input"): a function that receives a NaN position, a zero mass or a
 // degenerate shape reports it before changing any state. With exceptions
 // enabled the report is an impulse::invalid_argument carrying an error code,
 // a message and, where one exists, the id of the object concerned. Built with

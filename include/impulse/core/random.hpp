@@ -3,8 +3,9 @@
 // Emitters and per-particle variations must give the same particles on every
 // machine and every run, so they use these fixed generators instead of
 // <random>, whose distributions are implementation-defined (and whose header
-// costs compile time). lcg32 is the generator DESIGN.md prescribes for the
-// standard scenes, so a peer engine can reproduce them draw for draw.
+// costs compile time). lcg32 is the generator docs/standard_scenes.md
+// prescribes for the standard scenes, so a peer engine can reproduce them
+// draw for draw.
 #pragma once
 
 #include <cstdint>

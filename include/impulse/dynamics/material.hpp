@@ -1,8 +1,8 @@
 // impulse/dynamics/material.hpp — what a body's surface and bulk are made of,
 // and how two materials combine at a contact.
 //
-// Combine rules (DESIGN.md, "Standard benchmark scenes"): friction is the
-// geometric mean sqrt(a·b), so that ice (0) on anything is ice and equal
+// Combine rules (docs/standard_scenes.md): friction is the geometric mean
+// sqrt(a·b), so that ice (0) on anything is ice and equal
 // materials keep their value; restitution is the larger of the two, so that
 // a rubber ball bounces on concrete as it does on rubber. Box2D v3 uses the
 // same two rules; Bullet multiplies both, and ODE takes whatever the contact

@@ -3,7 +3,7 @@
 // A set of rigid bodies under gravity, their accumulated loads, damped
 // springs (body_spring.hpp) and an optional force field, advanced by the
 // config's integrator policy. It is the force-driven half of the world's
-// step ("forces & springs -> integrate", DESIGN.md); contacts and joints
+// step (docs/architecture.md, "The world's step"); contacts and joints
 // come with the world.
 //
 // Forces are evaluated at every stage of the integrator, on the stage's
@@ -129,7 +129,9 @@ class rigid_body_system {
   // ---- stepping ----
 
   /// Advances every body by dt seconds under gravity, loads and springs.
-  void step(T dt) { step(dt, detail::no_force_field{}); }
+  /// (Defined after the class, not inline: IMPULSE_DECLARE_RIGID_BODY_SYSTEM
+  /// then keeps the integration out of other translation units.)
+  void step(T dt);
 
   /// The same, with field(id, kinematics) -> wrench added on every dynamic
   /// body at every stage.
@@ -465,4 +467,14 @@ class rigid_body_system {
   std::vector<wrench<T>> stage_wrenches_;
 };
 
+template <class Config>
+void rigid_body_system<Config>::step(T dt) {
+  step(dt, detail::no_force_field{});
+}
+
 }  // namespace impulse
+
+#if IMPULSE_EXTERN_TEMPLATES
+IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_config);
+IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_double_config);
+#endif

@@ -1,8 +1,8 @@
 // impulse/dynamics/solver_settings.hpp — the contact solver's numbers, in one
 // place, each with its unit and the reason for its value.
 //
-// These are runtime values (DESIGN.md: iteration counts, restitution and
-// tolerances stay runtime knobs); a world holds one solver_settings and hands
+// These are runtime values (docs/architecture.md: iteration counts,
+// restitution and tolerances stay runtime knobs); a world holds one solver_settings and hands
 // it to its solver every step. The defaults are what the hard-case tests
 // (tests/world/) are run with.
 #pragma once

@@ -227,18 +227,9 @@ class particle_system {
   /// Advances every particle by dt seconds: forces and integration, planes,
   /// ageing and death, then emission. Every parameter is checked first; on a
   /// bad one nothing moves.
-  void step(T dt) {
-    validate(dt);
-    prepare_planes();
-    if (size_ != 0) {
-      fill_padding();
-      if constexpr (has_pairwise) step_staged(dt);
-      else step_fused(dt);
-      if constexpr (has_lifetime) remove_dead();
-    }
-    for (emitter<T>& source : emitters_) emit_unchecked(source, source.due(dt));
-    time_ += double(dt);
-  }
+  /// (Defined after the class, not inline: IMPULSE_DECLARE_PARTICLE_SYSTEM
+  /// then keeps the kernel out of other translation units.)
+  void step(T dt);
 
  private:
   // ---- the kernel -----------------------------------------------------------------
@@ -363,30 +354,35 @@ class particle_system {
     }
   }
 
-  void step_staged(T dt) requires has_pairwise {
-    const std::size_t used = padded(size_);
-    pool_.resize(3, stride_, used);
-    using whole = impulse::detail::pooled_state<T>;
-    whole x(pool_), v(pool_);
-    copy_columns(x.data(), x_, y_, z_, used);
-    copy_columns(v.data(), vx_, vy_, vz_, used);
-    const auto& pairwise = std::get<pairwise_index()>(forces_);
-    integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
-      whole a(pool_);
+  // Not `requires has_pairwise`: clang 14 compiles a constrained member in
+  // an explicit instantiation (IMPULSE_INSTANTIATE_PARTICLE_SYSTEM) even
+  // when the constraint is false; the discarded branch it does not.
+  void step_staged(T dt) {
+    if constexpr (has_pairwise) {
+      const std::size_t used = padded(size_);
+      pool_.resize(3, stride_, used);
+      using whole = impulse::detail::pooled_state<T>;
+      whole x(pool_), v(pool_);
+      copy_columns(x.data(), x_, y_, z_, used);
+      copy_columns(v.data(), vx_, vy_, vz_, used);
+      const auto& pairwise = std::get<pairwise_index()>(forces_);
+      integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
+        whole a(pool_);
+        for (std::size_t first = 0; first < used; first += width) {
+          const slice s = at(first);
+          const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
+          acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+              a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+        }
+        pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
+        return a;
+      });
       for (std::size_t first = 0; first < used; first += width) {
         const slice s = at(first);
-        const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-        acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
-            a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+        const state x0 = state::load(s.x, s.y, s.z);
+        state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
+        finish_batch(s, first, x0, xb, vb, dt);
       }
-      pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
-      return a;
-    });
-    for (std::size_t first = 0; first < used; first += width) {
-      const slice s = at(first);
-      const state x0 = state::load(s.x, s.y, s.z);
-      state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-      finish_batch(s, first, x0, xb, vb, dt);
     }
   }
 
@@ -546,6 +542,20 @@ class particle_system {
   std::uint32_t serial_ = 0;
   double time_ = 0;
 };
+
+template <class Config, template <class> class... Forces>
+void particle_system<Config, Forces...>::step(T dt) {
+  validate(dt);
+  prepare_planes();
+  if (size_ != 0) {
+    fill_padding();
+    if constexpr (has_pairwise) step_staged(dt);
+    else step_fused(dt);
+    if constexpr (has_lifetime) remove_dead();
+  }
+  for (emitter<T>& source : emitters_) emit_unchecked(source, source.due(dt));
+  time_ += double(dt);
+}
 
 }  // namespace impulse::particles
 

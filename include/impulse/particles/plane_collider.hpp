@@ -10,7 +10,7 @@
 //  - reflects the normal velocity with restitution e, only if the particle is
 //    moving into the plane (one that already separates keeps its speed), and
 //  - scales the tangential velocity by (1 − μ), a per-contact friction loss
-//    (the model of DESIGN.md's `particles` scene, not Coulomb's law: a
+//    (the model of the standard `particles` scene, not Coulomb's law: a
 //    particle lying on a plane loses that fraction every step).
 #pragma once
 

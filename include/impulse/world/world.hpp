@@ -1,5 +1,5 @@
 // impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
-// materials, stepped through the pipeline of DESIGN.md.
+// materials, stepped through the pipeline of docs/architecture.md.
 //
 // One step, in order (Box2D v3's order: collide from where the bodies are,
 // then solve and move):
@@ -102,10 +102,15 @@ class world {
   static_assert(broadphase::broad_phase<broad_phase_type, T>,
                 "impulse world: the config's broadphase is not a broad phase for its scalar");
 
-  explicit world(const world_settings<T>& settings = {}) {
-    settings.validate();
-    state_.settings = settings;
-  }
+  explicit world(const world_settings<T>& settings = {});
+  // Declared here and defaulted after the class, so that an explicit
+  // instantiation declaration (IMPULSE_DECLARE_WORLD) keeps them, and all
+  // that the members' destructors instantiate, out of other translation units.
+  world(const world& other);
+  world(world&& other) noexcept;
+  world& operator=(const world& other);
+  world& operator=(world&& other) noexcept;
+  ~world();
 
   // ---- settings ----
 
@@ -134,57 +139,18 @@ class world {
     // Hulls and meshes come only from their factories, which check them.
     if constexpr (requires { shape.validate(); }) shape.validate();
     def.material.validate();
-    rigid_body<T> body = make_body(def, shape);  // checks the pose, the mass and the type
-    vec3<T> center{};
-    if (def.type == body_type::dynamic) {
-      center = centre_of_mass(def, shape);
-      body.position = apply(def.pose, center);
-    }
-    if (!is_finite(def.linear_velocity) || !is_finite(def.angular_velocity))
-      detail::report_error(error_code::non_finite, "world::create_body: velocity is not finite");
-    if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
-      detail::report_error(error_code::invalid_parameter, "world::create_body: a static body cannot move");
-    if (def.type != body_type::static_body) body.set_velocity(def.linear_velocity, def.angular_velocity);
-
+    const rigid_body<T> body = make_body(def, shape);  // checks the pose, the mass and the type
+    const vec3<T> center = def.type == body_type::dynamic ? centre_of_mass(def, shape) : vec3<T>{};
+    body_record record = prepare_body(def, body, center);  // checks the velocities
     // Nothing below can fail on the input.
-    body_record record{};
-    record.body = body;
-    record.material = def.material;
-    record.center = center;
     record.shape = state_.shape_store.add(shape);
-    record.awake = def.awake || def.type != body_type::dynamic;
-    record.user_data = def.user_data;
-    record.bullet = def.bullet;
     record.thinnest = thinnest_half_extent(shape);
-    record.previous = body.pose();
-    const body_id id = state_.bodies.insert(record);
-    body_record& r = state_.bodies[id];
-    r.proxy = state_.broad.create(proxy_box(r), pack(id));
-    return id;
+    return insert_body(record);
   }
 
   /// Removes a body, its contacts and its joints; the bodies it touched or
   /// was joined to wake. A stale or destroyed id is refused.
-  void destroy_body(body_id id) {
-    require(id, "world::destroy_body: no such body (destroyed already?)");
-    doomed_joints_.clear();
-    for (std::size_t k = 0; k < state_.joints.size(); ++k) {
-      const joint_record& j = state_.joints.values()[k];
-      if (j.a == id || j.b == id) doomed_joints_.push_back(state_.joints.ids()[k]);
-    }
-    for (const joint_id j : doomed_joints_) destroy_joint(j);
-    std::erase_if(state_.contacts, [&](const contact_record& c) {
-      if (c.a != id && c.b != id) return false;
-      if (c.touching) state_.ended.push_back({c.a, c.b});
-      const body_id other = c.a == id ? c.b : c.a;
-      wake_record(state_.bodies[other]);
-      return true;
-    });
-    body_record& r = state_.bodies[id];
-    state_.broad.destroy(r.proxy);
-    state_.shape_store.remove(r.shape);
-    state_.bodies.erase(id);
-  }
+  void destroy_body(body_id id);
 
   [[nodiscard]] bool contains(body_id id) const noexcept { return state_.bodies.contains(id); }
   [[nodiscard]] std::size_t body_count() const noexcept { return state_.bodies.size(); }
@@ -248,39 +214,14 @@ class world {
   }
   /// Moves a body (its shape's origin) at once, and wakes it. Contacts
   /// follow at the next step; nothing in between is swept.
-  void set_pose(body_id id, const transform<T>& pose) {
-    require(id, "world::set_pose: no such body");
-    body_record& r = state_.bodies[id];
-    rigid_body<T> moved = r.body;
-    moved.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
-    r.body = moved;
-    r.previous = moved.pose();
-    state_.broad.move(r.proxy, proxy_box(r));
-    wake_record(r);
-  }
+  void set_pose(body_id id, const transform<T>& pose);
   /// Moves a kinematic body (its shape's origin) to `target` over the next
   /// step of dt seconds: its velocities are set so that it arrives there,
   /// carrying what rests on it by friction as a moving body would, and go
   /// back to zero after that step unless a new target is set. An animated
   /// platform calls this every step. Refused: a body that is not
   /// kinematic, a non-finite or non-unit pose, dt not positive.
-  void set_target_pose(body_id id, const transform<T>& target, T dt) {
-    require(id, "world::set_target_pose: no such body");
-    body_record& r = state_.bodies[id];
-    if (r.body.type != body_type::kinematic)
-      detail::report_error(error_code::invalid_parameter, "world::set_target_pose: the body is not kinematic",
-                           id.index);
-    if (!std::isfinite(dt) || !(dt > T(0)))
-      detail::report_error(error_code::invalid_parameter, "world::set_target_pose: dt must be positive and finite");
-    if (!is_finite(target.position) || !is_finite(target.rotation))
-      detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
-    if (!is_normalized(target.rotation))
-      detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
-    const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
-    r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
-    if (r.target == target_state::none) state_.targeted.push_back(id);
-    r.target = target_state::armed;
-  }
+  void set_target_pose(body_id id, const transform<T>& target, T dt);
   /// A force through the centre of mass for the next step, N.
   void apply_force(body_id id, const vec3<T>& force) {
     body_record& r = dynamic_record(id, "world::apply_force: no such body");
@@ -317,58 +258,11 @@ class world {
   /// neither of which is dynamic, non-finite anchors or axis, and the
   /// other bad values joint_def::validate names. Both bodies wake; unless
   /// def.collide_connected, their contacts with each other end.
-  joint_id create_joint(const joint_def<T>& def) {
-    require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
-    require(def.body_b, "world::create_joint: body_b does not exist (destroyed?)");
-    if (def.body_a == def.body_b)
-      detail::report_error(error_code::invalid_parameter, "world::create_joint: a joint needs two different bodies",
-                           def.body_a.index);
-    def.validate();
-    body_record& ra = state_.bodies[def.body_a];
-    body_record& rb = state_.bodies[def.body_b];
-    if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic)
-      detail::report_error(error_code::invalid_parameter, "world::create_joint: at least one body must be dynamic",
-                           def.body_a.index);
-
-    // Nothing below can fail on the input.
-    const rigid_body<T>& a = ra.body;
-    const rigid_body<T>& b = rb.body;
-    const bool two_ends = def.type == joint_type::distance;
-    joint_constraint<T> c;
-    c.type = def.type;
-    c.local_anchor_a = inverse_rotate(a.orientation, def.anchor_a - a.position);
-    c.local_anchor_b = inverse_rotate(b.orientation, (two_ends ? def.anchor_b : def.anchor_a) - b.position);
-    vec3<T> axis = def.axis;
-    if (two_ends) axis = def.anchor_b - def.anchor_a;
-    c.local_axis_a = length_squared(axis) > T(0) ? inverse_rotate(a.orientation, normalize(axis)) : vec3<T>{1, 0, 0};
-    c.reference = conjugate(a.orientation) * b.orientation;
-    c.enable_limit = def.enable_limit, c.lower = def.lower, c.upper = def.upper;
-    c.enable_motor = def.enable_motor, c.motor_speed = def.motor_speed, c.max_motor_force = def.max_motor_force;
-    c.length = def.length, c.spring_hertz = def.spring_hertz, c.spring_damping_ratio = def.spring_damping_ratio;
-    joint_record record{};
-    record.constraint = c;
-    record.def = def;
-    record.a = def.body_a, record.b = def.body_b;
-    if (!def.collide_connected) {
-      const std::uint64_t key = pair_key(def.body_a, def.body_b);
-      state_.joined.insert(std::upper_bound(state_.joined.begin(), state_.joined.end(), key), key);
-      end_contacts_between(def.body_a, def.body_b);
-    }
-    wake_record(ra);
-    wake_record(rb);
-    return state_.joints.insert(record);
-  }
+  joint_id create_joint(const joint_def<T>& def);
 
   /// Removes a joint; its bodies wake and, if they did not collide, may
   /// touch again from the next step. A broken joint stays until destroyed.
-  void destroy_joint(joint_id id) {
-    require(id, "world::destroy_joint: no such joint (destroyed already?)");
-    const joint_record& r = state_.joints[id];
-    if (!r.broken) unjoin(r);
-    wake_record(state_.bodies[r.a]);
-    wake_record(state_.bodies[r.b]);
-    state_.joints.erase(id);
-  }
+  void destroy_joint(joint_id id);
 
   [[nodiscard]] bool contains(joint_id id) const noexcept { return state_.joints.contains(id); }
   [[nodiscard]] std::size_t joint_count() const noexcept { return state_.joints.size(); }
@@ -441,51 +335,13 @@ class world {
   /// last step's. A body whose state becomes non-finite (valid input can
   /// still overflow) is left where it was with no velocity, the others
   /// keep their step, and the error names it.
-  void step(T dt) {
-    if (!std::isfinite(dt) || !(dt > T(0)))
-      detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
-    state_.begun.clear();
-    state_.ended.clear();
-    state_.broken.clear();
-    expire_targets();
-    failed_ = no_object;
-    update_broad_phase();
-    update_contacts();
-    if constexpr (sleeping) wake_islands();
-    solve(dt);
-    if constexpr (ccd) continuous();
-    if constexpr (sleeping) update_sleep(dt);
-    state_.time += dt;
-    state_.last_dt = dt;
-    ++state_.step_count;
-    if (failed_ != no_object)
-      detail::report_error(error_code::non_finite,
-                           "world::step: a body's state became non-finite; it was left where it was", failed_);
-  }
+  void step(T dt);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
   /// what was left over from the last call allow, at most
   /// max_steps_per_advance; returns the fraction of a step left over, the
   /// alpha for interpolated_pose.
-  T advance(T frame_dt) {
-    if (!std::isfinite(frame_dt) || frame_dt < T(0))
-      detail::report_error(error_code::invalid_parameter, "world::advance: frame_dt must be finite and >= 0");
-    const T h = state_.settings.fixed_dt;
-    state_.accumulator += frame_dt;
-    int steps = 0;
-    // A step is due once the time left is within rounding of h: 2.5 steps
-    // and then 0.5 more make three, though the sum falls an ulp short.
-    const T due = h * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
-    while (state_.accumulator >= due && steps < state_.settings.max_steps_per_advance) {
-      step(h);
-      state_.accumulator = std::max(state_.accumulator - h, T(0));
-      ++steps;
-    }
-    // Past the cap the remaining time is dropped: the simulation falls
-    // behind the clock rather than trying to catch up ever harder.
-    if (state_.accumulator >= due) state_.accumulator = std::fmod(state_.accumulator, h);
-    return state_.accumulator / h;
-  }
+  T advance(T frame_dt);
 
   [[nodiscard]] T time() const noexcept { return state_.time; }
   [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
@@ -513,23 +369,7 @@ class world {
   // ---- queries ----
 
   /// The nearest body along the ray within max_fraction of its translation.
-  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1)) const {
-    std::optional<world_ray_hit<T>> best;
-    T reach = max_fraction;
-    state_.broad.ray_cast(r, max_fraction, [&](proxy_id proxy, T) {
-      const body_id id = unpack(state_.broad.user_data(proxy));
-      const body_record& rec = state_.bodies[id];
-      const transform<T> pose = shape_pose_of(rec);
-      const narrowphase::ray_hit<T> hit =
-          state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
-      if (hit.hit && hit.fraction <= reach) {
-        reach = hit.fraction;
-        best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
-      }
-      return reach;
-    });
-    return best;
-  }
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1)) const;
 
   /// f(body) for every body whose shape's bounding box overlaps `box`.
   template <class F>
@@ -723,6 +563,13 @@ class world {
                            id.index);
     return r;
   }
+
+  /// create_body's part that does not depend on the shape, defined outside
+  /// the class: the record of a body made from `def`, its centre of mass
+  /// at `center` in shape space; refuses non-finite or impossible velocities.
+  body_record prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const;
+  /// Adds the record made by prepare_body, with its shape, and its proxy.
+  body_id insert_body(const body_record& record);
 
   template <class Shape>
   static rigid_body<T> make_body(const body_def<T>& def, const Shape& shape) {
@@ -1509,6 +1356,226 @@ class world {
   std::uint32_t failed_ = no_object;
 };
 
+// ---- the members defined outside the class ----
+// They are not inline, so a translation unit that sees an explicit
+// instantiation declaration of the world (IMPULSE_DECLARE_WORLD, or the
+// default configs' under IMPULSE_EXTERN_TEMPLATES: world/extern_templates.hpp)
+// neither instantiates nor compiles them, nor the pipeline they call: it
+// only parses. Those kept in the class are short accessors.
+
+template <class Config>
+world<Config>::world(const world_settings<T>& settings) {
+  settings.validate();
+  state_.settings = settings;
+}
+template <class Config>
+world<Config>::world(const world&) = default;
+template <class Config>
+world<Config>::world(world&&) noexcept = default;
+template <class Config>
+world<Config>& world<Config>::operator=(const world&) = default;
+template <class Config>
+world<Config>& world<Config>::operator=(world&&) noexcept = default;
+template <class Config>
+world<Config>::~world() = default;
+
+template <class Config>
+auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const
+    -> body_record {
+  if (def.type == body_type::dynamic) body.position = apply(def.pose, center);
+  if (!is_finite(def.linear_velocity) || !is_finite(def.angular_velocity))
+    detail::report_error(error_code::non_finite, "world::create_body: velocity is not finite");
+  if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
+    detail::report_error(error_code::invalid_parameter, "world::create_body: a static body cannot move");
+  if (def.type != body_type::static_body) body.set_velocity(def.linear_velocity, def.angular_velocity);
+  body_record record{};
+  record.body = body;
+  record.material = def.material;
+  record.center = center;
+  record.awake = def.awake || def.type != body_type::dynamic;
+  record.user_data = def.user_data;
+  record.bullet = def.bullet;
+  record.previous = body.pose();
+  return record;
+}
+
+template <class Config>
+body_id world<Config>::insert_body(const body_record& record) {
+  const body_id id = state_.bodies.insert(record);
+  body_record& r = state_.bodies[id];
+  r.proxy = state_.broad.create(proxy_box(r), pack(id));
+  return id;
+}
+
+template <class Config>
+void world<Config>::destroy_body(body_id id) {
+  require(id, "world::destroy_body: no such body (destroyed already?)");
+  doomed_joints_.clear();
+  for (std::size_t k = 0; k < state_.joints.size(); ++k) {
+    const joint_record& j = state_.joints.values()[k];
+    if (j.a == id || j.b == id) doomed_joints_.push_back(state_.joints.ids()[k]);
+  }
+  for (const joint_id j : doomed_joints_) destroy_joint(j);
+  std::erase_if(state_.contacts, [&](const contact_record& c) {
+    if (c.a != id && c.b != id) return false;
+    if (c.touching) state_.ended.push_back({c.a, c.b});
+    const body_id other = c.a == id ? c.b : c.a;
+    wake_record(state_.bodies[other]);
+    return true;
+  });
+  body_record& r = state_.bodies[id];
+  state_.broad.destroy(r.proxy);
+  state_.shape_store.remove(r.shape);
+  state_.bodies.erase(id);
+}
+
+template <class Config>
+void world<Config>::set_pose(body_id id, const transform<T>& pose) {
+  require(id, "world::set_pose: no such body");
+  body_record& r = state_.bodies[id];
+  rigid_body<T> moved = r.body;
+  moved.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
+  r.body = moved;
+  r.previous = moved.pose();
+  state_.broad.move(r.proxy, proxy_box(r));
+  wake_record(r);
+}
+
+template <class Config>
+void world<Config>::set_target_pose(body_id id, const transform<T>& target, T dt) {
+  require(id, "world::set_target_pose: no such body");
+  body_record& r = state_.bodies[id];
+  if (r.body.type != body_type::kinematic)
+    detail::report_error(error_code::invalid_parameter, "world::set_target_pose: the body is not kinematic",
+                         id.index);
+  if (!std::isfinite(dt) || !(dt > T(0)))
+    detail::report_error(error_code::invalid_parameter, "world::set_target_pose: dt must be positive and finite");
+  if (!is_finite(target.position) || !is_finite(target.rotation))
+    detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
+  if (!is_normalized(target.rotation))
+    detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
+  const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
+  r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
+  if (r.target == target_state::none) state_.targeted.push_back(id);
+  r.target = target_state::armed;
+}
+
+template <class Config>
+joint_id world<Config>::create_joint(const joint_def<T>& def) {
+  require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
+  require(def.body_b, "world::create_joint: body_b does not exist (destroyed?)");
+  if (def.body_a == def.body_b)
+    detail::report_error(error_code::invalid_parameter, "world::create_joint: a joint needs two different bodies",
+                         def.body_a.index);
+  def.validate();
+  body_record& ra = state_.bodies[def.body_a];
+  body_record& rb = state_.bodies[def.body_b];
+  if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic)
+    detail::report_error(error_code::invalid_parameter, "world::create_joint: at least one body must be dynamic",
+                         def.body_a.index);
+
+  // Nothing below can fail on the input.
+  const rigid_body<T>& a = ra.body;
+  const rigid_body<T>& b = rb.body;
+  const bool two_ends = def.type == joint_type::distance;
+  joint_constraint<T> c;
+  c.type = def.type;
+  c.local_anchor_a = inverse_rotate(a.orientation, def.anchor_a - a.position);
+  c.local_anchor_b = inverse_rotate(b.orientation, (two_ends ? def.anchor_b : def.anchor_a) - b.position);
+  vec3<T> axis = def.axis;
+  if (two_ends) axis = def.anchor_b - def.anchor_a;
+  c.local_axis_a = length_squared(axis) > T(0) ? inverse_rotate(a.orientation, normalize(axis)) : vec3<T>{1, 0, 0};
+  c.reference = conjugate(a.orientation) * b.orientation;
+  c.enable_limit = def.enable_limit, c.lower = def.lower, c.upper = def.upper;
+  c.enable_motor = def.enable_motor, c.motor_speed = def.motor_speed, c.max_motor_force = def.max_motor_force;
+  c.length = def.length, c.spring_hertz = def.spring_hertz, c.spring_damping_ratio = def.spring_damping_ratio;
+  joint_record record{};
+  record.constraint = c;
+  record.def = def;
+  record.a = def.body_a, record.b = def.body_b;
+  if (!def.collide_connected) {
+    const std::uint64_t key = pair_key(def.body_a, def.body_b);
+    state_.joined.insert(std::upper_bound(state_.joined.begin(), state_.joined.end(), key), key);
+    end_contacts_between(def.body_a, def.body_b);
+  }
+  wake_record(ra);
+  wake_record(rb);
+  return state_.joints.insert(record);
+}
+
+template <class Config>
+void world<Config>::destroy_joint(joint_id id) {
+  require(id, "world::destroy_joint: no such joint (destroyed already?)");
+  const joint_record& r = state_.joints[id];
+  if (!r.broken) unjoin(r);
+  wake_record(state_.bodies[r.a]);
+  wake_record(state_.bodies[r.b]);
+  state_.joints.erase(id);
+}
+
+template <class Config>
+void world<Config>::step(T dt) {
+  if (!std::isfinite(dt) || !(dt > T(0)))
+    detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
+  state_.begun.clear();
+  state_.ended.clear();
+  state_.broken.clear();
+  expire_targets();
+  failed_ = no_object;
+  update_broad_phase();
+  update_contacts();
+  if constexpr (sleeping) wake_islands();
+  solve(dt);
+  if constexpr (ccd) continuous();
+  if constexpr (sleeping) update_sleep(dt);
+  state_.time += dt;
+  state_.last_dt = dt;
+  ++state_.step_count;
+  if (failed_ != no_object)
+    detail::report_error(error_code::non_finite,
+                         "world::step: a body's state became non-finite; it was left where it was", failed_);
+}
+
+template <class Config>
+auto world<Config>::advance(T frame_dt) -> T {
+  if (!std::isfinite(frame_dt) || frame_dt < T(0))
+    detail::report_error(error_code::invalid_parameter, "world::advance: frame_dt must be finite and >= 0");
+  const T h = state_.settings.fixed_dt;
+  state_.accumulator += frame_dt;
+  int steps = 0;
+  // A step is due once the time left is within rounding of h: 2.5 steps
+  // and then 0.5 more make three, though the sum falls an ulp short.
+  const T due = h * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
+  while (state_.accumulator >= due && steps < state_.settings.max_steps_per_advance) {
+    step(h);
+    state_.accumulator = std::max(state_.accumulator - h, T(0));
+    ++steps;
+  }
+  // Past the cap the remaining time is dropped: the simulation falls
+  // behind the clock rather than trying to catch up ever harder.
+  if (state_.accumulator >= due) state_.accumulator = std::fmod(state_.accumulator, h);
+  return state_.accumulator / h;
+}
+
+template <class Config>
+auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
+  std::optional<world_ray_hit<T>> best;
+  T reach = max_fraction;
+  state_.broad.ray_cast(r, max_fraction, [&](proxy_id proxy, T) {
+    const body_id id = unpack(state_.broad.user_data(proxy));
+    const body_record& rec = state_.bodies[id];
+    const transform<T> pose = shape_pose_of(rec);
+    const narrowphase::ray_hit<T> hit =
+        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
+    if (hit.hit && hit.fraction <= reach) {
+      reach = hit.fraction;
+      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
+    }
+    return reach;
+  });
+  return best;
+}
+
 /// A world's whole state, to restore it later exactly.
 template <class Config>
 class world_snapshot {
@@ -1522,3 +1589,8 @@ class world_snapshot {
 };
 
 }  // namespace impulse
+
+#if IMPULSE_EXTERN_TEMPLATES
+IMPULSE_DECLARE_WORLD(impulse::default_config);
+IMPULSE_DECLARE_WORLD(impulse::default_double_config);
+#endif

@@ -1,0 +1,22 @@
+# Checks that a translation unit built with IMPULSE_EXTERN_TEMPLATES=1 only
+# parses the world: its object file defines none of the pipeline's members
+# (step, advance, the narrow phase, the solver), which the declaration
+# leaves to impulse/instantiate.hpp's file. A member moved back inside its
+# class (inline, so compiled wherever it is used) would show up here.
+#   cmake -DNM=nm -DOBJECTS="a.o;b.o" -P extern_templates_check.cmake
+execute_process(COMMAND ${NM} -C --defined-only ${OBJECTS} OUTPUT_VARIABLE symbols RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "nm failed on ${OBJECTS}")
+endif()
+set(found)
+foreach(member IN ITEMS step advance update_contacts collide solve continuous update_sleep create_joint ray_cast)
+  if(symbols MATCHES "impulse::world<[^\n]*>::${member}\\(")
+    list(APPEND found ${member})
+  endif()
+endforeach()
+if(found)
+  message(FATAL_ERROR "compiled in a file that should only parse the world: world::${found}")
+endif()
+string(REGEX MATCHALL "\n[0-9a-f]* [TW] " defined "${symbols}")
+list(LENGTH defined count)
+message(STATUS "no pipeline member compiled; ${count} small functions defined (create_body's shape part, math)")
