@@ -16,11 +16,6 @@ import csv
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")  # files only: no display on a build machine
-import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
-
 STYLE = {  # colour, line style
     "brute_force": ("black", ":"),
     "sweep_and_prune": ("tab:blue", "-"),
@@ -33,7 +28,9 @@ STYLE = {  # colour, line style
 DISTRIBUTIONS = ["uniform", "clustered", "falling_pile"]
 
 
-def main(csv_path, png_path):
+def read(csv_path):
+    """({(algorithm, distribution): {n: us_per_step}}, {(distribution, n, algorithm): pairs},
+    the algorithms present in STYLE's order)."""
     us = defaultdict(dict)  # (algorithm, distribution) -> {n: us_per_step}
     pairs = {}
     with open(csv_path, newline="") as f:
@@ -42,6 +39,14 @@ def main(csv_path, png_path):
             us[key][int(row["n"])] = float(row["us_per_step"])
             pairs[(row["distribution"], int(row["n"]), row["algorithm"])] = int(row["pairs"])
     algorithms = [a for a in STYLE if any(k[0] == a for k in us)]
+    return us, pairs, algorithms
+
+
+def plot(us, algorithms, png_path):
+    import matplotlib  # here, so that the tables need no matplotlib (tools/bench_docs.py)
+
+    matplotlib.use("Agg")  # files only: no display on a build machine
+    import matplotlib.pyplot as plt  # after choosing the backend
 
     fig, axes = plt.subplots(1, len(DISTRIBUTIONS), figsize=(15, 4.6), sharey=True)
     for ax, d in zip(axes, DISTRIBUTIONS):
@@ -59,28 +64,38 @@ def main(csv_path, png_path):
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)
 
+
+def distribution_table(us, pairs, algorithms, d):
+    """Lines of the table of distribution d: ms per step for each N and broad phase."""
     sizes = sorted({n for series in us.values() for n in series})
-    for d in DISTRIBUTIONS:
-        present = [a for a in algorithms if (a, d) in us]
-        print(f"\n**{d.replace('_', ' ')}** (ms per step; pairs as reported at the end)\n")
-        print("| N | " + " | ".join(present) + " | exact pairs |")
-        print("| ---: | " + " | ".join("---:" for _ in present) + " | ---: |")
-        for n in sizes:
-            cells = [f"{us[(a, d)][n] / 1000:.3g}" if n in us[(a, d)] else "–" for a in present]
-            exact = pairs.get((d, n, "sweep_and_prune"), "")
-            print(f"| {n} | " + " | ".join(cells) + f" | {exact} |")
+    present = [a for a in algorithms if (a, d) in us]
+    lines = ["| N | " + " | ".join(present) + " | exact pairs |",
+             "| ---: | " + " | ".join("---:" for _ in present) + " | ---: |"]
+    for n in sizes:
+        cells = [f"{us[(a, d)][n] / 1000:.3g}" if n in us[(a, d)] else "–" for a in present]
+        exact = pairs.get((d, n, "sweep_and_prune"), "")
+        lines.append(f"| {n} | " + " | ".join(cells) + f" | {exact} |")
+    return lines
 
+
+def speedup_list(us, algorithms):
+    """Lines of the list of speed-ups over brute force at N = 10 000 uniform; None without brute force."""
     brute = us.get(("brute_force", "uniform"), {}).get(10000)
-    if brute:
-        print("\n**speed-up over brute force, N = 10 000 uniform**\n")
-        for a in algorithms:
-            t = us.get((a, "uniform"), {}).get(10000)
-            if t and a != "brute_force":
-                print(f"- {a}: {brute / t:.0f}×")
+    if not brute:
+        return None
+    lines = []
+    for a in algorithms:
+        t = us.get((a, "uniform"), {}).get(10000)
+        if t and a != "brute_force":
+            lines.append(f"- {a}: {brute / t:.0f}×")
+    return lines
 
-    print("\n**our best against Bullet's best, N >= 10 000** (ratio < 1: ours is faster)\n")
-    print("| distribution | N | our best | Bullet's best | ratio |")
-    print("| --- | ---: | --- | --- | ---: |")
+
+def versus_bullet_table(us, algorithms):
+    """Lines of the table of our best against Bullet's best at N >= 10 000."""
+    sizes = sorted({n for series in us.values() for n in series})
+    lines = ["| distribution | N | our best | Bullet's best | ratio |",
+             "| --- | ---: | --- | --- | ---: |"]
     for d in DISTRIBUTIONS:
         for n in sizes:
             if n < 10000:
@@ -90,7 +105,26 @@ def main(csv_path, png_path):
             theirs = [(us[(a, d)][n], a) for a in algorithms if a.startswith("bullet") and n in us.get((a, d), {})]
             if ours and theirs:
                 o, t = min(ours), min(theirs)
-                print(f"| {d} | {n} | {o[1]} {o[0] / 1000:.3g} ms | {t[1]} {t[0] / 1000:.3g} ms | {o[0] / t[0]:.2f} |")
+                lines.append(f"| {d} | {n} | {o[1]} {o[0] / 1000:.3g} ms | {t[1]} {t[0] / 1000:.3g} ms "
+                             f"| {o[0] / t[0]:.2f} |")
+    return lines
+
+
+def main(csv_path, png_path):
+    us, pairs, algorithms = read(csv_path)
+    plot(us, algorithms, png_path)
+
+    for d in DISTRIBUTIONS:
+        print(f"\n**{d.replace('_', ' ')}** (ms per step; pairs as reported at the end)\n")
+        print("\n".join(distribution_table(us, pairs, algorithms, d)))
+
+    speedups = speedup_list(us, algorithms)
+    if speedups is not None:
+        print("\n**speed-up over brute force, N = 10 000 uniform**\n")
+        print("\n".join(speedups))
+
+    print("\n**our best against Bullet's best, N >= 10 000** (ratio < 1: ours is faster)\n")
+    print("\n".join(versus_bullet_table(us, algorithms)))
 
 
 if __name__ == "__main__":

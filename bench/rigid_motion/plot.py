@@ -24,12 +24,6 @@ import statistics
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")  # files only: no display on a build machine
-import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
-from matplotlib.lines import Line2D  # noqa: E402
-
 INTEGRATORS = {  # colour, marker, stages
     "euler": ("tab:red", "o", 1),
     "symplectic_euler": ("tab:purple", "x", 1),
@@ -67,6 +61,12 @@ def read_errors(path):
 
 
 def plot(series, out):
+    import matplotlib  # here, so that the tables need no matplotlib (tools/bench_docs.py)
+
+    matplotlib.use("Agg")  # files only: no display on a build machine
+    import matplotlib.pyplot as plt  # after choosing the backend
+    from matplotlib.lines import Line2D
+
     fig, axes = plt.subplots(1, len(ERRORS), figsize=(14, 6.2))
     for ax, (column, (title, label)) in zip(axes, ERRORS.items()):
         for integrator, (colour, marker, _) in INTEGRATORS.items():
@@ -97,38 +97,61 @@ def plot(series, out):
     fig.savefig(out, dpi=110)
 
 
+def markdown_lines(header, rows, labels=1, align="---:"):
+    """The lines of a Markdown table; the first `labels` columns are left-aligned."""
+    return (["| " + " | ".join(header) + " |",
+             "|" + " --- |" * labels + f" {align} |" * (len(header) - labels)]
+            + ["| " + " | ".join(row) + " |" for row in rows])
+
+
 def markdown_table(header, rows, labels=1, align="---:"):
-    """A Markdown table; the first `labels` columns are left-aligned."""
-    print("| " + " | ".join(header) + " |")
-    print("|" + " --- |" * labels + f" {align} |" * (len(header) - labels))
-    for row in rows:
-        print("| " + " | ".join(row) + " |")
+    """Prints a Markdown table; the first `labels` columns are left-aligned."""
+    print("\n".join(markdown_lines(header, rows, labels, align)))
 
 
-def throughput_tables(rows):
+def throughput_columns(rows):
+    """The (scalar, N) columns of the throughput tables, their header, and the rows by key."""
     sizes = sorted({int(r["bodies"]) for r in rows})
     columns = [(scalar, n) for scalar in ("float", "double") for n in sizes]
     header = ["integrator"] + [f"{s} N = {n:,}".replace(",", " ") for s, n in columns]
     cell = {(r["scene"], r["integrator"], r["scalar"], int(r["bodies"])): r for r in rows}
+    return columns, header, cell
 
-    def throughput(scene, integrator, scalar, n):
+
+def throughput_table(rows, scene):
+    """Lines of the table of one scene: M body-steps/s and the cost relative to BASE."""
+    columns, header, cell = throughput_columns(rows)
+
+    def throughput(integrator, scalar, n):
         r = cell.get((scene, integrator, scalar, n))
         return "–" if r is None else f"{float(r['mbody_steps_per_s']):.2f} ({float(r['cost_vs_symplectic_euler']):.2f}×)"
+
+    return markdown_lines(header, [[i] + [throughput(i, s, n) for s, n in columns] for i in INTEGRATORS])
+
+
+def coupled_over_independent_table(rows):
+    """Lines of the table of the coupled scene's time per body-step over the independent one's."""
+    columns, header, cell = throughput_columns(rows)
 
     def coupled_over_independent(integrator, scalar, n):
         r = cell.get(("coupled", integrator, scalar, n))
         return "–" if r is None else f"{float(r['cost_vs_independent']):.2f}×"
 
+    return markdown_lines(header, [[i] + [coupled_over_independent(i, s, n) for s, n in columns] for i in INTEGRATORS])
+
+
+def throughput_tables(rows):
     for scene in dict.fromkeys(r["scene"] for r in rows):
         print(f"\n**{scene}**: M body-steps/s (median of 7 runs); in brackets, the time per step "
               f"relative to {BASE} in the same repeats (median of 7 ratios)\n")
-        markdown_table(header, [[i] + [throughput(scene, i, s, n) for s, n in columns] for i in INTEGRATORS])
+        print("\n".join(throughput_table(rows, scene)))
     print("\nTime per body-step on the coupled scene relative to the independent one, same integrator "
           "(median of 7 ratios within a repeat)\n")
-    markdown_table(header, [[i] + [coupled_over_independent(i, s, n) for s, n in columns] for i in INTEGRATORS])
+    print("\n".join(coupled_over_independent_table(rows)))
 
 
-def error_tables(series):
+def cost_table(series):
+    """Lines of the table of free rotation's cost per body-step, per scalar and integrator."""
     by_dt = {(key, r["dt"]): r["ns_per_body_step"] for key, rows in series.items() for r in rows}
     cost = {key: statistics.median(r["ns_per_body_step"] for r in rows) for key, rows in series.items()}
 
@@ -136,6 +159,12 @@ def error_tables(series):
         key = (integrator, scalar)
         ratio = statistics.median(by_dt[(key, r["dt"])] / by_dt[((BASE, scalar), r["dt"])] for r in series[key])
         return f"{cost[key]:.0f} ({ratio:.2f}×)"
+
+    return markdown_lines(["scalar", *INTEGRATORS], [[s] + [per_step(i, s) for i in INTEGRATORS] for s in SCALARS])
+
+
+def error_tables(series):
+    cost = {key: statistics.median(r["ns_per_body_step"] for r in rows) for key, rows in series.items()}
 
     def largest_step(column, integrator, scalar):
         key = (integrator, scalar)
@@ -151,7 +180,7 @@ def error_tables(series):
 
     print("\nFree rotation, cost per body-step: ns (median over the time steps of the medians of 7 runs); "
           f"in brackets, relative to {BASE} (median over the time steps of the ratio at each)\n")
-    markdown_table(["scalar", *INTEGRATORS], [[s] + [per_step(i, s) for i in INTEGRATORS] for s in SCALARS])
+    print("\n".join(cost_table(series)))
     for column in ERRORS:
         print(f"\n{column} ≤ {THRESHOLD:g}: largest time step, s (steps to 10 s; cost to 10 s in µs per body "
               "= median ns per step × steps)\n")

@@ -21,12 +21,6 @@ import statistics
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")  # files only: no display on a build machine
-import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
-from matplotlib.lines import Line2D  # noqa: E402
-
 PROBLEMS = {
     "oscillator": "harmonic oscillator  x'' = -4x",
     "projectile_drag": "projectile with linear drag  v' = g - 0.7v",
@@ -59,6 +53,12 @@ def read(path):
 
 
 def plot(series, out):
+    import matplotlib  # here, so that the tables need no matplotlib (tools/bench_docs.py)
+
+    matplotlib.use("Agg")  # files only: no display on a build machine
+    import matplotlib.pyplot as plt  # after choosing the backend
+    from matplotlib.lines import Line2D
+
     fig, axes = plt.subplots(1, len(PROBLEMS), figsize=(17, 6), sharey=True)
     for ax, (problem, title) in zip(axes, PROBLEMS.items()):
         for integrator, (colour, _) in INTEGRATORS.items():
