@@ -84,8 +84,9 @@ std::vector<impulse::body_id> add_pile(World& w) {
 /// check the same assertions over the shorter run. Those builds are there
 /// for what assertions and sanitizers catch, and the first seconds of a
 /// scene reach the same code as the last; its stability over the whole run
-/// is the optimised builds' to show, where it costs a fifth of the time.
-/// Test names give the full length.
+/// is the optimised builds' to show, which run it about 18 times faster
+/// (the 20 s soft_step pyramid: 31 s at -O0, 1.7 s at -O3). Test names give
+/// the full length.
 constexpr int long_run(int steps) {
 #ifdef NDEBUG
   return steps;
