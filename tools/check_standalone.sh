@@ -25,8 +25,8 @@ patterns=(
 reasons=(
   'a path into a directory beside the repository'
   'design notes kept outside the repository'
-  'DESIGN.md is not in the repository: cite docs/architecture.md'
-  'STYLE.md is not in the repository: cite docs/architecture.md'
+  'a design note kept outside the repository: cite docs/architecture.md'
+  'a style guide kept outside the repository: cite docs/architecture.md'
   'an issue number: state the requirement itself'
   'an issue outside the repository: state the requirement itself'
   'an absolute path on the machine the file was written on'
