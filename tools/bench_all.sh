@@ -30,7 +30,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
-steps_all=(compile_time particles speed_vs_error rigid_motion broadphase narrowphase joints scenes)
+steps_all=(compile_time particles speed_vs_error rigid_motion broadphase narrowphase joints scenes contact_memory)
 declare -A about=(
   [compile_time]="compile time of the headers (bench/compile_time/compile_time.py)"
   [particles]="particle-steps per second (bench/particles)"
@@ -40,6 +40,7 @@ declare -A about=(
   [narrowphase]="pair tests against libccd and Bullet (bench/narrowphase)"
   [joints]="joint grid and ragdoll pile against Bullet (bench/joints)"
   [scenes]="rigid-body scenes on impulse, Bullet and ODE (bench/scenes)"
+  [contact_memory]="bytes per contact pair against Bullet (bench/contact_memory)"
 )
 declare -A targets=(
   [compile_time]=""
@@ -50,6 +51,7 @@ declare -A targets=(
   [narrowphase]="narrowphase"
   [joints]="joints"
   [scenes]="scenes"
+  [contact_memory]="contact_memory"
 )
 
 usage() {
@@ -303,6 +305,13 @@ step_joints() {
   "${docs_tool[@]}" joints-results "$work/joints.txt" --prov "$prov" --date "$(date +%F)" >"$work/results.txt"
   place "$work/results.txt" bench/joints/results.txt
   update joints
+}
+
+step_contact_memory() {
+  # Counted allocations: the same on every run of the same build.
+  "$bin/contact_memory/contact_memory" "${quick_flag[@]}" >"$work/contact_memory.md" 2>>"$log"
+  cat "$work/contact_memory.md" >>"$log"
+  update contact_memory --input "contact_memory=$work/contact_memory.md"
 }
 
 step_scenes() {

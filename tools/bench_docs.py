@@ -146,6 +146,7 @@ PEERS = {  # step -> the peer engines its programs compare with
     "narrowphase": ["libccd", "bullet"],
     "scenes": ["bullet", "ode"],
     "joints": ["bullet"],
+    "contact_memory": ["bullet"],
 }
 PEER_NAMES = {"bullet": "Bullet", "ode": "ODE", "libccd": "libccd"}
 
@@ -267,15 +268,21 @@ def table(header, rows, align):
 # ---- compile time ------------------------------------------------------------------
 
 
-def render_compile_time(ctx):
-    path = ctx.inputs.get("compile_time")
-    if path is None:
-        raise Failure("block compile_time needs --input compile_time=FILE "
-                      "(the output of bench/compile_time/compile_time.py)")
-    lines = pathlib.Path(path).read_text(encoding="utf-8").strip("\n").split("\n")
-    if not any(line.startswith("|") for line in lines):
-        raise Failure(f"{path}: no table in the output of compile_time.py")
-    return lines
+def render_program_table(name, program):
+    """A block that is the Markdown table a program printed, given as --input NAME=FILE."""
+    def render(ctx):
+        path = ctx.inputs.get(name)
+        if path is None:
+            raise Failure(f"block {name} needs --input {name}=FILE (the output of {program})")
+        lines = pathlib.Path(path).read_text(encoding="utf-8").strip("\n").split("\n")
+        if not any(line.startswith("|") for line in lines):
+            raise Failure(f"{path}: no table in the output of {program}")
+        return lines
+    return render
+
+
+render_compile_time = render_program_table("compile_time", "bench/compile_time/compile_time.py")
+render_contact_memory = render_program_table("contact_memory", "bench/contact_memory")
 
 
 # ---- particles -----------------------------------------------------------------------
@@ -975,6 +982,7 @@ class Block:
 
 BLOCKS = [
     Block("compile_time", "docs/performance.md", "compile_time", render_compile_time),
+    Block("contact_memory", "docs/world.md", "contact_memory", render_contact_memory),
     Block("performance_broadphase", "docs/performance.md", "broadphase", render_performance_broadphase),
     Block("performance_narrowphase", "docs/performance.md", "narrowphase", render_performance_narrowphase),
     Block("performance_narrowphase_ground", "docs/performance.md", "narrowphase",
@@ -1015,6 +1023,7 @@ STEPS = {  # step -> its output files (beside its blocks), in the order tools/be
     "narrowphase": ["docs/narrowphase_bench.csv"],
     "joints": ["bench/joints/results.txt"],
     "scenes": ["bench/scenes/results.csv", "bench/scenes/peers_results.csv"],
+    "contact_memory": [],
 }
 
 

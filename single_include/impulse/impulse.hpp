@@ -396,11 +396,12 @@ template <scalar_type T> T length(const vec3<T>& a) noexcept { return std::sqrt(
 template <scalar_type T> T distance(const vec3<T>& a, const vec3<T>& b) noexcept { return length(a - b); }
 
 /// Unit vector along a. Precondition: a is not (nearly) zero; use
-/// normalize_or when it may be.
+/// normalize_or when it may be. NaN in gives NaN out, as for quaternions
+/// (quat.hpp, normalize): the world finds it.
 template <scalar_type T>
 vec3<T> normalize(const vec3<T>& a) noexcept {
   const T l2 = length_squared(a);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  IMPULSE_ASSERT(!(l2 <= scalar_traits<T>::zero_length_squared));
   return a * (T(1) / std::sqrt(l2));
 }
 
@@ -651,11 +652,14 @@ constexpr T dot(const quat<T>& a, const quat<T>& b) noexcept {
 template <scalar_type T> constexpr T length_squared(const quat<T>& q) noexcept { return dot(q, q); }
 template <scalar_type T> T length(const quat<T>& q) noexcept { return std::sqrt(dot(q, q)); }
 
-/// q / |q|. Precondition: q is not (nearly) zero.
+/// q / |q|. Precondition: q is not (nearly) zero. A NaN or infinite q
+/// gives NaN rather than failing the assertion: a solve that diverged on
+/// hostile input is the world's to find and hold (world::step), in a
+/// debug build as in a release one.
 template <scalar_type T>
 quat<T> normalize(const quat<T>& q) noexcept {
   const T l2 = length_squared(q);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  IMPULSE_ASSERT(!(l2 <= scalar_traits<T>::zero_length_squared));
   return q * (T(1) / std::sqrt(l2));
 }
 
@@ -1096,7 +1100,8 @@ template <scalar_type T>
 // slot index and the slot's generation: removing an object bumps its slot's
 // generation, so a stale id is recognised and refused instead of silently
 // naming whatever took the slot next. Removal moves the last element into
-// the hole, so dense positions change; ids do not.
+// the hole, so dense positions change; ids do not. A slot is retired
+// before its generation wraps, so a destroyed id never names a live object.
 
 #include <vector>
 
@@ -1127,6 +1132,8 @@ class slot_map {
   Id insert(V value) {
     std::uint32_t slot;
     if (free_.empty()) {
+      if (slots_.size() >= std::size_t(free_slot))
+        detail::report_error(error_code::capacity_exceeded, "slot_map: every 32-bit slot index is in use or retired");
       slot = static_cast<std::uint32_t>(slots_.size());
       slots_.push_back({free_slot, 0});
     } else {
@@ -1149,8 +1156,13 @@ class slot_map {
     }
     values_.pop_back();
     ids_.pop_back();
-    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
-    free_.push_back(id.index);
+    // A slot whose generation would wrap is retired rather than reused:
+    // after 2³² reuses its next id would equal its first, and a stale id
+    // kept from then would name the new object. It costs one slot per 2³²
+    // removals of the same slot.
+    const generation_type next = generation_type(slots_[id.index].generation + 1);
+    slots_[id.index] = {free_slot, next};
+    if (next != generation_type(0)) free_.push_back(id.index);
   }
 
   /// Position of a live id in the dense arrays.
@@ -1165,9 +1177,12 @@ class slot_map {
 
  private:
   static constexpr std::uint32_t free_slot = 0xffffffffu;
+  /// The id's generation type: 32 bits for impulse's ids; a test's id with
+  /// a narrower one wraps sooner.
+  using generation_type = decltype(Id{}.generation);
   struct slot {
     std::uint32_t dense;
-    std::uint32_t generation;
+    generation_type generation;
   };
   std::vector<V> values_;
   std::vector<Id> ids_;
@@ -4811,6 +4826,8 @@ class aligned_array {
   aligned_array() noexcept = default;
   explicit aligned_array(std::size_t size) : size_(size) {
     if (size == 0) return;
+    // size · sizeof(T) would wrap to a small block that the loop below overruns.
+    if (size > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     data_ = static_cast<T*>(::operator new(size * sizeof(T), std::align_val_t{simd_alignment}));
     for (std::size_t i = 0; i < size; ++i) ::new (data_ + i) T();
   }
@@ -5569,6 +5586,14 @@ struct rigid_body {
     if (!symmetric || !positive || !physical || !inverse)
       detail::report_error(error_code::degenerate_shape,
                            "rigid_body: inertia must be symmetric positive definite (a real solid's)");
+    // A mass or moment so small (a denormal) that its inverse overflows
+    // would make the first push infinite.
+    bool invertible = std::isfinite(T(1) / p.mass);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) invertible = invertible && std::isfinite((*inverse)(r, c));
+    if (!invertible)
+      detail::report_error(error_code::non_positive_mass,
+                           "rigid_body: mass or inertia too small: its inverse is not finite");
     type = body_type::dynamic;
     mass = p.mass;
     inverse_mass = T(1) / p.mass;
@@ -5618,26 +5643,41 @@ struct rigid_body {
       kinematic_angular_velocity = omega;
       return;
     }
-    linear_momentum = v * mass;
-    angular_momentum = inertia_world() * omega;
+    const vec3<T> linear = v * mass, angular = inertia_world() * omega;
+    // Finite velocities can still give infinite momenta (1e35 m/s on
+    // 8 000 kg, in float): refused here, where the caller can be told.
+    if (!is_finite(linear) || !is_finite(angular))
+      detail::report_error(error_code::non_finite, "rigid_body: the velocity overflows the body's momentum");
+    linear_momentum = linear;
+    angular_momentum = angular;
   }
 
   // ---- loads ----
+  // Each load is checked, then added only if the sums stay finite: two
+  // finite forces of 3e38 N add to infinity in float, which the next step
+  // would find too late to say which call caused it.
 
   void apply_force(const vec3<T>& f) {
     require_finite(f, "rigid_body: force is not finite");
-    force += f;
+    const vec3<T> total = force + f;
+    require_finite(total, "rigid_body: the force overflows the forces already applied this step");
+    force = total;
   }
   void apply_torque(const vec3<T>& t) {
     require_finite(t, "rigid_body: torque is not finite");
-    torque += t;
+    const vec3<T> total = torque + t;
+    require_finite(total, "rigid_body: the torque overflows the torques already applied this step");
+    torque = total;
   }
   /// A force at world point p: the force, and its moment (p − x) × f.
   void apply_force_at(const vec3<T>& f, const vec3<T>& p) {
     require_finite(f, "rigid_body: force is not finite");
     require_finite(p, "rigid_body: point is not finite");
-    force += f;
-    torque += cross(p - position, f);
+    const vec3<T> total_force = force + f, total_torque = torque + cross(p - position, f);
+    require_finite(total_force, "rigid_body: the force overflows the forces already applied this step");
+    require_finite(total_torque, "rigid_body: the force's moment about the centre of mass overflows");
+    force = total_force;
+    torque = total_torque;
   }
   /// An impulse j at world point p changes the momenta at once: ΔP = j,
   /// ΔL = (p − x) × j. Static and kinematic bodies are not moved by it.
@@ -5645,8 +5685,11 @@ struct rigid_body {
     require_finite(j, "rigid_body: impulse is not finite");
     require_finite(p, "rigid_body: point is not finite");
     if (type != body_type::dynamic) return;
-    linear_momentum += j;
-    angular_momentum += cross(p - position, j);
+    const vec3<T> linear = linear_momentum + j, angular = angular_momentum + cross(p - position, j);
+    require_finite(linear, "rigid_body: the impulse overflows the body's momentum");
+    require_finite(angular, "rigid_body: the impulse's moment overflows the body's angular momentum");
+    linear_momentum = linear;
+    angular_momentum = angular;
   }
   void clear_loads() noexcept { force = {}, torque = {}; }
 
@@ -6967,8 +7010,19 @@ struct position_nudge {
 /// start of the step cannot: a body swinging about a pivot leaves it along
 /// the tangent by v²·dt²/(2r) a step (2.7 mm at 4.4 m/s on a 1 m
 /// pendulum at 60 Hz; a split-impulse pass at 0.2 left it 11.7 mm apart).
+///
+/// A tree joint's rows that hold are its tree's Newton step's
+/// (joint_tree.hpp, project_joints), as they are its exact solve's in
+/// solve_joint: only its limit is pushed back here. Once these passes moved
+/// a tree's ball joints too, each by `fraction` of its error as if alone,
+/// between the Newton steps, undoing part of each: the 100-link chain
+/// tapering from 1000 kg at the pivot to 1 kg (tests/faults/test_chains.cpp;
+/// sequential_impulse, float) had its projection cut off at the step limit
+/// in 9 steps rather than 1, and opened 113 mm rather than 0.09 mm.
 template <scalar_type T>
 void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T fraction, bool limits = true) noexcept {
+  const bool limited = (j.type == joint_type::hinge || j.type == joint_type::slider) && j.enable_limit && limits;
+  if (j.in_tree && !limited) return;
   solver_body<T>& a = bodies[j.body_a];
   solver_body<T>& b = bodies[j.body_b];
   prepare_joint(std::span<const solver_body<T>>(bodies), j);
@@ -6978,23 +7032,22 @@ void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T f
   constexpr T unbounded = std::numeric_limits<T>::infinity();
   // Each row is solved from no motion (v = 0 in the nudge) for an impulse
   // that removes `fraction` of its error.
-  if (j.type == joint_type::hinge || j.type == joint_type::slider) {
-    if (j.enable_limit && limits) {
-      const T to_lower = j.position - j.lower, to_upper = j.upper - j.position;
-      T pushed = T(0);
-      if (to_lower < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_lower, rigid, T(0), unbounded);
-      pushed = T(0);
-      if (to_upper < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_upper, rigid, T(0), unbounded, T(-1));
-    }
-    if (j.in_tree) {
-      n.move(a, b);
-      return;
-    }
+  if (limited) {
+    const T to_lower = j.position - j.lower, to_upper = j.upper - j.position;
+    T pushed = T(0);
+    if (to_lower < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_lower, rigid, T(0), unbounded);
+    pushed = T(0);
+    if (to_upper < T(0)) j.axial.solve(v, a, b, pushed, fraction * to_upper, rigid, T(0), unbounded, T(-1));
+  }
+  if (j.in_tree) {
+    n.move(a, b);
+    return;
+  }
+  if (j.type == joint_type::hinge || j.type == joint_type::slider)
     for (int i = 0; i < 2; ++i) {
       T pushed = T(0);
       j.across[i].solve(v, a, b, pushed, fraction * j.across_error[i], rigid, -unbounded, unbounded);
     }
-  }
   vec3<T> pushed{};
   switch (j.type) {
     case joint_type::ball:
@@ -8655,47 +8708,147 @@ class joint_tree {
   /// Non-linear Gauss–Seidel on the joints' poses (joint.hpp,
   /// project_joint: `fraction` of each error), `passes` times, each
   /// followed by a Newton step on the trees' rows, measured where the
-  /// bodies are then. Limits passed are pushed back too unless `limits` is
-  /// false.
+  /// bodies are then; then Newton steps alone while the trees have not
+  /// settled, newton_steps_per_pass·passes steps in all at most. The
+  /// passes leave a tree's rows that hold to its Newton steps, and push
+  /// back limits passed unless `limits` is false.
   ///
   /// The Newton step takes the whole linearised error: the factor is
   /// exact, so no joint overshoots for its neighbours, as each does under
   /// Gauss–Seidel at 1 (joint_correction). On the 10:1 chain let go from
   /// horizontal, its tail's whip opened 1.9 mm at 0.5 and 0.004 mm at 1.
-  /// The factor of the first pass serves the later ones (a chord method:
-  /// the passes move the bodies by their errors, so the rows barely turn),
-  /// which took the ragdoll pile from 7.7 to 6.1 ms a step and left the
-  /// whip at 0.022 mm. A prototype that kept the factor of the step's
-  /// start, before the bodies moved, diverged on the whip.
+  ///
+  /// Each step is checked (newton_step) because unchecked ones tore chains
+  /// apart. The factor of the first pass used to serve the later ones (a
+  /// chord method, which took the ragdoll pile from 7.7 to 6.1 ms a step),
+  /// and every step was taken whole. A chain of 20 equal links let go from
+  /// horizontal (1 kg, 0.5 m, 60 Hz) opened 13 m, float and double alike,
+  /// from its 264th step, as its whip reached the middle links: their
+  /// first Newton step turned them by up to 0.16 rad, the factor left
+  /// behind no longer described them, and the later passes, taken with it,
+  /// raised the worst error of that step from 1.5 to 2.1 mm and of the
+  /// next from 5.4 to 36 mm; what a step left was the next one's start.
+  /// Throughout, the velocity solve was exact (J·v within 1e-6 m/s of 0,
+  /// its joint pivots 0.05 to 14: the factor is well conditioned), and a
+  /// fresh factor each pass kept the chain within 0.01 mm. At 100 links
+  /// that was not enough (0.28 m in float, 0.65 m in double, from 36–42 m):
+  /// across a taut, nearly straight run of links a full step shortens the
+  /// run by turning light links tenths of a radian, which works only to
+  /// first order, and the steps overshoot back and forth; and at the whip
+  /// a step starts up to 0.2 m off, which takes up to 21 Newton steps, not
+  /// four.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints, int passes,
                       T fraction, bool limits) {
-    const std::span<const solver_body<T>> read = bodies;
-    // Errors below this (m or rad) are not worth a factorisation: Newton's
-    // method has converged to rounding after two steps on the chain, and
-    // the factor is most of the cost of a ragdoll pile's joints.
-    constexpr T settled = T(1e-5);
-    bool factored = false;
+    // The velocity solve's factor is of the poses at the start of the step:
+    // a prototype that kept it diverged on the whip.
+    reusable_ = false;
+    newton_outcome outcome = newton_outcome::moved;
     for (int pass = 0; pass < passes; ++pass) {
       for (joint_constraint<T>& j : joints) project_joint(bodies, j, fraction, limits);
-      if (empty()) continue;
-      T worst = T(0);
-      for (joint_constraint<T>& j : joints)
-        if (j.in_tree) {
-          prepare_joint(read, j);
-          T error[6] = {};
-          holding_rows<T>::errors(j, error);
-          for (const T e : error) worst = std::max(worst, std::abs(e));
-        }
-      if (worst <= settled) continue;
-      if (!factored && !(factored = factor(read, joints))) continue;
-      project(bodies, joints);
+      if (!empty()) outcome = newton_step(bodies, joints);
     }
+    for (int step = passes; step < newton_steps_per_pass * passes && outcome == newton_outcome::moved && !empty();
+         ++step)
+      outcome = newton_step(bodies, joints);
   }
 
   /// One Newton step on the positions: the bodies moved so as to remove
   /// each tree joint's error, linearised where they are (the joints
-  /// prepared and the tree factored there).
+  /// prepared and the tree factored there), whole and unchecked.
   void project(std::span<solver_body<T>> bodies, std::span<const joint_constraint<T>> joints) noexcept {
+    solve_for_errors(joints);
+    move(bodies, T(1));
+  }
+
+ private:
+  static constexpr std::uint32_t none = ~std::uint32_t(0);
+
+  /// Errors below this (m or rad) are not worth a factorisation: Newton's
+  /// method has converged to rounding after two steps on the chain, and the
+  /// factor is most of the cost of a ragdoll pile's joints.
+  static constexpr T settled = T(1e-5);
+  /// The projection's Newton steps at most, per pass (project_joints): the
+  /// 100-link chains of tests/faults/test_chains.cpp settle within 21 at
+  /// the worst step of their whip (3.4 a step on average). Where a step
+  /// cannot follow the motion (the tail of a chain tapering 1000:1 at
+  /// 450 rad/s) the limit bounds the cost.
+  static constexpr int newton_steps_per_pass = 8;
+  /// The smallest fraction of a Newton step tried (six halvings) before
+  /// the step is given up as no descent.
+  static constexpr T smallest_share = T(1) / T(64);
+
+  enum class newton_outcome { settled, moved, stuck };
+
+  /// How far the tree joints are from holding, where the bodies are.
+  struct tree_error {
+    T worst = T(0);    ///< largest row error, m or rad
+    T squares = T(0);  ///< sum of the rows' errors squared: what a Newton step must lower
+  };
+
+  /// A body's pose, kept to undo a step.
+  struct pose {
+    vec3<T> position{};
+    quat<T> orientation{};
+  };
+
+  /// One Newton step on the trees' rows, kept only if it lowers their
+  /// squared error (project_joints says why it must be checked). A factor
+  /// from an earlier step is reused (a chord method) only if that step at
+  /// least halved the error; when its step fails, the tree is factored
+  /// where the bodies are and the step taken again. A fresh factor's step
+  /// that fails is halved until it does not (a backtracking line search),
+  /// and given up, the bodies where they were, below smallest_share.
+  newton_outcome newton_step(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints) {
+    const std::span<const solver_body<T>> read = bodies;
+    const tree_error before = measure(read, joints);
+    if (before.worst <= settled) return newton_outcome::settled;
+    bool fresh = !reusable_;
+    if (fresh && !factor(read, joints)) return newton_outcome::stuck;
+    solve_for_errors(joints);
+    keep_poses(bodies);
+    T share = T(1);
+    for (;;) {
+      move(bodies, share);
+      const tree_error after = measure(read, joints);
+      if (after.squares < before.squares) {
+        reusable_ = after.squares <= T(0.25) * before.squares;
+        return newton_outcome::moved;
+      }
+      restore_poses(bodies);
+      (void)measure(read, joints);  // the joints prepared where the bodies are again
+      if (!fresh) {
+        fresh = true;
+        if (!factor(read, joints)) return newton_outcome::stuck;
+        solve_for_errors(joints);
+        continue;
+      }
+      share *= T(0.5);
+      if (share < smallest_share) {
+        reusable_ = false;
+        return newton_outcome::stuck;
+      }
+    }
+  }
+
+  /// The tree joints prepared where the bodies are, and their errors.
+  static tree_error measure(std::span<const solver_body<T>> bodies, std::span<joint_constraint<T>> joints) noexcept {
+    tree_error e;
+    for (joint_constraint<T>& j : joints) {
+      if (!j.in_tree) continue;
+      prepare_joint(bodies, j);
+      T error[6] = {};
+      holding_rows<T>::errors(j, error);
+      for (const T row : error) {
+        e.worst = std::max(e.worst, std::abs(row));
+        e.squares += row * row;
+      }
+    }
+    return e;
+  }
+
+  /// The Newton step that removes each tree joint's error as prepared,
+  /// from the factor: the bodies' displacements in their nodes' values.
+  void solve_for_errors(std::span<const joint_constraint<T>> joints) noexcept {
     for (node& m : nodes_) {
       m.value = {};
       if (m.body) continue;
@@ -8704,16 +8857,32 @@ class joint_tree {
       for (int r = 0; r < m.size; ++r) m.value[r] = -error[r];
     }
     solve();
+  }
+
+  /// The tree's bodies moved by `share` of the solved step.
+  void move(std::span<solver_body<T>> bodies, T share) const noexcept {
     for (const node& m : nodes_) {
       if (!m.body) continue;
       solver_body<T>& b = bodies[m.item];
-      b.position += vec3<T>{m.value[0], m.value[1], m.value[2]};
-      b.orientation = integrate(b.orientation, vec3<T>{m.value[3], m.value[4], m.value[5]}, T(1));
+      b.position += vec3<T>{m.value[0], m.value[1], m.value[2]} * share;
+      b.orientation = integrate(b.orientation, vec3<T>{m.value[3], m.value[4], m.value[5]}, share);
     }
   }
 
- private:
-  static constexpr std::uint32_t none = ~std::uint32_t(0);
+  void keep_poses(std::span<const solver_body<T>> bodies) {
+    kept_.clear();
+    for (const node& m : nodes_)
+      if (m.body) kept_.push_back({bodies[m.item].position, bodies[m.item].orientation});
+  }
+  void restore_poses(std::span<solver_body<T>> bodies) const noexcept {
+    std::size_t k = 0;
+    for (const node& m : nodes_)
+      if (m.body) {
+        bodies[m.item].position = kept_[k].position;
+        bodies[m.item].orientation = kept_[k].orientation;
+        ++k;
+      }
+  }
 
   /// Where a node sits in its tree.
   struct place {
@@ -8827,6 +8996,8 @@ class joint_tree {
 
   std::vector<node> nodes_;  ///< children before parents
   std::vector<holding_rows<T>> rows_;  ///< per joint; filled for the tree joints
+  std::vector<pose> kept_;             ///< the tree's bodies before a Newton step, node order
+  bool reusable_ = false;              ///< whether the factor may serve the projection's next step
   // Scratch for build, kept to reuse its memory.
   std::vector<std::uint32_t> leader_, first_, fill_, links_;
   std::vector<std::uint8_t> tied_, placed_;
@@ -8861,7 +9032,9 @@ struct solver_settings {
   /// Sweeps of the split-impulse position pass (sequential_impulse): only
   /// the normal rows, on pseudo-velocities that move the bodies this step
   /// and are then forgotten. Also the passes that move the bodies back
-  /// onto their joints after each step (both solvers; joint_correction).
+  /// onto their joints after each step (both solvers; joint_correction),
+  /// after which joint trees not yet settled take further Newton steps,
+  /// up to 8 per pass in all (joint_tree.hpp, project_joints).
   int position_iterations = 4;
   /// Passes over the normal rows of one manifold each time it is visited.
   /// They are coupled through the bodies' rotation (a corner's impulse
@@ -8952,7 +9125,9 @@ struct solver_settings {
   /// Gauss–Seidel. Groups with loops, limits and motors stay with
   /// Gauss–Seidel. The hanging 10:1 chain opens 0.01 mm with it, 13 mm
   /// without; the cost is a factorisation per step (per substep for
-  /// soft_step) and per position pass, linear in the joints.
+  /// soft_step) and about one per projection after the step (more while
+  /// a long chain whips: 2.2 on average at 100 links), linear in the
+  /// joints.
   bool exact_joint_trees = true;
   /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
   /// the substep rate like contact_hertz, and their damping ratio (Box2D
@@ -11685,6 +11860,14 @@ class convex_hull {
   }
 
   /// The points of the input that are vertices of the hull, in input order.
+  /// Refuses a moved-from hull, which has no vertices: from_points never
+  /// returns one. The world checks every shape it is given this way.
+  void validate() const {
+    if (vertices_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "convex_hull: the hull is empty (moved from); use from_points()");
+  }
+
   [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
   [[nodiscard]] std::size_t vertex_count() const noexcept { return vertices_.size(); }
 
@@ -12922,6 +13105,15 @@ class triangle_mesh {
     mesh.tree_.build(boxes);
     mesh.find_active_edges();
     return mesh;
+  }
+
+  /// Refuses a mesh with no triangle: a default-constructed or moved-from
+  /// one, which make() never returns. The world checks every shape it is
+  /// given this way.
+  void validate() const {
+    if (indices_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "triangle_mesh: the mesh is empty (default-constructed or moved from); use make()");
   }
 
   [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
@@ -15127,20 +15319,38 @@ struct drag {
 
 namespace impulse::particles {
 
+/// The smallest mass a particle may have, kg: the smallest normal number of
+/// T (1.2e-38 for float, 2.2e-308 for double). A step multiplies forces by
+/// the inverse mass, and below this the mass is denormal: its inverse is
+/// infinite for most such masses (1 / 1e-45 overflows float), and drag, zero
+/// times infinity, turns the particle NaN in one step.
+template <class T>
+inline constexpr T min_particle_mass = std::numeric_limits<T>::min();
+
 template <class T>
 struct emitter {
+  /// The largest rate, particles/s. No particle_system holds more than
+  /// max_capacity (2^26, about 6.7e7) particles, which a billion a second
+  /// fills in 67 ms, so a larger rate can only be a slip of zeros or units;
+  /// and it keeps rate·dt, which due() converts to a count, far inside size_t.
+  static constexpr T max_rate = T(1e9);
+  /// The most particles due() returns for one step. Any larger count would
+  /// not fit a system either (the excess is dropped and counted); saturating
+  /// here keeps the conversion from T defined for every finite dt.
+  static constexpr std::size_t max_due = std::size_t(1) << 32;
+
   vec3<T> position{};
   /// Half extents of the box particles appear in, m (0 for a point source).
   vec3<T> half_extents{};
   vec3<T> velocity{};
   /// Per-axis half-range of the initial velocity, m/s.
   vec3<T> velocity_spread{};
-  /// Particles per second, ≥ 0.
+  /// Particles per second, in [0, max_rate].
   T rate = T(100);
   /// Lifetime, s, > 0; each particle gets lifetime ± lifetime_spread.
   T lifetime = T(5);
   T lifetime_spread = T(0);
-  /// Mass of each particle, kg, > 0.
+  /// Mass of each particle, kg, ≥ min_particle_mass<T>.
   T mass = T(1);
   bool enabled = true;
   /// Generator state; set it to choose a different but repeatable stream.
@@ -15161,7 +15371,12 @@ struct emitter {
             error_code::invalid_parameter, "emitter: half extents and velocity spread must be non-negative",
             index);
     require(rate >= T(0), error_code::invalid_parameter, "emitter: rate is negative", index);
+    require(rate <= max_rate, error_code::invalid_parameter,
+            "emitter: rate is above emitter::max_rate (1e9 particles/s)", index);
     require(mass > T(0), error_code::non_positive_mass, "emitter: mass must be positive", index);
+    require(mass >= min_particle_mass<T>, error_code::invalid_parameter,
+            "emitter: mass is below min_particle_mass (denormal: its inverse overflows)", index);
+    require(owed >= T(0) && owed < T(1), error_code::invalid_parameter, "emitter: owed must be in [0, 1)", index);
     require(lifetime > T(0) && lifetime_spread >= T(0) && lifetime_spread < lifetime,
             error_code::invalid_parameter,
             "emitter: lifetime must be positive and larger than its spread", index);
@@ -15181,10 +15396,23 @@ struct emitter {
     return d;
   }
 
-  /// How many particles are due after dt seconds; keeps the remainder.
+  /// How many particles are due after dt seconds, at most max_due; keeps
+  /// the remainder.
   std::size_t due(T dt) noexcept {
     if (!enabled) return 0;
     const T total = owed + rate * dt;
+    // Converting a T outside size_t's range is undefined behaviour, so the
+    // two ends are settled before the conversion: nothing is due for a
+    // negative or NaN total (an owed that validate() refuses), and a huge
+    // one (a huge dt; rate·dt may even be infinite) saturates.
+    if (!(total >= T(0))) {
+      owed = T(0);
+      return 0;
+    }
+    if (!(total < T(max_due))) {
+      owed = T(0);
+      return max_due;
+    }
     const auto whole = static_cast<std::size_t>(total);
     owed = total - T(whole);
     return whole;
@@ -15500,6 +15728,15 @@ class particle_system {
   using integrator = typename Config::integrator;
   static constexpr int width = particle_width_of<Config>;
   static constexpr bool has_lifetime = particle_lifetime_of<Config>;
+  /// The most particles a system may be created for: 2^26, about 6.7e7.
+  /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
+  /// double), allocated and zeroed when the system is made, so this many is
+  /// 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
+  /// at the 38–57 GB/s memory roof of docs/particles_benchmark.md, far past
+  /// real time. A larger capacity is a slip of zeros (1e9 would be 40 GB),
+  /// refused before anything is allocated. It also keeps every index well
+  /// below no_object in the std::uint32_t the API hands out.
+  static constexpr std::size_t max_capacity = std::size_t(1) << 26;
 
   static_assert(scalar_type<scalar>, "impulse particle_system: Config::scalar must be float or double");
   static_assert(batch_width<scalar, width>,
@@ -15528,18 +15765,16 @@ class particle_system {
     requires(sizeof...(Forces) > 0)
       : particle_system(capacity, Forces<T>{}...) {}
   /// A system that holds up to `capacity` particles, with the forces' parameters.
+  /// A capacity of 0 or above max_capacity is refused before any column is allocated.
   explicit particle_system(std::size_t capacity, Forces<T>... forces)
       : forces_(std::move(forces)...),
-        capacity_(capacity),
+        capacity_(checked_capacity(capacity)),
         stride_((capacity + width - 1) / width * width),
         x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
         inverse_mass_(stride_),
         variation_(needs_variation ? stride_ : 0),
         age_(has_lifetime ? stride_ : 0),
         lifetime_(has_lifetime ? stride_ : 0) {
-    if (capacity == 0 || capacity > std::size_t(std::numeric_limits<std::uint32_t>::max()))
-      impulse::detail::report_error(error_code::invalid_parameter,
-                                    "particle_system: capacity must be between 1 and 2^32 - 1");
     died_batches_.reserve(stride_ / width);
   }
 
@@ -15927,9 +16162,19 @@ class particle_system {
   void check_index(std::uint32_t i) const {
     detail::require(i < size_, error_code::out_of_range, "particle_system: no particle has this index", i);
   }
+  /// The capacity, once it is known to be allowed: called from the member
+  /// initialisers ahead of the columns, so that a refused capacity allocates
+  /// nothing (members are initialised in declaration order).
+  static std::size_t checked_capacity(std::size_t capacity) {
+    detail::require(capacity != 0 && capacity <= max_capacity, error_code::invalid_parameter,
+                    "particle_system: capacity must be between 1 and max_capacity (2^26)");
+    return capacity;
+  }
   static void check_mass(T mass, std::uint32_t i) {
     detail::require_finite(mass, "particle_system: mass is not finite", i);
     detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
+    detail::require(mass >= min_particle_mass<T>, error_code::invalid_parameter,
+                    "particle_system: mass is below min_particle_mass (denormal: its inverse overflows)", i);
   }
   static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
     detail::require_finite(p, "particle_system: position is not finite", i);
@@ -16311,12 +16556,48 @@ struct world_settings {
   /// step's speculative contact then meets it apart, not overlapping by
   /// rounding. Box2D's linear slop.
   T ccd_gap = T(0.005);
+  /// The fastest a body may move, linearly and turning. These are bounds
+  /// against overflow, not physical limits: 10 km/s is 170 m in a step of
+  /// 1/60 s, beyond what any step resolves, and well inside what the
+  /// solver's products of speeds, masses and lengths keep finite in float.
+  /// A velocity above them is refused where it is set (set_velocity,
+  /// create_body, set_target_pose); a body that a step's forces or its
+  /// solve would take past them is held (step(), held_bodies()).
+  T max_linear_speed = T(1e4);   ///< m/s
+  T max_angular_speed = T(1e4);  ///< rad/s
+  /// How far the limits above may be raised: past 1e6, squares of speeds
+  /// times masses and lengths leave float's range.
+  static constexpr T speed_ceiling = T(1e6);
+  /// The most body pairs the world keeps contacts for; a pair past it gets
+  /// none until there is room (world::pairs_over_limit counts them). A
+  /// touching pair costs about 1.1 KB in float and 2 KB in double at its
+  /// peak in a step, solver included (bench/contact_memory, 1 000 boxes in
+  /// one spot), so the default bounds a step's contacts at about 1.1 GB and
+  /// 2.1 GB. A thousand bodies dropped in one spot make 500 000 pairs.
+  std::uint32_t max_contact_pairs = 1u << 20;
+  /// How far from the origin, along any axis, the world places bodies,
+  /// anchors and targets, m: a bound against overflow like the speeds. In
+  /// float, 1e6 m is where neighbouring floats are 6 cm apart, already too
+  /// coarse for contacts (Box2D's bound is 1e5 m); in double, 1e12 m (0.1 mm
+  /// apart). A pose or anchor beyond it is refused; a body that a step would
+  /// carry past it is held.
+  T max_coordinate = std::is_same_v<T, float> ? T(1e6) : T(1e12);
+  static constexpr T coordinate_ceiling = std::is_same_v<T, float> ? T(1e8) : T(1e15);
+  /// How far a joint's anchor may be from a dynamic body's centre of mass,
+  /// in multiples of the body's smallest radius of gyration (√(I_min / m):
+  /// 0.41 m for a unit cube, 6 mm for a 1 cm ball). Farther, the joint's
+  /// effective mass along the lever is lost in rounding (its part 1/m is
+  /// below the lever's r²/I times the scalar's epsilon) and the solve
+  /// diverges: a ball 14 cm across joined 1e7 m from its centre went to
+  /// NaN in its first step. 1 000 in float, 10⁶ in double; a long pendulum
+  /// is a distance joint, whose anchors sit on the bodies.
+  T max_joint_lever = std::is_same_v<T, float> ? T(1e3) : T(1e6);
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
     solver.validate();
-    if (!std::isfinite(fixed_dt) || !(fixed_dt > T(0)))
-      detail::report_error(error_code::invalid_parameter, "world_settings: fixed_dt must be positive and finite");
+    if (!(fixed_dt > T(0) && fixed_dt <= T(1)))
+      detail::report_error(error_code::invalid_parameter, "world_settings: fixed_dt must be positive and at most 1 s");
     if (max_steps_per_advance < 1)
       detail::report_error(error_code::invalid_parameter, "world_settings: max_steps_per_advance must be >= 1");
     if (!std::isfinite(sleep_linear_speed) || !std::isfinite(sleep_angular_speed) || !std::isfinite(sleep_time) ||
@@ -16331,6 +16612,23 @@ struct world_settings {
         ccd_gap < T(0))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: ccd_motion_fraction and ccd_gap must be finite and >= 0");
+    if (!std::isfinite(max_joint_lever) || !(max_joint_lever > T(0)))
+      detail::report_error(error_code::invalid_parameter, "world_settings: max_joint_lever must be positive and finite");
+    if (!(max_coordinate > T(0) && max_coordinate <= coordinate_ceiling))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: max_coordinate must be positive and at most 1e8 (float) or 1e15 (double)");
+    // Gravity that would take a body past the speed limit within a second
+    // (the longest step) is an overflow waiting to happen: every body would
+    // be held at every step.
+    if (!(length_squared(gravity) <= max_linear_speed * max_linear_speed))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: gravity must be at most max_linear_speed per second");
+    if (max_contact_pairs < 1)
+      detail::report_error(error_code::invalid_parameter, "world_settings: max_contact_pairs must be >= 1");
+    if (!(max_linear_speed > T(0) && max_linear_speed <= speed_ceiling) ||
+        !(max_angular_speed > T(0) && max_angular_speed <= speed_ceiling))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: max_linear_speed and max_angular_speed must be positive and at most 1e6");
   }
 };
 
@@ -16644,6 +16942,9 @@ class world {
   /// Manifolds one pair can have: one for two convex shapes, one per
   /// distinct normal against a mesh (a box in a corner of it: two or three).
   static constexpr int max_manifolds = 4;
+  /// The longest step, s: a step is a small piece of motion, and one of a
+  /// thousand years (finite) would carry every body out of finite numbers.
+  static constexpr T max_dt = T(1);
 
   static_assert(broadphase::broad_phase<broad_phase_type, T>,
                 "impulse world: the config's broadphase is not a broad phase for its scalar");
@@ -16665,9 +16966,14 @@ class world {
     settings.validate();
     state_.settings = settings;
   }
+  /// Refused: gravity that is not finite, or stronger than
+  /// max_linear_speed per second (world_settings::validate).
   void set_gravity(const vec3<T>& g) {
     if (!is_finite(g)) detail::report_error(error_code::non_finite, "world::set_gravity: gravity is not finite");
-    state_.settings.gravity = g;
+    world_settings<T> changed = state_.settings;
+    changed.gravity = g;
+    changed.validate();
+    state_.settings = changed;
     wake_all();
   }
 
@@ -16682,12 +16988,21 @@ class world {
   body_id create_body(const body_def<T>& def, const Shape& shape) {
     static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
                   "impulse world: this shape is not in the config's shape_list");
-    // Hulls and meshes come only from their factories, which check them.
+    refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
+                       "visit_shape, draw); make the change after it returns");
+    // Every shape is checked here; a hull or mesh only for being empty
+    // (moved from), since their factories checked the rest.
     if constexpr (requires { shape.validate(); }) shape.validate();
     def.material.validate();
     const rigid_body<T> body = make_body(def, shape);  // checks the pose, the mass and the type
     const vec3<T> center = def.type == body_type::dynamic ? centre_of_mass(def, shape) : vec3<T>{};
     body_record record = prepare_body(def, body, center);  // checks the velocities
+    if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
+      const aabb<T> box = shape.world_aabb(def.pose);
+      if (!within_bounds(box.lower) || !within_bounds(box.upper))
+        detail::report_error(error_code::invalid_parameter,
+                             "world::create_body: the shape reaches farther than max_coordinate from the origin");
+    }
     // Nothing below can fail on the input.
     record.shape = state_.shape_store.add(shape);
     record.thinnest = thinnest_half_extent(shape);
@@ -16715,9 +17030,13 @@ class world {
   }
   /// The shape pose between the last two steps: alpha 0 at the start of
   /// the last step, 1 at its end (advance() returns the alpha of the time
-  /// left over). Rendering at it hides the fixed step's stutter.
+  /// left over). Rendering at it hides the fixed step's stutter. Refused:
+  /// alpha outside [0, 1] or NaN.
   [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const {
     require(id, "world::interpolated_pose: no such body");
+    if (!(alpha >= T(0) && alpha <= T(1)))
+      detail::report_error(error_code::invalid_parameter, "world::interpolated_pose: alpha must be within [0, 1]",
+                           id.index);
     const body_record& r = state_.bodies[id];
     const transform<T> now = r.body.pose();
     quat<T> q1 = now.rotation;
@@ -16731,6 +17050,7 @@ class world {
   template <class F>
   decltype(auto) visit_shape(body_id id, F&& f) const {
     require(id, "world::visit_shape: no such body");
+    const in_callback scope(*this);
     return state_.shape_store.visit(state_.bodies[id].shape, std::forward<F>(f));
   }
   [[nodiscard]] const impulse::material<T>& material_of(body_id id) const {
@@ -16752,9 +17072,12 @@ class world {
   }
 
   /// Sets a body's velocities (a dynamic or kinematic body) and wakes it.
+  /// Refused: speeds above world_settings::max_linear_speed or
+  /// max_angular_speed, and velocities whose momenta overflow.
   void set_velocity(body_id id, const vec3<T>& linear, const vec3<T>& angular) {
     require(id, "world::set_velocity: no such body");
     body_record& r = state_.bodies[id];
+    require_speeds(linear, angular, "world::set_velocity: faster than max_linear_speed or max_angular_speed", id);
     r.body.set_velocity(linear, angular);  // refuses non-finite values and static bodies
     wake_record(r);
   }
@@ -16812,6 +17135,8 @@ class world {
 
   [[nodiscard]] bool contains(joint_id id) const noexcept { return state_.joints.contains(id); }
   [[nodiscard]] std::size_t joint_count() const noexcept { return state_.joints.size(); }
+  /// Every joint, broken ones too, in storage order.
+  [[nodiscard]] std::span<const joint_id> joint_ids() const noexcept { return state_.joints.ids(); }
   /// The joint as it was created.
   [[nodiscard]] const joint_def<T>& joint(joint_id id) const {
     require(id, "world::joint: no such joint");
@@ -16872,15 +17197,21 @@ class world {
     if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
     wake_joint(r);
   }
+  /// Bodies held in the last step (see step()), in storage order.
+  [[nodiscard]] std::span<const body_id> held_bodies() const noexcept { return state_.held; }
   /// Joints that broke in the last step.
   [[nodiscard]] std::span<const joint_broken_event<T>> joint_broken_events() const noexcept { return state_.broken; }
 
   // ---- stepping ----
 
   /// Advances the world by dt seconds. Events of this step replace the
-  /// last step's. A body whose state becomes non-finite (valid input can
-  /// still overflow) is left where it was with no velocity, the others
-  /// keep their step, and the error names it.
+  /// last step's. A body that the step would take past the world's speed
+  /// limits or out of finite numbers (finite input can still overflow: a
+  /// force of 1e29 N on a kilogram) is held: it stays where it was with no
+  /// velocity, its contacts and joints are left out of the step, and every
+  /// other body, its joint partners too, steps on. The step then throws
+  /// impulse::invalid_argument (non_finite) naming the first held body; held_bodies()
+  /// lists them all.
   void step(T dt);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
@@ -16901,12 +17232,28 @@ class world {
 
   /// f(a, b, manifolds) for every touching pair; each manifold's normal
   /// points from a into b.
+  ///
+  /// Inside this callback, and those of overlap, visit_shape and draw, the
+  /// world refuses what would change the containers the callback walks:
+  /// step, advance, create_body, destroy_body, set_pose, create_joint,
+  /// destroy_joint and restore throw impulse::invalid_argument (invalid_parameter).
+  /// Velocities, forces, impulses, motors and limits may be set.
   template <class F>
   void for_each_contact(F&& f) const {
-    for (const contact_record& c : state_.contacts)
-      if (c.touching)
-        f(c.a, c.b, std::span<const contact_manifold<T>>(c.manifolds.data(), std::size_t(c.manifold_count)));
+    const in_callback scope(*this);
+    std::array<contact_manifold<T>, max_manifolds> manifolds;
+    for (const contact_record& c : state_.contacts) {
+      if (!c.touching) continue;
+      const int count = std::min(int(c.manifold_count), max_manifolds);  // always the count; says so to the compiler
+      for (int m = 0; m < count; ++m) manifolds[std::size_t(m)] = slot_of(c, m).manifold;
+      f(c.a, c.b, std::span<const contact_manifold<T>>(manifolds.data(), std::size_t(count)));
+    }
   }
+  /// Pairs whose boxes overlapped in the last step but got no contact
+  /// because the world held world_settings::max_contact_pairs already: 0
+  /// unless a scene heaps that many bodies together. They get their
+  /// contacts once there is room.
+  [[nodiscard]] std::size_t pairs_over_limit() const noexcept { return state_.pairs_over_limit; }
   [[nodiscard]] std::size_t touching_pair_count() const noexcept {
     return std::size_t(std::count_if(state_.contacts.begin(), state_.contacts.end(),
                                      [](const contact_record& c) { return c.touching; }));
@@ -16922,6 +17269,7 @@ class world {
   void overlap(const aabb<T>& box, F&& f) const {
     if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
       detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
+    const in_callback scope(*this);
     state_.broad.query(box, [&](proxy_id proxy) {
       const body_id id = unpack(state_.broad.user_data(proxy));
       if (overlaps(bounds_of(state_.bodies[id]), box)) f(id);
@@ -16933,18 +17281,19 @@ class world {
   template <class D>
     requires debug_drawer<D, T>
   void draw(D& d, const debug_draw_flags& flags = {}) const {
+    const in_callback scope(*this);
     if (flags.aabbs)
       for (const body_record& r : state_.bodies.values()) draw_box(d, bounds_of(r), colour_of(r));
     for (const contact_record& c : state_.contacts) {
       if (!c.touching) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
-        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        const contact_manifold<T>& manifold = slot_of(c, m).manifold;
         for (int i = 0; i < manifold.count; ++i) {
           const vec3<T>& p = manifold.points[std::size_t(i)].position;
           if (flags.contacts) d.point(p, debug_color{1, 0.2f, 0.2f});
           if (flags.normals) d.arrow(p, p + manifold.normal * T(0.2), debug_color{1, 1, 0.2f});
           if (flags.forces && state_.last_dt > T(0)) {
-            const T force = c.impulses[std::size_t(m)].normal[std::size_t(i)] / state_.last_dt;
+            const T force = slot_of(c, m).impulse.normal[std::size_t(i)] / state_.last_dt;
             d.arrow(p, p + manifold.normal * (force * T(0.01)), debug_color{1, 0.5f, 0});
           }
         }
@@ -16961,7 +17310,11 @@ class world {
   /// Everything a step reads: bodies, shapes, broad phase, contacts with
   /// their impulses, events, time and settings.
   [[nodiscard]] world_snapshot<Config> snapshot() const { return world_snapshot<Config>(state_); }
-  void restore(const world_snapshot<Config>& s) { state_ = s.state_; }
+  void restore(const world_snapshot<Config>& s) {
+    refuse_in_callback("world::restore: called from inside a world callback (for_each_contact, overlap, "
+                       "visit_shape, draw); make the change after it returns");
+    state_ = s.state_;
+  }
 
   // ---- what is conserved, for tests and diagnostics ----
 
@@ -16995,23 +17348,31 @@ class world {
     T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
   };
 
+  /// One manifold of a touching pair: where it touches, the impulses the
+  /// solver carries to the next step, and what the last full pair test
+  /// found, in A's shape frame (reuse_manifolds carries it with the bodies).
+  struct manifold_slot {
+    contact_manifold<T> manifold;
+    manifold_impulse<T> impulse;
+    contact_manifold<T> tested_local;
+  };
+
   /// A pair of bodies whose boxes overlap, and what the narrow phase and
   /// the solver know of it. Kept sorted by proxy pair, the broad phase's
   /// order, so that each step's pairs merge with the last step's in one
-  /// pass, with no lookup.
+  /// pass, with no lookup. Its manifolds live in state::manifolds, so that
+  /// a pair whose boxes overlap but whose shapes do not touch (most pairs
+  /// in a heap) costs this record alone: 80 bytes in float, where it cost
+  /// 1 KB with four manifolds inline.
   struct contact_record {
     proxy_pair key;
     body_id a, b;  ///< a owns key.a
     T friction = T(0), restitution = T(0);
-    int manifold_count = 0;
+    std::uint8_t manifold_count = 0;
     bool touching = false;
-    std::array<contact_manifold<T>, max_manifolds> manifolds{};
-    std::array<manifold_impulse<T>, max_manifolds> impulses{};
-    /// What the last full pair test found, in A's shape frame, and B's
-    /// shape frame in A's then: reuse_manifolds carries it with the bodies.
-    bool tested = false;
-    transform<T> tested_relative{};
-    std::array<contact_manifold<T>, max_manifolds> tested_local{};
+    bool tested = false;              ///< whether tested_relative holds a full pair test's
+    transform<T> tested_relative{};  ///< B's shape frame in A's at the last full test
+    std::array<std::uint32_t, max_manifolds> slots{};  ///< the first manifold_count name its manifolds
   };
 
   /// A joint, with the impulses it carries between steps and what it
@@ -17032,10 +17393,14 @@ class world {
     /// once per such joint: their proxies' pairs make no contact.
     std::vector<std::uint64_t> joined;
     std::vector<joint_broken_event<T>> broken;
+    std::vector<body_id> held;      ///< held in the last step (step())
     std::vector<body_id> targeted;  ///< kinematic bodies with a target_state other than none
     detail::shape_store<shapes, T> shape_store;
     broad_phase_type broad;
     std::vector<contact_record> contacts;
+    std::vector<manifold_slot> manifolds;      ///< the touching pairs' manifolds
+    std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
+    std::size_t pairs_over_limit = 0;          ///< in the last step: see pairs_over_limit()
     std::vector<contact_event> begun, ended;
     T time = T(0), accumulator = T(0), last_dt = T(0);
     std::uint64_t step_count = 0;
@@ -17081,7 +17446,7 @@ class world {
   void end_contacts_between(body_id a, body_id b) {
     std::erase_if(state_.contacts, [&](const contact_record& c) {
       if (!((c.a == a && c.b == b) || (c.a == b && c.b == a))) return false;
-      if (c.touching) state_.ended.push_back({c.a, c.b});
+      end_contact(c);
       return true;
     });
   }
@@ -17100,6 +17465,37 @@ class world {
     c.body_a = 0, c.body_b = 1;
     detail::prepare_joint(std::span<const solver_body<T>>(ends), c);
     return c;
+  }
+  /// Whether a point is within max_coordinate of the origin on every axis
+  /// (false for NaN).
+  bool within_bounds(const vec3<T>& p) const noexcept {
+    const T m = state_.settings.max_coordinate;
+    return std::abs(p.x) <= m && std::abs(p.y) <= m && std::abs(p.z) <= m;
+  }
+  void require_within_bounds(const vec3<T>& p, const char* message, body_id id = body_id{}) const {
+    if (is_finite(p) && !within_bounds(p)) detail::report_error(error_code::invalid_parameter, message, id.index);
+  }
+  /// Refuses a joint anchor farther from a dynamic body's centre of mass
+  /// than world_settings::max_joint_lever radii of gyration.
+  void require_lever(const rigid_body<T>& b, const vec3<T>& anchor, body_id id) const {
+    if (b.type != body_type::dynamic) return;
+    const T smallest = std::min({b.inertia(0, 0), b.inertia(1, 1), b.inertia(2, 2)});
+    const T reach = state_.settings.max_joint_lever;
+    if (!(length_squared(anchor - b.position) * b.mass <= reach * reach * smallest))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_joint: an anchor is farther from a dynamic body than max_joint_lever "
+                           "radii of gyration",
+                           id.index);
+  }
+  /// Whether both speeds are within the world's limits (false for NaN).
+  bool within_speed_limits(const vec3<T>& linear, const vec3<T>& angular) const noexcept {
+    const T v = state_.settings.max_linear_speed, w = state_.settings.max_angular_speed;
+    return length_squared(linear) <= v * v && length_squared(angular) <= w * w;
+  }
+  void require_speeds(const vec3<T>& linear, const vec3<T>& angular, const char* message,
+                      body_id id = body_id{}) const {
+    if (is_finite(linear) && is_finite(angular) && !within_speed_limits(linear, angular))
+      detail::report_error(error_code::invalid_parameter, message, id.index);
   }
   body_record& dynamic_record(body_id id, const char* message) {
     require(id, message);
@@ -17153,7 +17549,11 @@ class world {
     return state_.shape_store.visit(r.shape, [&](const auto& s) { return s.world_aabb(pose); });
   }
   aabb<T> proxy_box(const body_record& r) const {
-    return expand(bounds_of(r), state_.settings.solver.speculative_distance);
+    const aabb<T> box = expand(bounds_of(r), state_.settings.solver.speculative_distance);
+    // A plane's box spans every finite value already: grown, it must not
+    // overflow into infinities the broad phase refuses.
+    const vec3<T> big = vec3<T>::splat(std::numeric_limits<T>::max());
+    return {max(box.lower, -big), min(box.upper, big)};
   }
   typename dispatcher::shape_ref shape_ref_of(const body_record& r) const noexcept {
     return {state_.shape_store.address(r.shape), r.shape.type};
@@ -17209,6 +17609,12 @@ class world {
       return;
     }
     next_contacts_.clear();
+    next_contacts_.reserve(std::min(pairs.size(), std::size_t(s.max_contact_pairs)));
+    // New pairs are taken while the records, old and new, stay within
+    // max_contact_pairs; those past it wait, and are counted.
+    const std::size_t room = std::size_t(s.max_contact_pairs) > old.size() ? s.max_contact_pairs - old.size() : 0;
+    std::size_t created = 0;
+    state_.pairs_over_limit = 0;
     std::size_t i = 0;
     for (const proxy_pair& pair : pairs) {
       while (i < old.size() && old[i].key < pair) end_contact(old[i++]);
@@ -17216,6 +17622,11 @@ class world {
         next_contacts_.push_back(old[i++]);
       } else {
         if (!may_touch(pair)) continue;
+        if (created == room) {
+          ++state_.pairs_over_limit;
+          continue;
+        }
+        ++created;
         const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
         const body_record& ra = state_.bodies[a];
         const body_record& rb = state_.bodies[b];
@@ -17253,8 +17664,31 @@ class world {
     return i == old.size();
   }
 
+  /// A record that is dropped: its pair ends, its manifolds are freed.
   void end_contact(const contact_record& c) {
     if (c.touching) state_.ended.push_back({c.a, c.b});
+    for (int m = 0; m < c.manifold_count; ++m) state_.free_manifolds.push_back(c.slots[std::size_t(m)]);
+  }
+
+  manifold_slot& slot_of(const contact_record& c, int m) noexcept { return state_.manifolds[c.slots[std::size_t(m)]]; }
+  const manifold_slot& slot_of(const contact_record& c, int m) const noexcept {
+    return state_.manifolds[c.slots[std::size_t(m)]];
+  }
+  /// Gives the record n manifold slots, keeping its first ones: freed
+  /// slots are reused before the pool grows.
+  void resize_slots(contact_record& c, int n) {
+    while (c.manifold_count > n) state_.free_manifolds.push_back(c.slots[std::size_t(--c.manifold_count)]);
+    while (c.manifold_count < n) {
+      std::uint32_t slot;
+      if (!state_.free_manifolds.empty()) {
+        slot = state_.free_manifolds.back();
+        state_.free_manifolds.pop_back();
+      } else {
+        slot = std::uint32_t(state_.manifolds.size());
+        state_.manifolds.emplace_back();
+      }
+      c.slots[std::size_t(c.manifold_count++)] = slot;
+    }
   }
 
   void collide(contact_record& c, const reuse_limits& limits) {
@@ -17277,12 +17711,12 @@ class world {
       int match = -1;
       T best = T(0.95);  // normals within 18° count as the same face
       for (int k = 0; k < c.manifold_count; ++k) {
-        const T d = dot(c.manifolds[std::size_t(k)].normal, fresh[m].normal);
+        const T d = dot(slot_of(c, k).manifold.normal, fresh[m].normal);
         if (d > best) best = d, match = k;
       }
       if (match < 0) continue;
-      const contact_manifold<T>& before = c.manifolds[std::size_t(match)];
-      const manifold_impulse<T>& had = c.impulses[std::size_t(match)];
+      const contact_manifold<T>& before = slot_of(c, match).manifold;
+      const manifold_impulse<T>& had = slot_of(c, match).impulse;
       carried[m].friction = had.friction;
       carried[m].twist = had.twist;
       for (int p = 0; p < fresh[m].count; ++p)
@@ -17292,13 +17726,14 @@ class world {
             break;
           }
     }
-    c.manifolds = fresh;
-    c.impulses = carried;
-    c.manifold_count = int(n);
+    resize_slots(c, int(n));
     c.tested = true;
     c.tested_relative = relative;
     for (std::size_t m = 0; m < n; ++m) {
-      contact_manifold<T>& local = c.tested_local[m];
+      manifold_slot& slot = slot_of(c, int(m));
+      slot.manifold = fresh[m];
+      slot.impulse = carried[m];
+      contact_manifold<T>& local = slot.tested_local;
       local = fresh[m];
       local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
       for (int p = 0; p < local.count; ++p)
@@ -17322,15 +17757,16 @@ class world {
   /// persistent manifolds' points the same way; Jolt's body pair cache
   /// reuses manifolds within the same limits.)
   bool reuse_manifolds(contact_record& c, const transform<T>& pose_a, const transform<T>& relative,
-                       const reuse_limits& limits) const noexcept {
+                       const reuse_limits& limits) noexcept {
     const vec3<T> shift = relative.position - c.tested_relative.position;
     if (!(length_squared(shift) < limits.distance_squared)) return false;
     // B's turn in A's frame since the test; |w| = cos(angle / 2).
     const quat<T> turn = relative.rotation * conjugate(c.tested_relative.rotation);
     if (!(std::abs(turn.w) > limits.cos_half_angle)) return false;
     for (int m = 0; m < c.manifold_count; ++m) {
-      const contact_manifold<T>& local = c.tested_local[std::size_t(m)];
-      contact_manifold<T>& out = c.manifolds[std::size_t(m)];
+      manifold_slot& slot = slot_of(c, m);
+      const contact_manifold<T>& local = slot.tested_local;
+      contact_manifold<T>& out = slot.manifold;
       out.normal = rotate(pose_a.rotation, local.normal);
       for (int p = 0; p < local.count; ++p) {
         const contact_point<T>& tested = local.points[std::size_t(p)];
@@ -17369,7 +17805,7 @@ class world {
     std::vector<body_record>& bodies = state_.bodies.values();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const body_record& r = bodies[i];
-      if (!is_solved(r)) continue;
+      if (!is_solved(r) || held(std::uint32_t(i))) continue;
       const T moved = length(r.body.position - r.previous.position);
       if (r.bullet || moved > state_.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
     }
@@ -17573,10 +18009,23 @@ class world {
 
   static bool is_solved(const body_record& r) noexcept { return r.body.type == body_type::dynamic && r.awake; }
 
+  /// Holds body i for this step: it keeps its pose, loses its velocity,
+  /// and its contacts and joints are left out (step()).
+  void hold(std::size_t i) {
+    held_[i] = 1;
+    solver_body<T>& s = solver_bodies_[i];
+    s.inverse_mass = T(0);
+    s.inverse_inertia = mat3<T>{};
+    s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
+    state_.held.push_back(state_.bodies.ids()[i]);
+  }
+  bool held(std::uint32_t i) const noexcept { return held_[i] != 0; }
+
   void solve(T dt) {
     std::vector<body_record>& bodies = state_.bodies.values();
     const vec3<T> gravity_step = state_.settings.gravity * dt;
     solver_bodies_.resize(bodies.size());
+    held_.assign(bodies.size(), 0);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const rigid_body<T>& b = bodies[i].body;
       solver_body<T>& s = solver_bodies_[i];
@@ -17591,6 +18040,10 @@ class world {
         s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
         s.force_angular = s.inverse_inertia * (b.torque * dt);
         if constexpr (solver_policy::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
+        // A body its loads would take out of finite numbers, or past the
+        // speed limits, is held before anything couples it to another: a
+        // joint solved with it would carry the overflow into its partner.
+        if (!within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) hold(i);
       } else if (b.type == body_type::kinematic) {
         s.linear_velocity = b.kinematic_velocity;
         s.angular_velocity = b.kinematic_angular_velocity;
@@ -17600,13 +18053,19 @@ class world {
     const T move_dt = solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt;
     constraints_.clear();
     sources_.clear();
+    // Reserved exactly: grown by doubling, the largest per-step array
+    // would hold up to twice what it needs, and three times while it moves.
+    std::size_t manifold_count = 0;
+    for (const contact_record& c : state_.contacts) manifold_count += c.manifold_count;
+    constraints_.reserve(manifold_count);
+    sources_.reserve(manifold_count);
     for (std::uint32_t k = 0; k < state_.contacts.size(); ++k) {
       const contact_record& c = state_.contacts[k];
       if (!c.touching) continue;
       const std::uint32_t ia = dense(c.a), ib = dense(c.b);
-      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      if (held(ia) || held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
-        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        const contact_manifold<T>& manifold = slot_of(c, m).manifold;
         contact_constraint<T> cc;
         cc.body_a = ia, cc.body_b = ib;
         cc.normal = manifold.normal;
@@ -17640,7 +18099,7 @@ class world {
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
         cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
         cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
-        const manifold_impulse<T>& carried = c.impulses[std::size_t(m)];
+        const manifold_impulse<T>& carried = slot_of(c, m).impulse;
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
         cc.twist_impulse = carried.twist;
@@ -17666,7 +18125,7 @@ class world {
       const joint_record& r = state_.joints.values()[k];
       if (r.broken) continue;
       const std::uint32_t ia = dense(r.a), ib = dense(r.b);
-      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      if (held(ia) || held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
       joints_.push_back(r.constraint);
       joints_.back().body_a = ia, joints_.back().body_b = ib;
       joint_sources_.push_back(k);
@@ -17677,7 +18136,7 @@ class world {
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
       contact_record& c = state_.contacts[sources_[j].record];
       const contact_constraint<T>& cc = constraints_[j];
-      manifold_impulse<T>& kept = c.impulses[sources_[j].manifold];
+      manifold_impulse<T>& kept = slot_of(c, int(sources_[j].manifold)).impulse;
       for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
       kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
       kept.twist = cc.twist_impulse;
@@ -17686,7 +18145,10 @@ class world {
       body_record& r = bodies[i];
       rigid_body<T>& b = r.body;
       r.previous = b.pose();
-      if (is_solved(r)) {
+      if (held(std::uint32_t(i))) {
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+      } else if (is_solved(r)) {
         const solver_body<T>& s = solver_bodies_[i];
         body_pose<T> x{b.position, b.orientation};
         // L changes by the torque's impulse and by what the contacts did to
@@ -17709,8 +18171,11 @@ class world {
           const mat3<T> turn = to_mat3(s.orientation);
           momentum.angular = turn * b.inertia * transpose(turn) * s.angular_velocity;
         }
+        // What the solve gave it can still overflow (or pass the limits):
+        // the body is then held after all, where it started the step.
         const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
-                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0);
+                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
+                            within_speed_limits(s.linear_velocity, s.angular_velocity) && within_bounds(x.position);
         if (finite) {
           b.linear_momentum = momentum.linear;
           b.angular_momentum = momentum.angular;
@@ -17719,12 +18184,19 @@ class world {
         } else {
           b.linear_momentum = {};
           b.angular_momentum = {};
-          if (failed_ == no_object) failed_ = state_.bodies.ids()[i].index;
+          hold(i);
         }
       } else if (b.type == body_type::kinematic) {
-        // A kinematic body's motion is prescribed: placed exactly.
-        b.position += b.kinematic_velocity * dt;
-        b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+        // A kinematic body's motion is prescribed: placed exactly, and
+        // stopped at the world's bounds.
+        const vec3<T> moved = b.position + b.kinematic_velocity * dt;
+        if (within_bounds(moved)) {
+          b.position = moved;
+          b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+        } else {
+          b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
+          hold(i);
+        }
         if (r.target == target_state::armed) r.target = target_state::arrived;
       }
       b.clear_loads();
@@ -17749,6 +18221,8 @@ class world {
   /// The joints' drift removed from where the bodies have moved to
   /// (joint_tree::project_joints), by either solver; velocities are left as
   /// solved.
+  /// A body held after its solve (hold() made it immovable) stays put,
+  /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record>& bodies = state_.bodies.values();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -17757,9 +18231,19 @@ class world {
     }
     solver_.project_joints(solver_bodies_, joints_, state_.settings.solver);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (!is_solved(bodies[i])) continue;
-      bodies[i].body.position = solver_bodies_[i].position;
-      bodies[i].body.orientation = solver_bodies_[i].orientation;
+      if (!is_solved(bodies[i]) || held(std::uint32_t(i))) continue;
+      const solver_body<T>& s = solver_bodies_[i];
+      if (within_bounds(s.position) && is_finite(s.orientation) && length_squared(s.orientation) > T(0)) {
+        bodies[i].body.position = s.position;
+        bodies[i].body.orientation = normalize(s.orientation);
+      } else {
+        rigid_body<T>& b = bodies[i].body;
+        b.position = bodies[i].previous.position;
+        b.orientation = bodies[i].previous.rotation;
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+        hold(i);
+      }
     }
   }
 
@@ -17899,7 +18383,27 @@ class world {
   detail::union_find islands_;
   std::vector<std::uint8_t> island_flag_;
   std::vector<T> island_timer_;
-  std::uint32_t failed_ = no_object;
+  std::vector<std::uint8_t> held_;  ///< per dense body: held in this step (hold())
+
+  /// How many user callbacks are running (for_each_contact, overlap,
+  /// visit_shape, draw). Not state: a copy of the world starts with none.
+  struct callback_depth {
+    int depth = 0;
+    callback_depth() = default;
+    callback_depth(const callback_depth&) noexcept {}
+    callback_depth& operator=(const callback_depth&) noexcept { return *this; }
+  };
+  struct in_callback {
+    const world& owner;
+    explicit in_callback(const world& w) noexcept : owner(w) { ++owner.callbacks_.depth; }
+    ~in_callback() { --owner.callbacks_.depth; }
+    in_callback(const in_callback&) = delete;
+    in_callback& operator=(const in_callback&) = delete;
+  };
+  mutable callback_depth callbacks_;
+  void refuse_in_callback(const char* message) const {
+    if (callbacks_.depth > 0) detail::report_error(error_code::invalid_parameter, message);
+  }
 };
 
 // ---- the members defined outside the class ----
@@ -17931,6 +18435,9 @@ auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, con
   if (def.type == body_type::dynamic) body.position = apply(def.pose, center);
   if (!is_finite(def.linear_velocity) || !is_finite(def.angular_velocity))
     detail::report_error(error_code::non_finite, "world::create_body: velocity is not finite");
+  require_speeds(def.linear_velocity, def.angular_velocity,
+                 "world::create_body: faster than max_linear_speed or max_angular_speed");
+  require_within_bounds(body.position, "world::create_body: the body is farther than max_coordinate from the origin");
   if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
     detail::report_error(error_code::invalid_parameter, "world::create_body: a static body cannot move");
   if (def.type != body_type::static_body) body.set_velocity(def.linear_velocity, def.angular_velocity);
@@ -17955,6 +18462,8 @@ body_id world<Config>::insert_body(const body_record& record) {
 
 template <class Config>
 void world<Config>::destroy_body(body_id id) {
+  refuse_in_callback("world::destroy_body: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::destroy_body: no such body (destroyed already?)");
   doomed_joints_.clear();
   for (std::size_t k = 0; k < state_.joints.size(); ++k) {
@@ -17964,7 +18473,7 @@ void world<Config>::destroy_body(body_id id) {
   for (const joint_id j : doomed_joints_) destroy_joint(j);
   std::erase_if(state_.contacts, [&](const contact_record& c) {
     if (c.a != id && c.b != id) return false;
-    if (c.touching) state_.ended.push_back({c.a, c.b});
+    end_contact(c);
     const body_id other = c.a == id ? c.b : c.a;
     wake_record(state_.bodies[other]);
     return true;
@@ -17977,13 +18486,20 @@ void world<Config>::destroy_body(body_id id) {
 
 template <class Config>
 void world<Config>::set_pose(body_id id, const transform<T>& pose) {
+  refuse_in_callback("world::set_pose: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::set_pose: no such body");
   body_record& r = state_.bodies[id];
-  rigid_body<T> moved = r.body;
-  moved.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
-  r.body = moved;
-  r.previous = moved.pose();
-  state_.broad.move(r.proxy, proxy_box(r));
+  body_record moved = r;
+  moved.body.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
+  moved.previous = moved.body.pose();
+  const aabb<T> box = proxy_box(moved);
+  const bool plane_shape = r.shape.type == detail::shape_store<shapes, T>::template index_of<plane<T>>();
+  if (!within_bounds(moved.body.position) || (!plane_shape && (!within_bounds(box.lower) || !within_bounds(box.upper))))
+    detail::report_error(error_code::invalid_parameter,
+                         "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
+  r = moved;
+  state_.broad.move(r.proxy, box);
   wake_record(r);
 }
 
@@ -18000,30 +18516,44 @@ void world<Config>::set_target_pose(body_id id, const transform<T>& target, T dt
     detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
   if (!is_normalized(target.rotation))
     detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
+  require_within_bounds(target.position, "world::set_target_pose: farther than max_coordinate from the origin", id);
   const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
-  r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
+  const vec3<T> linear = (target.position - shape_pose_of(r).position) * (T(1) / dt), angular = rotation * (T(1) / dt);
+  if (!is_finite(linear) || !is_finite(angular) || !within_speed_limits(linear, angular))
+    detail::report_error(error_code::invalid_parameter,
+                         "world::set_target_pose: reaching the target in dt is faster than max_linear_speed or "
+                         "max_angular_speed",
+                         id.index);
+  r.body.set_velocity(linear, angular);
   if (r.target == target_state::none) state_.targeted.push_back(id);
   r.target = target_state::armed;
 }
 
 template <class Config>
 joint_id world<Config>::create_joint(const joint_def<T>& def) {
+  refuse_in_callback("world::create_joint: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
   require(def.body_b, "world::create_joint: body_b does not exist (destroyed?)");
   if (def.body_a == def.body_b)
     detail::report_error(error_code::invalid_parameter, "world::create_joint: a joint needs two different bodies",
                          def.body_a.index);
   def.validate();
+  require_within_bounds(def.anchor_a, "world::create_joint: anchor_a is farther than max_coordinate from the origin");
+  require_within_bounds(def.anchor_b, "world::create_joint: anchor_b is farther than max_coordinate from the origin");
   body_record& ra = state_.bodies[def.body_a];
   body_record& rb = state_.bodies[def.body_b];
   if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic)
     detail::report_error(error_code::invalid_parameter, "world::create_joint: at least one body must be dynamic",
                          def.body_a.index);
 
+  const bool two_ends = def.type == joint_type::distance;
+  require_lever(ra.body, def.anchor_a, def.body_a);
+  require_lever(rb.body, two_ends ? def.anchor_b : def.anchor_a, def.body_b);
+
   // Nothing below can fail on the input.
   const rigid_body<T>& a = ra.body;
   const rigid_body<T>& b = rb.body;
-  const bool two_ends = def.type == joint_type::distance;
   joint_constraint<T> c;
   c.type = def.type;
   c.local_anchor_a = inverse_rotate(a.orientation, def.anchor_a - a.position);
@@ -18051,6 +18581,8 @@ joint_id world<Config>::create_joint(const joint_def<T>& def) {
 
 template <class Config>
 void world<Config>::destroy_joint(joint_id id) {
+  refuse_in_callback("world::destroy_joint: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::destroy_joint: no such joint (destroyed already?)");
   const joint_record& r = state_.joints[id];
   if (!r.broken) unjoin(r);
@@ -18061,13 +18593,15 @@ void world<Config>::destroy_joint(joint_id id) {
 
 template <class Config>
 void world<Config>::step(T dt) {
-  if (!std::isfinite(dt) || !(dt > T(0)))
-    detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
+  refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  if (!(dt > T(0) && dt <= max_dt))
+    detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and at most max_dt (1 s)");
   state_.begun.clear();
   state_.ended.clear();
   state_.broken.clear();
+  state_.held.clear();
   expire_targets();
-  failed_ = no_object;
   update_broad_phase();
   update_contacts();
   if constexpr (sleeping) wake_islands();
@@ -18077,9 +18611,12 @@ void world<Config>::step(T dt) {
   state_.time += dt;
   state_.last_dt = dt;
   ++state_.step_count;
-  if (failed_ != no_object)
+  if (!state_.held.empty())
     detail::report_error(error_code::non_finite,
-                         "world::step: a body's state became non-finite; it was left where it was", failed_);
+                         "world::step: a body's motion overflowed (not finite, past max_linear_speed or "
+                         "max_angular_speed, or beyond max_coordinate); it was held where it was, its contacts and joints left out of the "
+                         "step, and the other bodies stepped on (held_bodies() lists every one)",
+                         state_.held.front().index);
 }
 
 template <class Config>
@@ -18131,7 +18668,7 @@ class world_snapshot {
  private:
   friend class world<Config>;
   explicit world_snapshot(const typename world<Config>::state& s) : state_(s) {}
-  typename world<Config>::state state_{};
+  typename world<Config>::state state_;
 };
 
 }  // namespace impulse

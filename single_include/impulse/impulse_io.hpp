@@ -759,10 +759,15 @@ struct raster {
   void fill(const std::array<std::array<double, 3>, 3>& p, const std::array<std::uint8_t, 3>& colour) {
     const double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
     if (!(std::abs(area) > 1e-12)) return;
-    const int x0 = std::max(0, int(std::floor(std::min({p[0][0], p[1][0], p[2][0]}))));
-    const int x1 = std::min(width - 1, int(std::ceil(std::max({p[0][0], p[1][0], p[2][0]}))));
-    const int y0 = std::max(0, int(std::floor(std::min({p[0][1], p[1][1], p[2][1]}))));
-    const int y1 = std::min(height - 1, int(std::ceil(std::max({p[0][1], p[1][1], p[2][1]}))));
+    // The bounds are clamped to the raster while still doubles: a corner cut
+    // at the near plane can lie 1e13 pixels off screen (a large box around
+    // the camera), and converting that to int is undefined behaviour.
+    // (NaN corners give a NaN area, refused above.)
+    const auto pixel = [](double v, int last) { return int(std::clamp(v, -1.0, double(last) + 1)); };
+    const int x0 = std::max(0, pixel(std::floor(std::min({p[0][0], p[1][0], p[2][0]})), width - 1));
+    const int x1 = std::min(width - 1, pixel(std::ceil(std::max({p[0][0], p[1][0], p[2][0]})), width - 1));
+    const int y0 = std::max(0, pixel(std::floor(std::min({p[0][1], p[1][1], p[2][1]})), height - 1));
+    const int y1 = std::min(height - 1, pixel(std::ceil(std::max({p[0][1], p[1][1], p[2][1]})), height - 1));
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
         const double px = x + 0.5, py = y + 0.5;

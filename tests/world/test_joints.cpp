@@ -131,7 +131,7 @@ TEST_CASE_TEMPLATE("a chain of 20 ball joints at 10 to 1 between neighbours stay
   // The bound: 1 mm. Each link's joints solved one at a time (Gauss–
   // Seidel, 20 iterations) opened the hanging chain 13 mm; its tree solved
   // exactly (joint_tree.hpp) keeps it within 0.01 mm, and let go from
-  // horizontal, the whip of its tail within 0.022 mm (sequential_impulse
+  // horizontal, the whip of its tail within 0.013 mm (sequential_impulse
   // and soft_step alike, float).
   constexpr T bound = T(0.001);
   CHECK(chain_gap<World>(false, 600) < bound);

@@ -25,6 +25,8 @@ class aligned_array {
   aligned_array() noexcept = default;
   explicit aligned_array(std::size_t size) : size_(size) {
     if (size == 0) return;
+    // size · sizeof(T) would wrap to a small block that the loop below overruns.
+    if (size > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     data_ = static_cast<T*>(::operator new(size * sizeof(T), std::align_val_t{simd_alignment}));
     for (std::size_t i = 0; i < size; ++i) ::new (data_ + i) T();
   }

@@ -6,7 +6,8 @@
 // slot index and the slot's generation: removing an object bumps its slot's
 // generation, so a stale id is recognised and refused instead of silently
 // naming whatever took the slot next. Removal moves the last element into
-// the hole, so dense positions change; ids do not.
+// the hole, so dense positions change; ids do not. A slot is retired
+// before its generation wraps, so a destroyed id never names a live object.
 #pragma once
 
 #include <cstddef>
@@ -42,6 +43,8 @@ class slot_map {
   Id insert(V value) {
     std::uint32_t slot;
     if (free_.empty()) {
+      if (slots_.size() >= std::size_t(free_slot))
+        detail::report_error(error_code::capacity_exceeded, "slot_map: every 32-bit slot index is in use or retired");
       slot = static_cast<std::uint32_t>(slots_.size());
       slots_.push_back({free_slot, 0});
     } else {
@@ -64,8 +67,13 @@ class slot_map {
     }
     values_.pop_back();
     ids_.pop_back();
-    slots_[id.index] = {free_slot, slots_[id.index].generation + 1};
-    free_.push_back(id.index);
+    // A slot whose generation would wrap is retired rather than reused:
+    // after 2³² reuses its next id would equal its first, and a stale id
+    // kept from then would name the new object. It costs one slot per 2³²
+    // removals of the same slot.
+    const generation_type next = generation_type(slots_[id.index].generation + 1);
+    slots_[id.index] = {free_slot, next};
+    if (next != generation_type(0)) free_.push_back(id.index);
   }
 
   /// Position of a live id in the dense arrays.
@@ -80,9 +88,12 @@ class slot_map {
 
  private:
   static constexpr std::uint32_t free_slot = 0xffffffffu;
+  /// The id's generation type: 32 bits for impulse's ids; a test's id with
+  /// a narrower one wraps sooner.
+  using generation_type = decltype(Id{}.generation);
   struct slot {
     std::uint32_t dense;
-    std::uint32_t generation;
+    generation_type generation;
   };
   std::vector<V> values_;
   std::vector<Id> ids_;

@@ -394,47 +394,147 @@ class joint_tree {
   /// Non-linear Gauss–Seidel on the joints' poses (joint.hpp,
   /// project_joint: `fraction` of each error), `passes` times, each
   /// followed by a Newton step on the trees' rows, measured where the
-  /// bodies are then. Limits passed are pushed back too unless `limits` is
-  /// false.
+  /// bodies are then; then Newton steps alone while the trees have not
+  /// settled, newton_steps_per_pass·passes steps in all at most. The
+  /// passes leave a tree's rows that hold to its Newton steps, and push
+  /// back limits passed unless `limits` is false.
   ///
   /// The Newton step takes the whole linearised error: the factor is
   /// exact, so no joint overshoots for its neighbours, as each does under
   /// Gauss–Seidel at 1 (joint_correction). On the 10:1 chain let go from
   /// horizontal, its tail's whip opened 1.9 mm at 0.5 and 0.004 mm at 1.
-  /// The factor of the first pass serves the later ones (a chord method:
-  /// the passes move the bodies by their errors, so the rows barely turn),
-  /// which took the ragdoll pile from 7.7 to 6.1 ms a step and left the
-  /// whip at 0.022 mm. A prototype that kept the factor of the step's
-  /// start, before the bodies moved, diverged on the whip.
+  ///
+  /// Each step is checked (newton_step) because unchecked ones tore chains
+  /// apart. The factor of the first pass used to serve the later ones (a
+  /// chord method, which took the ragdoll pile from 7.7 to 6.1 ms a step),
+  /// and every step was taken whole. A chain of 20 equal links let go from
+  /// horizontal (1 kg, 0.5 m, 60 Hz) opened 13 m, float and double alike,
+  /// from its 264th step, as its whip reached the middle links: their
+  /// first Newton step turned them by up to 0.16 rad, the factor left
+  /// behind no longer described them, and the later passes, taken with it,
+  /// raised the worst error of that step from 1.5 to 2.1 mm and of the
+  /// next from 5.4 to 36 mm; what a step left was the next one's start.
+  /// Throughout, the velocity solve was exact (J·v within 1e-6 m/s of 0,
+  /// its joint pivots 0.05 to 14: the factor is well conditioned), and a
+  /// fresh factor each pass kept the chain within 0.01 mm. At 100 links
+  /// that was not enough (0.28 m in float, 0.65 m in double, from 36–42 m):
+  /// across a taut, nearly straight run of links a full step shortens the
+  /// run by turning light links tenths of a radian, which works only to
+  /// first order, and the steps overshoot back and forth; and at the whip
+  /// a step starts up to 0.2 m off, which takes up to 21 Newton steps, not
+  /// four.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints, int passes,
                       T fraction, bool limits) {
-    const std::span<const solver_body<T>> read = bodies;
-    // Errors below this (m or rad) are not worth a factorisation: Newton's
-    // method has converged to rounding after two steps on the chain, and
-    // the factor is most of the cost of a ragdoll pile's joints.
-    constexpr T settled = T(1e-5);
-    bool factored = false;
+    // The velocity solve's factor is of the poses at the start of the step:
+    // a prototype that kept it diverged on the whip.
+    reusable_ = false;
+    newton_outcome outcome = newton_outcome::moved;
     for (int pass = 0; pass < passes; ++pass) {
       for (joint_constraint<T>& j : joints) project_joint(bodies, j, fraction, limits);
-      if (empty()) continue;
-      T worst = T(0);
-      for (joint_constraint<T>& j : joints)
-        if (j.in_tree) {
-          prepare_joint(read, j);
-          T error[6] = {};
-          holding_rows<T>::errors(j, error);
-          for (const T e : error) worst = std::max(worst, std::abs(e));
-        }
-      if (worst <= settled) continue;
-      if (!factored && !(factored = factor(read, joints))) continue;
-      project(bodies, joints);
+      if (!empty()) outcome = newton_step(bodies, joints);
     }
+    for (int step = passes; step < newton_steps_per_pass * passes && outcome == newton_outcome::moved && !empty();
+         ++step)
+      outcome = newton_step(bodies, joints);
   }
 
   /// One Newton step on the positions: the bodies moved so as to remove
   /// each tree joint's error, linearised where they are (the joints
-  /// prepared and the tree factored there).
+  /// prepared and the tree factored there), whole and unchecked.
   void project(std::span<solver_body<T>> bodies, std::span<const joint_constraint<T>> joints) noexcept {
+    solve_for_errors(joints);
+    move(bodies, T(1));
+  }
+
+ private:
+  static constexpr std::uint32_t none = ~std::uint32_t(0);
+
+  /// Errors below this (m or rad) are not worth a factorisation: Newton's
+  /// method has converged to rounding after two steps on the chain, and the
+  /// factor is most of the cost of a ragdoll pile's joints.
+  static constexpr T settled = T(1e-5);
+  /// The projection's Newton steps at most, per pass (project_joints): the
+  /// 100-link chains of tests/faults/test_chains.cpp settle within 21 at
+  /// the worst step of their whip (3.4 a step on average). Where a step
+  /// cannot follow the motion (the tail of a chain tapering 1000:1 at
+  /// 450 rad/s) the limit bounds the cost.
+  static constexpr int newton_steps_per_pass = 8;
+  /// The smallest fraction of a Newton step tried (six halvings) before
+  /// the step is given up as no descent.
+  static constexpr T smallest_share = T(1) / T(64);
+
+  enum class newton_outcome { settled, moved, stuck };
+
+  /// How far the tree joints are from holding, where the bodies are.
+  struct tree_error {
+    T worst = T(0);    ///< largest row error, m or rad
+    T squares = T(0);  ///< sum of the rows' errors squared: what a Newton step must lower
+  };
+
+  /// A body's pose, kept to undo a step.
+  struct pose {
+    vec3<T> position{};
+    quat<T> orientation{};
+  };
+
+  /// One Newton step on the trees' rows, kept only if it lowers their
+  /// squared error (project_joints says why it must be checked). A factor
+  /// from an earlier step is reused (a chord method) only if that step at
+  /// least halved the error; when its step fails, the tree is factored
+  /// where the bodies are and the step taken again. A fresh factor's step
+  /// that fails is halved until it does not (a backtracking line search),
+  /// and given up, the bodies where they were, below smallest_share.
+  newton_outcome newton_step(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints) {
+    const std::span<const solver_body<T>> read = bodies;
+    const tree_error before = measure(read, joints);
+    if (before.worst <= settled) return newton_outcome::settled;
+    bool fresh = !reusable_;
+    if (fresh && !factor(read, joints)) return newton_outcome::stuck;
+    solve_for_errors(joints);
+    keep_poses(bodies);
+    T share = T(1);
+    for (;;) {
+      move(bodies, share);
+      const tree_error after = measure(read, joints);
+      if (after.squares < before.squares) {
+        reusable_ = after.squares <= T(0.25) * before.squares;
+        return newton_outcome::moved;
+      }
+      restore_poses(bodies);
+      (void)measure(read, joints);  // the joints prepared where the bodies are again
+      if (!fresh) {
+        fresh = true;
+        if (!factor(read, joints)) return newton_outcome::stuck;
+        solve_for_errors(joints);
+        continue;
+      }
+      share *= T(0.5);
+      if (share < smallest_share) {
+        reusable_ = false;
+        return newton_outcome::stuck;
+      }
+    }
+  }
+
+  /// The tree joints prepared where the bodies are, and their errors.
+  static tree_error measure(std::span<const solver_body<T>> bodies, std::span<joint_constraint<T>> joints) noexcept {
+    tree_error e;
+    for (joint_constraint<T>& j : joints) {
+      if (!j.in_tree) continue;
+      prepare_joint(bodies, j);
+      T error[6] = {};
+      holding_rows<T>::errors(j, error);
+      for (const T row : error) {
+        e.worst = std::max(e.worst, std::abs(row));
+        e.squares += row * row;
+      }
+    }
+    return e;
+  }
+
+  /// The Newton step that removes each tree joint's error as prepared,
+  /// from the factor: the bodies' displacements in their nodes' values.
+  void solve_for_errors(std::span<const joint_constraint<T>> joints) noexcept {
     for (node& m : nodes_) {
       m.value = {};
       if (m.body) continue;
@@ -443,16 +543,32 @@ class joint_tree {
       for (int r = 0; r < m.size; ++r) m.value[r] = -error[r];
     }
     solve();
+  }
+
+  /// The tree's bodies moved by `share` of the solved step.
+  void move(std::span<solver_body<T>> bodies, T share) const noexcept {
     for (const node& m : nodes_) {
       if (!m.body) continue;
       solver_body<T>& b = bodies[m.item];
-      b.position += vec3<T>{m.value[0], m.value[1], m.value[2]};
-      b.orientation = integrate(b.orientation, vec3<T>{m.value[3], m.value[4], m.value[5]}, T(1));
+      b.position += vec3<T>{m.value[0], m.value[1], m.value[2]} * share;
+      b.orientation = integrate(b.orientation, vec3<T>{m.value[3], m.value[4], m.value[5]}, share);
     }
   }
 
- private:
-  static constexpr std::uint32_t none = ~std::uint32_t(0);
+  void keep_poses(std::span<const solver_body<T>> bodies) {
+    kept_.clear();
+    for (const node& m : nodes_)
+      if (m.body) kept_.push_back({bodies[m.item].position, bodies[m.item].orientation});
+  }
+  void restore_poses(std::span<solver_body<T>> bodies) const noexcept {
+    std::size_t k = 0;
+    for (const node& m : nodes_)
+      if (m.body) {
+        bodies[m.item].position = kept_[k].position;
+        bodies[m.item].orientation = kept_[k].orientation;
+        ++k;
+      }
+  }
 
   /// Where a node sits in its tree.
   struct place {
@@ -566,6 +682,8 @@ class joint_tree {
 
   std::vector<node> nodes_;  ///< children before parents
   std::vector<holding_rows<T>> rows_;  ///< per joint; filled for the tree joints
+  std::vector<pose> kept_;             ///< the tree's bodies before a Newton step, node order
+  bool reusable_ = false;              ///< whether the factor may serve the projection's next step
   // Scratch for build, kept to reuse its memory.
   std::vector<std::uint32_t> leader_, first_, fill_, links_;
   std::vector<std::uint8_t> tied_, placed_;

@@ -113,6 +113,14 @@ struct rigid_body {
     if (!symmetric || !positive || !physical || !inverse)
       detail::report_error(error_code::degenerate_shape,
                            "rigid_body: inertia must be symmetric positive definite (a real solid's)");
+    // A mass or moment so small (a denormal) that its inverse overflows
+    // would make the first push infinite.
+    bool invertible = std::isfinite(T(1) / p.mass);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) invertible = invertible && std::isfinite((*inverse)(r, c));
+    if (!invertible)
+      detail::report_error(error_code::non_positive_mass,
+                           "rigid_body: mass or inertia too small: its inverse is not finite");
     type = body_type::dynamic;
     mass = p.mass;
     inverse_mass = T(1) / p.mass;
@@ -162,26 +170,41 @@ struct rigid_body {
       kinematic_angular_velocity = omega;
       return;
     }
-    linear_momentum = v * mass;
-    angular_momentum = inertia_world() * omega;
+    const vec3<T> linear = v * mass, angular = inertia_world() * omega;
+    // Finite velocities can still give infinite momenta (1e35 m/s on
+    // 8 000 kg, in float): refused here, where the caller can be told.
+    if (!is_finite(linear) || !is_finite(angular))
+      detail::report_error(error_code::non_finite, "rigid_body: the velocity overflows the body's momentum");
+    linear_momentum = linear;
+    angular_momentum = angular;
   }
 
   // ---- loads ----
+  // Each load is checked, then added only if the sums stay finite: two
+  // finite forces of 3e38 N add to infinity in float, which the next step
+  // would find too late to say which call caused it.
 
   void apply_force(const vec3<T>& f) {
     require_finite(f, "rigid_body: force is not finite");
-    force += f;
+    const vec3<T> total = force + f;
+    require_finite(total, "rigid_body: the force overflows the forces already applied this step");
+    force = total;
   }
   void apply_torque(const vec3<T>& t) {
     require_finite(t, "rigid_body: torque is not finite");
-    torque += t;
+    const vec3<T> total = torque + t;
+    require_finite(total, "rigid_body: the torque overflows the torques already applied this step");
+    torque = total;
   }
   /// A force at world point p: the force, and its moment (p − x) × f.
   void apply_force_at(const vec3<T>& f, const vec3<T>& p) {
     require_finite(f, "rigid_body: force is not finite");
     require_finite(p, "rigid_body: point is not finite");
-    force += f;
-    torque += cross(p - position, f);
+    const vec3<T> total_force = force + f, total_torque = torque + cross(p - position, f);
+    require_finite(total_force, "rigid_body: the force overflows the forces already applied this step");
+    require_finite(total_torque, "rigid_body: the force's moment about the centre of mass overflows");
+    force = total_force;
+    torque = total_torque;
   }
   /// An impulse j at world point p changes the momenta at once: ΔP = j,
   /// ΔL = (p − x) × j. Static and kinematic bodies are not moved by it.
@@ -189,8 +212,11 @@ struct rigid_body {
     require_finite(j, "rigid_body: impulse is not finite");
     require_finite(p, "rigid_body: point is not finite");
     if (type != body_type::dynamic) return;
-    linear_momentum += j;
-    angular_momentum += cross(p - position, j);
+    const vec3<T> linear = linear_momentum + j, angular = angular_momentum + cross(p - position, j);
+    require_finite(linear, "rigid_body: the impulse overflows the body's momentum");
+    require_finite(angular, "rigid_body: the impulse's moment overflows the body's angular momentum");
+    linear_momentum = linear;
+    angular_momentum = angular;
   }
   void clear_loads() noexcept { force = {}, torque = {}; }
 

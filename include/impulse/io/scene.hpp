@@ -16,6 +16,11 @@
 // back as it was. Every error is an io::scene_error whose message names the
 // file, the JSON path and what was expected.
 //
+// What a file may ask for is bounded over the whole document (scene_limits):
+// its size, its JSON values and nesting, and the bodies, joints, particles,
+// vertices and triangles it makes. Each limit is checked before the memory it
+// guards is allocated, so a few kilobytes cannot ask for gigabytes.
+//
 // Needs nlohmann/json (Debian's nlohmann-json3-dev); the rest of impulse
 // does not, and the single header does not include this file.
 #pragma once
@@ -23,11 +28,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <fstream>
+#include <ios>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -44,15 +49,63 @@
 
 namespace impulse::io {
 
-/// What a file may hold at most: a typo of a few zeros in a repeat count
-/// or a capacity is refused rather than left to exhaust memory.
-inline constexpr std::size_t max_scene_bodies = 100'000;
-inline constexpr std::size_t max_scene_joints = 100'000;
-inline constexpr std::size_t max_hull_points = 4096;
-inline constexpr std::size_t max_mesh_triangles = 1'000'000;
-inline constexpr std::size_t max_particle_capacity = std::size_t(1) << 24;
-/// JSON nesting deeper than any scene needs (the deepest element is 6).
-inline constexpr int max_scene_depth = 32;
+/// What one scene file may hold at most, counted over the whole document: a
+/// typo of a few zeros in a repeat count or a capacity, or a file made to
+/// exhaust memory, is refused rather than allocated. Every limit is checked
+/// before the memory it guards is allocated, and a refusal is a scene_error
+/// (error_code::capacity_exceeded) naming the JSON path of the value that
+/// crossed it and the member below. The defaults admit every scene the
+/// format was made for; a program that reads larger ones passes its own:
+///
+///   io::scene_limits limits;
+///   limits.particles = std::size_t(1) << 26;
+///   auto scene = io::read_scene<float>("galaxy.json", limits);
+///
+/// Memory figures are for nlohmann-json 3.11 on a 64-bit machine.
+struct scene_limits {
+  /// Bytes of text, checked before the text is read or parsed: 64 MiB. The
+  /// largest mesh the counts below admit, 10^6 triangles over about 5·10^5
+  /// vertices written at float precision, is about 40 MB of text.
+  std::size_t bytes = std::size_t(64) << 20;
+  /// JSON values of every kind (numbers, strings, arrays, objects), counted
+  /// in a first reading that builds nothing. The document built afterwards
+  /// takes 35 to 50 bytes a value for arrays of numbers, and up to 130 for
+  /// objects of short keys: 10^7 values bound it to about 1.3 GB at worst,
+  /// 500 MB for a mesh. Both mesh limits below together need 8·10^6.
+  std::size_t json_values = 10'000'000;
+  /// Arrays and objects inside one another. The format's deepest value, an
+  /// attractor's position (/particles/i/forces/attractors/points/j/position),
+  /// is inside 8, counting the document.
+  int depth = 32;
+  /// Bodies, counting every copy a "repeat" makes.
+  std::size_t bodies = 100'000;
+  /// Joints, counting every copy.
+  std::size_t joints = 100'000;
+  /// Particles, as the capacities of all particle systems summed, checked
+  /// for all systems before any system's particles are made. 2^24 was the
+  /// limit of one system before it was one of the whole document: every
+  /// file with one system that loaded then loads now. A scene's particle
+  /// takes 32 bytes (float) or 64 (double), and a system made from it 40 or
+  /// 80 a unit of capacity.
+  std::size_t particles = std::size_t(1) << 24;
+  /// Points of one convex hull: quickhull's cost grows faster than linearly
+  /// with them, and a hull of more points is better given as a mesh.
+  std::size_t hull_points = 4096;
+  /// Vertices of all meshes and hulls. An indexed mesh has about half as
+  /// many vertices as triangles, so this leaves room for the largest mesh
+  /// and for thousands of hulls.
+  std::size_t vertices = 1'000'000;
+  /// Triangles of all meshes: 10^6, the former limit of one mesh.
+  std::size_t triangles = 1'000'000;
+};
+
+/// The default limits under the names they had before scene_limits.
+inline constexpr std::size_t max_scene_bodies = scene_limits{}.bodies;
+inline constexpr std::size_t max_scene_joints = scene_limits{}.joints;
+inline constexpr std::size_t max_hull_points = scene_limits{}.hull_points;
+inline constexpr std::size_t max_mesh_triangles = scene_limits{}.triangles;
+inline constexpr std::size_t max_particle_capacity = scene_limits{}.particles;
+inline constexpr int max_scene_depth = scene_limits{}.depth;
 
 template <scalar_type T>
 using scene_shape = std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>>;
@@ -187,7 +240,8 @@ struct repeat_plan {
 template <class T>
 class scene_parser {
  public:
-  scene_parser(const json& document, std::string file) : r_(std::move(file)), root_{document, "", &r_.file()} {}
+  scene_parser(const json& document, std::string file, const scene_limits& limits)
+      : r_(std::move(file)), root_{document, "", &r_.file()}, limits_(limits) {}
 
   scene<T> parse() {
     r_.object(root_, {"impulse_scene", "description", "settings", "duration", "materials", "shapes", "bodies",
@@ -225,22 +279,31 @@ class scene_parser {
     if (root_.has("particles")) {
       const json_at all = root_["particles"];
       r_.array(all);
+      check_particle_capacities(all);
       for (std::size_t i = 0; i < all.value.size(); ++i) out_.particle_systems.push_back(particle_system(all[i]));
     }
     return std::move(out_);
   }
 
  private:
+  /// A limit of scene_limits crossed at `at`; `limit` names the member.
+  [[noreturn]] void exceeded(const json_at& at, const std::string& what, const char* limit) const {
+    r_.fail(at, what + " (scene_limits::" + limit + ")", error_code::capacity_exceeded);
+  }
+
   // ---- settings ----
 
   world_settings<T> settings(const json_at& at) {
     r_.object(at, {"gravity", "time_step", "max_steps_per_advance", "sleep_linear_speed", "sleep_angular_speed",
                    "sleep_time", "contact_reuse_distance", "contact_reuse_angle", "ccd_motion_fraction", "ccd_gap",
+                   "max_linear_speed", "max_angular_speed", "max_coordinate", "max_joint_lever", "max_contact_pairs",
                    "solver"});
     world_settings<T> s;
     if (at.has("gravity")) s.gravity = r_.vector(at["gravity"]);
     if (at.has("time_step")) s.fixed_dt = r_.positive(at["time_step"]);
     if (at.has("max_steps_per_advance")) s.max_steps_per_advance = int(r_.integer(at["max_steps_per_advance"], 1, 1000));
+    if (at.has("max_contact_pairs"))
+      s.max_contact_pairs = std::uint32_t(r_.integer(at["max_contact_pairs"], 1, std::int64_t(0xffffffff)));
     const std::pair<const char*, T world_settings<T>::*> numbers[] = {
         {"sleep_linear_speed", &world_settings<T>::sleep_linear_speed},
         {"sleep_angular_speed", &world_settings<T>::sleep_angular_speed},
@@ -248,7 +311,11 @@ class scene_parser {
         {"contact_reuse_distance", &world_settings<T>::contact_reuse_distance},
         {"contact_reuse_angle", &world_settings<T>::contact_reuse_angle},
         {"ccd_motion_fraction", &world_settings<T>::ccd_motion_fraction},
-        {"ccd_gap", &world_settings<T>::ccd_gap}};
+        {"ccd_gap", &world_settings<T>::ccd_gap},
+        {"max_linear_speed", &world_settings<T>::max_linear_speed},
+        {"max_angular_speed", &world_settings<T>::max_angular_speed},
+        {"max_coordinate", &world_settings<T>::max_coordinate},
+        {"max_joint_lever", &world_settings<T>::max_joint_lever}};
     for (const auto& [key, member] : numbers)
       if (at.has(key)) s.*member = r_.non_negative(at[key]);
     if (at.has("solver")) s.solver = solver(at["solver"]);
@@ -335,18 +402,24 @@ class scene_parser {
     }
     if (type == "convex_hull") {
       r_.object(at, {"type", "vertices"});
-      const std::vector<vec3<T>> points = vertices(at["vertices"], max_hull_points);
+      const json_at list = at["vertices"];
+      r_.array(list, 1);
+      if (list.value.size() > limits_.hull_points)
+        exceeded(list, "more than " + std::to_string(limits_.hull_points) + " points in one hull", "hull_points");
+      const std::vector<vec3<T>> points = vertices(list);
       std::shared_ptr<const scene_shape<T>> out;
       check(at["vertices"], [&] { out = std::make_shared<const scene_shape<T>>(convex_hull<T>::from_points(points)); });
       return out;
     }
     if (type == "triangle_mesh") {
       r_.object(at, {"type", "vertices", "triangles"});
-      const std::vector<vec3<T>> points = vertices(at["vertices"], 3 * max_mesh_triangles);
+      const std::vector<vec3<T>> points = vertices(at["vertices"]);
       const json_at list = at["triangles"];
       r_.array(list, 1);
-      if (list.value.size() > max_mesh_triangles)
-        r_.fail(list, "more than " + std::to_string(max_mesh_triangles) + " triangles");
+      if (list.value.size() > limits_.triangles - triangles_)
+        exceeded(list, "the scene's meshes would have more than " + std::to_string(limits_.triangles) + " triangles",
+                 "triangles");
+      triangles_ += list.value.size();
       std::vector<std::uint32_t> indices;
       indices.reserve(3 * list.value.size());
       for (std::size_t t = 0; t < list.value.size(); ++t) {
@@ -369,9 +442,13 @@ class scene_parser {
     return std::make_shared<const scene_shape<T>>(s);
   }
 
-  std::vector<vec3<T>> vertices(const json_at& at, std::size_t most) {
+  /// The points of a hull or mesh, counted towards the scene's vertices.
+  std::vector<vec3<T>> vertices(const json_at& at) {
     r_.array(at, 1);
-    if (at.value.size() > most) r_.fail(at, "more than " + std::to_string(most) + " vertices");
+    if (at.value.size() > limits_.vertices - vertices_)
+      exceeded(at, "the scene's meshes and hulls would have more than " + std::to_string(limits_.vertices) + " vertices",
+               "vertices");
+    vertices_ += at.value.size();
     std::vector<vec3<T>> out;
     out.reserve(at.value.size());
     for (std::size_t i = 0; i < at.value.size(); ++i) out.push_back(r_.vector(at[i]));
@@ -414,18 +491,20 @@ class scene_parser {
       if (for_joint) r_.fail(count, "a joint repeats along a path (\"count\": n), not a grid");
       if (count.value.size() != 3) r_.fail_expected(count, "[nx, ny, nz]");
       plan.grid = true;
-      plan.nx = std::size_t(r_.integer(count[0], 1, max_scene_bodies));
-      plan.ny = std::size_t(r_.integer(count[1], 1, max_scene_bodies));
-      plan.nz = std::size_t(r_.integer(count[2], 1, max_scene_bodies));
-      if (plan.nx * plan.ny > max_scene_bodies || plan.nx * plan.ny * plan.nz > max_scene_bodies)
-        r_.fail(count, "more than " + std::to_string(max_scene_bodies) + " copies");
+      const auto most = std::int64_t(limits_.bodies);
+      plan.nx = std::size_t(r_.integer(count[0], 1, most));
+      plan.ny = std::size_t(r_.integer(count[1], 1, most));
+      plan.nz = std::size_t(r_.integer(count[2], 1, most));
+      // Each factor is at most `bodies`, so neither product can wrap.
+      if (plan.nx * plan.ny > limits_.bodies || plan.nx * plan.ny * plan.nz > limits_.bodies)
+        exceeded(count, "more than " + std::to_string(limits_.bodies) + " copies", "bodies");
       plan.spacing = r_.vector(rep["spacing"]);
     } else {
       if (for_joint) r_.object(rep, {"count", "index_step", "step"});
       else r_.object(rep, {"count", "step"});
-      plan.nx = std::size_t(r_.integer(count, 1, for_joint ? max_scene_joints : max_scene_bodies));
+      plan.nx = std::size_t(r_.integer(count, 1, std::int64_t(for_joint ? limits_.joints : limits_.bodies)));
       if (for_joint) {
-        if (rep.has("index_step")) plan.index_step = std::size_t(r_.integer(rep["index_step"], 0, max_scene_bodies));
+        if (rep.has("index_step")) plan.index_step = std::size_t(r_.integer(rep["index_step"], 0, std::int64_t(limits_.bodies)));
         if (rep.has("step")) plan.spacing = r_.vector(rep["step"]);  // moves the world anchors
       } else {
         const json_at step = rep["step"];
@@ -471,8 +550,8 @@ class scene_parser {
         r_.fail_expected(at["name"], "a non-empty name without '['");
     }
     const repeat_plan<T> plan = repeat(at, false);
-    if (out_.bodies.size() + plan.count() > max_scene_bodies)
-      r_.fail(at, "the scene would hold more than " + std::to_string(max_scene_bodies) + " bodies");
+    if (plan.count() > limits_.bodies - out_.bodies.size())
+      exceeded(at, "the scene would hold more than " + std::to_string(limits_.bodies) + " bodies", "bodies");
     const std::vector<transform<T>> poses = plan.poses(first);
     for (std::size_t k = 0; k < poses.size(); ++k) {
       scene_body<T> b;
@@ -566,8 +645,8 @@ class scene_parser {
     }
 
     const repeat_plan<T> plan = repeat(at, true);
-    if (out_.joints.size() + plan.count() > max_scene_joints)
-      r_.fail(at, "the scene would hold more than " + std::to_string(max_scene_joints) + " joints");
+    if (plan.count() > limits_.joints - out_.joints.size())
+      exceeded(at, "the scene would hold more than " + std::to_string(limits_.joints) + " joints", "joints");
     for (std::size_t k = 0; k < plan.count(); ++k) {
       scene_joint<T> j;
       j.path = at.path;
@@ -600,12 +679,37 @@ class scene_parser {
 
   // ---- particles ----
 
+  /// The capacities of all systems, summed against scene_limits::particles
+  /// before any system's particles are made: a thousand systems of the
+  /// largest capacity are refused at the second, not after the first is full.
+  void check_particle_capacities(const json_at& all) const {
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < all.value.size(); ++i) {
+      const json_at capacity = all[i]["capacity"];
+      const auto n = std::size_t(r_.integer(capacity, 1, std::int64_t(limits_.particles)));
+      if (n > limits_.particles - total)
+        exceeded(capacity, "the scene's particle systems would hold more than " + std::to_string(limits_.particles) +
+                               " particles", "particles");
+      total += n;
+    }
+  }
+
+  /// A particle's mass: positive, and not so small that its inverse, which
+  /// a step multiplies forces by, overflows.
+  T particle_mass(const json_at& at) const {
+    const T m = r_.positive(at);
+    if (!(m >= particles::min_particle_mass<T>))
+      r_.fail_expected(at, "a mass of at least " + describe(json(double(particles::min_particle_mass<T>))) +
+                               " (particles::min_particle_mass, the smallest normal number)");
+    return m;
+  }
+
   particle_scene<T> particle_system(const json_at& at) {
     r_.object(at, {"name", "capacity", "forces", "planes", "emitters", "particles"});
     particle_scene<T> p;
     p.path = at.path;
     if (at.has("name")) p.name = r_.string(at["name"]);
-    p.capacity = std::size_t(r_.integer(at["capacity"], 1, std::int64_t(max_particle_capacity)));
+    p.capacity = std::size_t(r_.integer(at["capacity"], 1, std::int64_t(limits_.particles)));
     if (at.has("forces")) forces(at["forces"], p);
     if (at.has("planes")) {
       const json_at list = at["planes"];
@@ -673,8 +777,8 @@ class scene_parser {
       for (std::size_t i = 0; i < list.value.size(); ++i) {
         const json_at s = list[i];
         r_.object(s, {"a", "b", "rest_length", "stiffness", "damping"});
-        const auto a = std::uint32_t(r_.integer(s["a"], 0, std::int64_t(max_particle_capacity)));
-        const auto b = std::uint32_t(r_.integer(s["b"], 0, std::int64_t(max_particle_capacity)));
+        const auto a = std::uint32_t(r_.integer(s["a"], 0, std::int64_t(p.capacity) - 1));
+        const auto b = std::uint32_t(r_.integer(s["b"], 0, std::int64_t(p.capacity) - 1));
         const T rest = r_.non_negative(s["rest_length"]);
         const T k = r_.non_negative(s["stiffness"]);
         const T c = s.has("damping") ? r_.non_negative(s["damping"]) : T(0);
@@ -709,10 +813,10 @@ class scene_parser {
     if (at.has("half_extents")) e.half_extents = r_.vector(at["half_extents"]);
     if (at.has("velocity")) e.velocity = r_.vector(at["velocity"]);
     if (at.has("velocity_spread")) e.velocity_spread = r_.vector(at["velocity_spread"]);
-    if (at.has("rate")) e.rate = r_.non_negative(at["rate"]);
+    if (at.has("rate")) e.rate = r_.within(at["rate"], T(0), particles::emitter<T>::max_rate);
     if (at.has("lifetime")) e.lifetime = r_.positive(at["lifetime"]);
     if (at.has("lifetime_spread")) e.lifetime_spread = r_.non_negative(at["lifetime_spread"]);
-    if (at.has("mass")) e.mass = r_.positive(at["mass"]);
+    if (at.has("mass")) e.mass = particle_mass(at["mass"]);
     if (at.has("enabled")) e.enabled = r_.boolean(at["enabled"]);
     if (at.has("seed")) e.random.state = std::uint32_t(r_.integer(at["seed"], 0, 0xffffffffLL));
     check(at, [&] { e.validate(); });
@@ -724,10 +828,10 @@ class scene_parser {
     typename particle_scene<T>::particle q;
     const vec3<T> first = r_.vector(at["position"]);
     if (at.has("velocity")) q.velocity = r_.vector(at["velocity"]);
-    if (at.has("mass")) q.mass = r_.positive(at["mass"]);
+    if (at.has("mass")) q.mass = particle_mass(at["mass"]);
     if (at.has("lifetime")) q.lifetime = r_.positive(at["lifetime"]);
     const repeat_plan<T> plan = repeat(at, false);
-    if (p.initial.size() + plan.count() > p.capacity)
+    if (plan.count() > p.capacity - p.initial.size())
       r_.fail(at, "more particles than the system's capacity, " + std::to_string(p.capacity));
     for (const transform<T>& pose : plan.poses({first, quat<T>::identity()})) {
       q.position = pose.position;
@@ -750,6 +854,8 @@ class scene_parser {
 
   json_reader<T> r_;
   json_at root_;
+  scene_limits limits_;
+  std::size_t vertices_ = 0, triangles_ = 0;  ///< so far, over the whole document
   scene<T> out_;
   std::map<std::string, impulse::material<T>, std::less<>> materials_;
   std::map<std::string, std::shared_ptr<const scene_shape<T>>, std::less<>> shapes_;
@@ -764,39 +870,59 @@ template <class C, template <class> class... Fs, template <class> class F>
 struct system_has_force<particles::particle_system<C, Fs...>, F>
     : std::bool_constant<(std::is_same_v<F<typename C::scalar>, Fs<typename C::scalar>> || ...)> {};
 
+/// A text or file of `bytes`, past limits.bytes.
+[[noreturn]] inline void refuse_size(const std::string& file, std::uintmax_t bytes, const scene_limits& limits) {
+  throw scene_error(file, "",
+                    std::to_string(bytes) + " bytes, more than the " + std::to_string(limits.bytes) +
+                        " a scene may have (scene_limits::bytes)",
+                    error_code::capacity_exceeded);
+}
+
 }  // namespace detail
 
 /// Reads a scene from JSON text. `file` names it in error messages.
 template <scalar_type T>
-[[nodiscard]] scene<T> parse_scene(std::string_view text, const std::string& file = "<scene>") {
+[[nodiscard]] scene<T> parse_scene(std::string_view text, const std::string& file = "<scene>",
+                                   const scene_limits& limits = {}) {
   using detail::json;
-  // A deeply nested document ("[[[[...") is refused while it is read, before
-  // its depth can matter to anything that walks it.
-  bool too_deep = false;
-  const json::parser_callback_t limit = [&too_deep](int depth, json::parse_event_t, json&) {
-    if (depth > max_scene_depth) too_deep = true;
-    return !too_deep;
-  };
+  if (text.size() > limits.bytes) detail::refuse_size(file, text.size(), limits);
+  // The text is read twice: first without building anything, so that too
+  // many values, too deep a nesting or a key given twice is refused before
+  // the document takes memory in proportion to it; then into the document.
+  detail::scan_document(text, file, limits.json_values, limits.depth);
   json document;
   try {
-    document = json::parse(text.begin(), text.end(), limit);
+    document = json::parse(text.begin(), text.end());
   } catch (const json::exception& e) {
-    // parse_error for bad syntax; out_of_range for a number past double's
-    // range (1e400), which is not a syntax error. (The fuzzer found the second.)
-    throw scene_error(file, "", std::string("not JSON: ") + e.what());
+    throw scene_error(file, "", std::string("not JSON: ") + e.what());  // the scan has refused it already
   }
-  if (too_deep) throw scene_error(file, "", "nested deeper than " + std::to_string(max_scene_depth) + " levels");
-  return detail::scene_parser<T>(document, file).parse();
+  return detail::scene_parser<T>(document, file, limits).parse();
 }
 
-/// Reads a scene file.
+/// Reads a scene file. A file larger than limits.bytes is refused by its
+/// size, before it is read.
 template <scalar_type T>
-[[nodiscard]] scene<T> read_scene(const std::string& path) {
+[[nodiscard]] scene<T> read_scene(const std::string& path, const scene_limits& limits = {}) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw scene_error(path, "", "cannot open the file", error_code::out_of_range);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene<T>(text.str(), path);
+  // A file's size is its end's position. A pipe cannot seek (its size is
+  // then -1, and the stream is cleared to read it from where it is).
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in ? std::streamoff(in.tellg()) : -1;
+  if (size > 0 && std::uintmax_t(size) > limits.bytes) detail::refuse_size(path, std::uintmax_t(size), limits);
+  in.clear();
+  in.seekg(0, std::ios::beg);
+  in.clear();
+  std::string text;
+  if (size > 0) text.reserve(std::size_t(size));
+  // In pieces, so that a pipe, or a file that grows while it is read, is
+  // still cut off one piece past the limit.
+  char piece[1 << 16];
+  while (in.read(piece, sizeof piece) || in.gcount() > 0) {
+    text.append(piece, std::size_t(in.gcount()));
+    if (text.size() > limits.bytes) detail::refuse_size(path, text.size(), limits);
+  }
+  return parse_scene<T>(text, path, limits);
 }
 
 /// Puts a scene's bodies and joints into `world`, and its settings if the

@@ -68,11 +68,14 @@ constexpr T dot(const quat<T>& a, const quat<T>& b) noexcept {
 template <scalar_type T> constexpr T length_squared(const quat<T>& q) noexcept { return dot(q, q); }
 template <scalar_type T> T length(const quat<T>& q) noexcept { return std::sqrt(dot(q, q)); }
 
-/// q / |q|. Precondition: q is not (nearly) zero.
+/// q / |q|. Precondition: q is not (nearly) zero. A NaN or infinite q
+/// gives NaN rather than failing the assertion: a solve that diverged on
+/// hostile input is the world's to find and hold (world::step), in a
+/// debug build as in a release one.
 template <scalar_type T>
 quat<T> normalize(const quat<T>& q) noexcept {
   const T l2 = length_squared(q);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  IMPULSE_ASSERT(!(l2 <= scalar_traits<T>::zero_length_squared));
   return q * (T(1) / std::sqrt(l2));
 }
 

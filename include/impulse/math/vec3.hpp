@@ -70,11 +70,12 @@ template <scalar_type T> T length(const vec3<T>& a) noexcept { return std::sqrt(
 template <scalar_type T> T distance(const vec3<T>& a, const vec3<T>& b) noexcept { return length(a - b); }
 
 /// Unit vector along a. Precondition: a is not (nearly) zero; use
-/// normalize_or when it may be.
+/// normalize_or when it may be. NaN in gives NaN out, as for quaternions
+/// (quat.hpp, normalize): the world finds it.
 template <scalar_type T>
 vec3<T> normalize(const vec3<T>& a) noexcept {
   const T l2 = length_squared(a);
-  IMPULSE_ASSERT(l2 > scalar_traits<T>::zero_length_squared);
+  IMPULSE_ASSERT(!(l2 <= scalar_traits<T>::zero_length_squared));
   return a * (T(1) / std::sqrt(l2));
 }
 

@@ -80,6 +80,15 @@ class particle_system {
   using integrator = typename Config::integrator;
   static constexpr int width = particle_width_of<Config>;
   static constexpr bool has_lifetime = particle_lifetime_of<Config>;
+  /// The most particles a system may be created for: 2^26, about 6.7e7.
+  /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
+  /// double), allocated and zeroed when the system is made, so this many is
+  /// 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
+  /// at the 38–57 GB/s memory roof of docs/particles_benchmark.md, far past
+  /// real time. A larger capacity is a slip of zeros (1e9 would be 40 GB),
+  /// refused before anything is allocated. It also keeps every index well
+  /// below no_object in the std::uint32_t the API hands out.
+  static constexpr std::size_t max_capacity = std::size_t(1) << 26;
 
   static_assert(scalar_type<scalar>, "impulse particle_system: Config::scalar must be float or double");
   static_assert(batch_width<scalar, width>,
@@ -108,18 +117,16 @@ class particle_system {
     requires(sizeof...(Forces) > 0)
       : particle_system(capacity, Forces<T>{}...) {}
   /// A system that holds up to `capacity` particles, with the forces' parameters.
+  /// A capacity of 0 or above max_capacity is refused before any column is allocated.
   explicit particle_system(std::size_t capacity, Forces<T>... forces)
       : forces_(std::move(forces)...),
-        capacity_(capacity),
+        capacity_(checked_capacity(capacity)),
         stride_((capacity + width - 1) / width * width),
         x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
         inverse_mass_(stride_),
         variation_(needs_variation ? stride_ : 0),
         age_(has_lifetime ? stride_ : 0),
         lifetime_(has_lifetime ? stride_ : 0) {
-    if (capacity == 0 || capacity > std::size_t(std::numeric_limits<std::uint32_t>::max()))
-      impulse::detail::report_error(error_code::invalid_parameter,
-                                    "particle_system: capacity must be between 1 and 2^32 - 1");
     died_batches_.reserve(stride_ / width);
   }
 
@@ -507,9 +514,19 @@ class particle_system {
   void check_index(std::uint32_t i) const {
     detail::require(i < size_, error_code::out_of_range, "particle_system: no particle has this index", i);
   }
+  /// The capacity, once it is known to be allowed: called from the member
+  /// initialisers ahead of the columns, so that a refused capacity allocates
+  /// nothing (members are initialised in declaration order).
+  static std::size_t checked_capacity(std::size_t capacity) {
+    detail::require(capacity != 0 && capacity <= max_capacity, error_code::invalid_parameter,
+                    "particle_system: capacity must be between 1 and max_capacity (2^26)");
+    return capacity;
+  }
   static void check_mass(T mass, std::uint32_t i) {
     detail::require_finite(mass, "particle_system: mass is not finite", i);
     detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
+    detail::require(mass >= min_particle_mass<T>, error_code::invalid_parameter,
+                    "particle_system: mass is below min_particle_mass (denormal: its inverse overflows)", i);
   }
   static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
     detail::require_finite(p, "particle_system: position is not finite", i);

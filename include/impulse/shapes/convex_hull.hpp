@@ -150,6 +150,14 @@ class convex_hull {
   }
 
   /// The points of the input that are vertices of the hull, in input order.
+  /// Refuses a moved-from hull, which has no vertices: from_points never
+  /// returns one. The world checks every shape it is given this way.
+  void validate() const {
+    if (vertices_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "convex_hull: the hull is empty (moved from); use from_points()");
+  }
+
   [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
   [[nodiscard]] std::size_t vertex_count() const noexcept { return vertices_.size(); }
 

@@ -87,6 +87,15 @@ class triangle_mesh {
     return mesh;
   }
 
+  /// Refuses a mesh with no triangle: a default-constructed or moved-from
+  /// one, which make() never returns. The world checks every shape it is
+  /// given this way.
+  void validate() const {
+    if (indices_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "triangle_mesh: the mesh is empty (default-constructed or moved from); use make()");
+  }
+
   [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
   [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
   /// The three corners of triangle t.

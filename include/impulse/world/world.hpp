@@ -98,6 +98,9 @@ class world {
   /// Manifolds one pair can have: one for two convex shapes, one per
   /// distinct normal against a mesh (a box in a corner of it: two or three).
   static constexpr int max_manifolds = 4;
+  /// The longest step, s: a step is a small piece of motion, and one of a
+  /// thousand years (finite) would carry every body out of finite numbers.
+  static constexpr T max_dt = T(1);
 
   static_assert(broadphase::broad_phase<broad_phase_type, T>,
                 "impulse world: the config's broadphase is not a broad phase for its scalar");
@@ -119,9 +122,14 @@ class world {
     settings.validate();
     state_.settings = settings;
   }
+  /// Refused: gravity that is not finite, or stronger than
+  /// max_linear_speed per second (world_settings::validate).
   void set_gravity(const vec3<T>& g) {
     if (!is_finite(g)) detail::report_error(error_code::non_finite, "world::set_gravity: gravity is not finite");
-    state_.settings.gravity = g;
+    world_settings<T> changed = state_.settings;
+    changed.gravity = g;
+    changed.validate();
+    state_.settings = changed;
     wake_all();
   }
 
@@ -136,12 +144,21 @@ class world {
   body_id create_body(const body_def<T>& def, const Shape& shape) {
     static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
                   "impulse world: this shape is not in the config's shape_list");
-    // Hulls and meshes come only from their factories, which check them.
+    refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
+                       "visit_shape, draw); make the change after it returns");
+    // Every shape is checked here; a hull or mesh only for being empty
+    // (moved from), since their factories checked the rest.
     if constexpr (requires { shape.validate(); }) shape.validate();
     def.material.validate();
     const rigid_body<T> body = make_body(def, shape);  // checks the pose, the mass and the type
     const vec3<T> center = def.type == body_type::dynamic ? centre_of_mass(def, shape) : vec3<T>{};
     body_record record = prepare_body(def, body, center);  // checks the velocities
+    if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
+      const aabb<T> box = shape.world_aabb(def.pose);
+      if (!within_bounds(box.lower) || !within_bounds(box.upper))
+        detail::report_error(error_code::invalid_parameter,
+                             "world::create_body: the shape reaches farther than max_coordinate from the origin");
+    }
     // Nothing below can fail on the input.
     record.shape = state_.shape_store.add(shape);
     record.thinnest = thinnest_half_extent(shape);
@@ -169,9 +186,13 @@ class world {
   }
   /// The shape pose between the last two steps: alpha 0 at the start of
   /// the last step, 1 at its end (advance() returns the alpha of the time
-  /// left over). Rendering at it hides the fixed step's stutter.
+  /// left over). Rendering at it hides the fixed step's stutter. Refused:
+  /// alpha outside [0, 1] or NaN.
   [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const {
     require(id, "world::interpolated_pose: no such body");
+    if (!(alpha >= T(0) && alpha <= T(1)))
+      detail::report_error(error_code::invalid_parameter, "world::interpolated_pose: alpha must be within [0, 1]",
+                           id.index);
     const body_record& r = state_.bodies[id];
     const transform<T> now = r.body.pose();
     quat<T> q1 = now.rotation;
@@ -185,6 +206,7 @@ class world {
   template <class F>
   decltype(auto) visit_shape(body_id id, F&& f) const {
     require(id, "world::visit_shape: no such body");
+    const in_callback scope(*this);
     return state_.shape_store.visit(state_.bodies[id].shape, std::forward<F>(f));
   }
   [[nodiscard]] const impulse::material<T>& material_of(body_id id) const {
@@ -206,9 +228,12 @@ class world {
   }
 
   /// Sets a body's velocities (a dynamic or kinematic body) and wakes it.
+  /// Refused: speeds above world_settings::max_linear_speed or
+  /// max_angular_speed, and velocities whose momenta overflow.
   void set_velocity(body_id id, const vec3<T>& linear, const vec3<T>& angular) {
     require(id, "world::set_velocity: no such body");
     body_record& r = state_.bodies[id];
+    require_speeds(linear, angular, "world::set_velocity: faster than max_linear_speed or max_angular_speed", id);
     r.body.set_velocity(linear, angular);  // refuses non-finite values and static bodies
     wake_record(r);
   }
@@ -266,6 +291,8 @@ class world {
 
   [[nodiscard]] bool contains(joint_id id) const noexcept { return state_.joints.contains(id); }
   [[nodiscard]] std::size_t joint_count() const noexcept { return state_.joints.size(); }
+  /// Every joint, broken ones too, in storage order.
+  [[nodiscard]] std::span<const joint_id> joint_ids() const noexcept { return state_.joints.ids(); }
   /// The joint as it was created.
   [[nodiscard]] const joint_def<T>& joint(joint_id id) const {
     require(id, "world::joint: no such joint");
@@ -326,15 +353,21 @@ class world {
     if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
     wake_joint(r);
   }
+  /// Bodies held in the last step (see step()), in storage order.
+  [[nodiscard]] std::span<const body_id> held_bodies() const noexcept { return state_.held; }
   /// Joints that broke in the last step.
   [[nodiscard]] std::span<const joint_broken_event<T>> joint_broken_events() const noexcept { return state_.broken; }
 
   // ---- stepping ----
 
   /// Advances the world by dt seconds. Events of this step replace the
-  /// last step's. A body whose state becomes non-finite (valid input can
-  /// still overflow) is left where it was with no velocity, the others
-  /// keep their step, and the error names it.
+  /// last step's. A body that the step would take past the world's speed
+  /// limits or out of finite numbers (finite input can still overflow: a
+  /// force of 1e29 N on a kilogram) is held: it stays where it was with no
+  /// velocity, its contacts and joints are left out of the step, and every
+  /// other body, its joint partners too, steps on. The step then throws
+  /// impulse::invalid_argument (non_finite) naming the first held body; held_bodies()
+  /// lists them all.
   void step(T dt);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
@@ -355,12 +388,28 @@ class world {
 
   /// f(a, b, manifolds) for every touching pair; each manifold's normal
   /// points from a into b.
+  ///
+  /// Inside this callback, and those of overlap, visit_shape and draw, the
+  /// world refuses what would change the containers the callback walks:
+  /// step, advance, create_body, destroy_body, set_pose, create_joint,
+  /// destroy_joint and restore throw impulse::invalid_argument (invalid_parameter).
+  /// Velocities, forces, impulses, motors and limits may be set.
   template <class F>
   void for_each_contact(F&& f) const {
-    for (const contact_record& c : state_.contacts)
-      if (c.touching)
-        f(c.a, c.b, std::span<const contact_manifold<T>>(c.manifolds.data(), std::size_t(c.manifold_count)));
+    const in_callback scope(*this);
+    std::array<contact_manifold<T>, max_manifolds> manifolds;
+    for (const contact_record& c : state_.contacts) {
+      if (!c.touching) continue;
+      const int count = std::min(int(c.manifold_count), max_manifolds);  // always the count; says so to the compiler
+      for (int m = 0; m < count; ++m) manifolds[std::size_t(m)] = slot_of(c, m).manifold;
+      f(c.a, c.b, std::span<const contact_manifold<T>>(manifolds.data(), std::size_t(count)));
+    }
   }
+  /// Pairs whose boxes overlapped in the last step but got no contact
+  /// because the world held world_settings::max_contact_pairs already: 0
+  /// unless a scene heaps that many bodies together. They get their
+  /// contacts once there is room.
+  [[nodiscard]] std::size_t pairs_over_limit() const noexcept { return state_.pairs_over_limit; }
   [[nodiscard]] std::size_t touching_pair_count() const noexcept {
     return std::size_t(std::count_if(state_.contacts.begin(), state_.contacts.end(),
                                      [](const contact_record& c) { return c.touching; }));
@@ -376,6 +425,7 @@ class world {
   void overlap(const aabb<T>& box, F&& f) const {
     if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
       detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
+    const in_callback scope(*this);
     state_.broad.query(box, [&](proxy_id proxy) {
       const body_id id = unpack(state_.broad.user_data(proxy));
       if (overlaps(bounds_of(state_.bodies[id]), box)) f(id);
@@ -387,18 +437,19 @@ class world {
   template <class D>
     requires debug_drawer<D, T>
   void draw(D& d, const debug_draw_flags& flags = {}) const {
+    const in_callback scope(*this);
     if (flags.aabbs)
       for (const body_record& r : state_.bodies.values()) draw_box(d, bounds_of(r), colour_of(r));
     for (const contact_record& c : state_.contacts) {
       if (!c.touching) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
-        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        const contact_manifold<T>& manifold = slot_of(c, m).manifold;
         for (int i = 0; i < manifold.count; ++i) {
           const vec3<T>& p = manifold.points[std::size_t(i)].position;
           if (flags.contacts) d.point(p, debug_color{1, 0.2f, 0.2f});
           if (flags.normals) d.arrow(p, p + manifold.normal * T(0.2), debug_color{1, 1, 0.2f});
           if (flags.forces && state_.last_dt > T(0)) {
-            const T force = c.impulses[std::size_t(m)].normal[std::size_t(i)] / state_.last_dt;
+            const T force = slot_of(c, m).impulse.normal[std::size_t(i)] / state_.last_dt;
             d.arrow(p, p + manifold.normal * (force * T(0.01)), debug_color{1, 0.5f, 0});
           }
         }
@@ -415,7 +466,11 @@ class world {
   /// Everything a step reads: bodies, shapes, broad phase, contacts with
   /// their impulses, events, time and settings.
   [[nodiscard]] world_snapshot<Config> snapshot() const { return world_snapshot<Config>(state_); }
-  void restore(const world_snapshot<Config>& s) { state_ = s.state_; }
+  void restore(const world_snapshot<Config>& s) {
+    refuse_in_callback("world::restore: called from inside a world callback (for_each_contact, overlap, "
+                       "visit_shape, draw); make the change after it returns");
+    state_ = s.state_;
+  }
 
   // ---- what is conserved, for tests and diagnostics ----
 
@@ -449,23 +504,31 @@ class world {
     T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
   };
 
+  /// One manifold of a touching pair: where it touches, the impulses the
+  /// solver carries to the next step, and what the last full pair test
+  /// found, in A's shape frame (reuse_manifolds carries it with the bodies).
+  struct manifold_slot {
+    contact_manifold<T> manifold;
+    manifold_impulse<T> impulse;
+    contact_manifold<T> tested_local;
+  };
+
   /// A pair of bodies whose boxes overlap, and what the narrow phase and
   /// the solver know of it. Kept sorted by proxy pair, the broad phase's
   /// order, so that each step's pairs merge with the last step's in one
-  /// pass, with no lookup.
+  /// pass, with no lookup. Its manifolds live in state::manifolds, so that
+  /// a pair whose boxes overlap but whose shapes do not touch (most pairs
+  /// in a heap) costs this record alone: 80 bytes in float, where it cost
+  /// 1 KB with four manifolds inline.
   struct contact_record {
     proxy_pair key;
     body_id a, b;  ///< a owns key.a
     T friction = T(0), restitution = T(0);
-    int manifold_count = 0;
+    std::uint8_t manifold_count = 0;
     bool touching = false;
-    std::array<contact_manifold<T>, max_manifolds> manifolds{};
-    std::array<manifold_impulse<T>, max_manifolds> impulses{};
-    /// What the last full pair test found, in A's shape frame, and B's
-    /// shape frame in A's then: reuse_manifolds carries it with the bodies.
-    bool tested = false;
-    transform<T> tested_relative{};
-    std::array<contact_manifold<T>, max_manifolds> tested_local{};
+    bool tested = false;              ///< whether tested_relative holds a full pair test's
+    transform<T> tested_relative{};  ///< B's shape frame in A's at the last full test
+    std::array<std::uint32_t, max_manifolds> slots{};  ///< the first manifold_count name its manifolds
   };
 
   /// A joint, with the impulses it carries between steps and what it
@@ -486,10 +549,14 @@ class world {
     /// once per such joint: their proxies' pairs make no contact.
     std::vector<std::uint64_t> joined;
     std::vector<joint_broken_event<T>> broken;
+    std::vector<body_id> held;      ///< held in the last step (step())
     std::vector<body_id> targeted;  ///< kinematic bodies with a target_state other than none
     detail::shape_store<shapes, T> shape_store;
     broad_phase_type broad;
     std::vector<contact_record> contacts;
+    std::vector<manifold_slot> manifolds;      ///< the touching pairs' manifolds
+    std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
+    std::size_t pairs_over_limit = 0;          ///< in the last step: see pairs_over_limit()
     std::vector<contact_event> begun, ended;
     T time = T(0), accumulator = T(0), last_dt = T(0);
     std::uint64_t step_count = 0;
@@ -535,7 +602,7 @@ class world {
   void end_contacts_between(body_id a, body_id b) {
     std::erase_if(state_.contacts, [&](const contact_record& c) {
       if (!((c.a == a && c.b == b) || (c.a == b && c.b == a))) return false;
-      if (c.touching) state_.ended.push_back({c.a, c.b});
+      end_contact(c);
       return true;
     });
   }
@@ -554,6 +621,37 @@ class world {
     c.body_a = 0, c.body_b = 1;
     detail::prepare_joint(std::span<const solver_body<T>>(ends), c);
     return c;
+  }
+  /// Whether a point is within max_coordinate of the origin on every axis
+  /// (false for NaN).
+  bool within_bounds(const vec3<T>& p) const noexcept {
+    const T m = state_.settings.max_coordinate;
+    return std::abs(p.x) <= m && std::abs(p.y) <= m && std::abs(p.z) <= m;
+  }
+  void require_within_bounds(const vec3<T>& p, const char* message, body_id id = body_id{}) const {
+    if (is_finite(p) && !within_bounds(p)) detail::report_error(error_code::invalid_parameter, message, id.index);
+  }
+  /// Refuses a joint anchor farther from a dynamic body's centre of mass
+  /// than world_settings::max_joint_lever radii of gyration.
+  void require_lever(const rigid_body<T>& b, const vec3<T>& anchor, body_id id) const {
+    if (b.type != body_type::dynamic) return;
+    const T smallest = std::min({b.inertia(0, 0), b.inertia(1, 1), b.inertia(2, 2)});
+    const T reach = state_.settings.max_joint_lever;
+    if (!(length_squared(anchor - b.position) * b.mass <= reach * reach * smallest))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_joint: an anchor is farther from a dynamic body than max_joint_lever "
+                           "radii of gyration",
+                           id.index);
+  }
+  /// Whether both speeds are within the world's limits (false for NaN).
+  bool within_speed_limits(const vec3<T>& linear, const vec3<T>& angular) const noexcept {
+    const T v = state_.settings.max_linear_speed, w = state_.settings.max_angular_speed;
+    return length_squared(linear) <= v * v && length_squared(angular) <= w * w;
+  }
+  void require_speeds(const vec3<T>& linear, const vec3<T>& angular, const char* message,
+                      body_id id = body_id{}) const {
+    if (is_finite(linear) && is_finite(angular) && !within_speed_limits(linear, angular))
+      detail::report_error(error_code::invalid_parameter, message, id.index);
   }
   body_record& dynamic_record(body_id id, const char* message) {
     require(id, message);
@@ -607,7 +705,11 @@ class world {
     return state_.shape_store.visit(r.shape, [&](const auto& s) { return s.world_aabb(pose); });
   }
   aabb<T> proxy_box(const body_record& r) const {
-    return expand(bounds_of(r), state_.settings.solver.speculative_distance);
+    const aabb<T> box = expand(bounds_of(r), state_.settings.solver.speculative_distance);
+    // A plane's box spans every finite value already: grown, it must not
+    // overflow into infinities the broad phase refuses.
+    const vec3<T> big = vec3<T>::splat(std::numeric_limits<T>::max());
+    return {max(box.lower, -big), min(box.upper, big)};
   }
   typename dispatcher::shape_ref shape_ref_of(const body_record& r) const noexcept {
     return {state_.shape_store.address(r.shape), r.shape.type};
@@ -663,6 +765,12 @@ class world {
       return;
     }
     next_contacts_.clear();
+    next_contacts_.reserve(std::min(pairs.size(), std::size_t(s.max_contact_pairs)));
+    // New pairs are taken while the records, old and new, stay within
+    // max_contact_pairs; those past it wait, and are counted.
+    const std::size_t room = std::size_t(s.max_contact_pairs) > old.size() ? s.max_contact_pairs - old.size() : 0;
+    std::size_t created = 0;
+    state_.pairs_over_limit = 0;
     std::size_t i = 0;
     for (const proxy_pair& pair : pairs) {
       while (i < old.size() && old[i].key < pair) end_contact(old[i++]);
@@ -670,6 +778,11 @@ class world {
         next_contacts_.push_back(old[i++]);
       } else {
         if (!may_touch(pair)) continue;
+        if (created == room) {
+          ++state_.pairs_over_limit;
+          continue;
+        }
+        ++created;
         const body_id a = unpack(state_.broad.user_data(pair.a)), b = unpack(state_.broad.user_data(pair.b));
         const body_record& ra = state_.bodies[a];
         const body_record& rb = state_.bodies[b];
@@ -707,8 +820,31 @@ class world {
     return i == old.size();
   }
 
+  /// A record that is dropped: its pair ends, its manifolds are freed.
   void end_contact(const contact_record& c) {
     if (c.touching) state_.ended.push_back({c.a, c.b});
+    for (int m = 0; m < c.manifold_count; ++m) state_.free_manifolds.push_back(c.slots[std::size_t(m)]);
+  }
+
+  manifold_slot& slot_of(const contact_record& c, int m) noexcept { return state_.manifolds[c.slots[std::size_t(m)]]; }
+  const manifold_slot& slot_of(const contact_record& c, int m) const noexcept {
+    return state_.manifolds[c.slots[std::size_t(m)]];
+  }
+  /// Gives the record n manifold slots, keeping its first ones: freed
+  /// slots are reused before the pool grows.
+  void resize_slots(contact_record& c, int n) {
+    while (c.manifold_count > n) state_.free_manifolds.push_back(c.slots[std::size_t(--c.manifold_count)]);
+    while (c.manifold_count < n) {
+      std::uint32_t slot;
+      if (!state_.free_manifolds.empty()) {
+        slot = state_.free_manifolds.back();
+        state_.free_manifolds.pop_back();
+      } else {
+        slot = std::uint32_t(state_.manifolds.size());
+        state_.manifolds.emplace_back();
+      }
+      c.slots[std::size_t(c.manifold_count++)] = slot;
+    }
   }
 
   void collide(contact_record& c, const reuse_limits& limits) {
@@ -731,12 +867,12 @@ class world {
       int match = -1;
       T best = T(0.95);  // normals within 18° count as the same face
       for (int k = 0; k < c.manifold_count; ++k) {
-        const T d = dot(c.manifolds[std::size_t(k)].normal, fresh[m].normal);
+        const T d = dot(slot_of(c, k).manifold.normal, fresh[m].normal);
         if (d > best) best = d, match = k;
       }
       if (match < 0) continue;
-      const contact_manifold<T>& before = c.manifolds[std::size_t(match)];
-      const manifold_impulse<T>& had = c.impulses[std::size_t(match)];
+      const contact_manifold<T>& before = slot_of(c, match).manifold;
+      const manifold_impulse<T>& had = slot_of(c, match).impulse;
       carried[m].friction = had.friction;
       carried[m].twist = had.twist;
       for (int p = 0; p < fresh[m].count; ++p)
@@ -746,13 +882,14 @@ class world {
             break;
           }
     }
-    c.manifolds = fresh;
-    c.impulses = carried;
-    c.manifold_count = int(n);
+    resize_slots(c, int(n));
     c.tested = true;
     c.tested_relative = relative;
     for (std::size_t m = 0; m < n; ++m) {
-      contact_manifold<T>& local = c.tested_local[m];
+      manifold_slot& slot = slot_of(c, int(m));
+      slot.manifold = fresh[m];
+      slot.impulse = carried[m];
+      contact_manifold<T>& local = slot.tested_local;
       local = fresh[m];
       local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
       for (int p = 0; p < local.count; ++p)
@@ -776,15 +913,16 @@ class world {
   /// persistent manifolds' points the same way; Jolt's body pair cache
   /// reuses manifolds within the same limits.)
   bool reuse_manifolds(contact_record& c, const transform<T>& pose_a, const transform<T>& relative,
-                       const reuse_limits& limits) const noexcept {
+                       const reuse_limits& limits) noexcept {
     const vec3<T> shift = relative.position - c.tested_relative.position;
     if (!(length_squared(shift) < limits.distance_squared)) return false;
     // B's turn in A's frame since the test; |w| = cos(angle / 2).
     const quat<T> turn = relative.rotation * conjugate(c.tested_relative.rotation);
     if (!(std::abs(turn.w) > limits.cos_half_angle)) return false;
     for (int m = 0; m < c.manifold_count; ++m) {
-      const contact_manifold<T>& local = c.tested_local[std::size_t(m)];
-      contact_manifold<T>& out = c.manifolds[std::size_t(m)];
+      manifold_slot& slot = slot_of(c, m);
+      const contact_manifold<T>& local = slot.tested_local;
+      contact_manifold<T>& out = slot.manifold;
       out.normal = rotate(pose_a.rotation, local.normal);
       for (int p = 0; p < local.count; ++p) {
         const contact_point<T>& tested = local.points[std::size_t(p)];
@@ -823,7 +961,7 @@ class world {
     std::vector<body_record>& bodies = state_.bodies.values();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const body_record& r = bodies[i];
-      if (!is_solved(r)) continue;
+      if (!is_solved(r) || held(std::uint32_t(i))) continue;
       const T moved = length(r.body.position - r.previous.position);
       if (r.bullet || moved > state_.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
     }
@@ -1027,10 +1165,23 @@ class world {
 
   static bool is_solved(const body_record& r) noexcept { return r.body.type == body_type::dynamic && r.awake; }
 
+  /// Holds body i for this step: it keeps its pose, loses its velocity,
+  /// and its contacts and joints are left out (step()).
+  void hold(std::size_t i) {
+    held_[i] = 1;
+    solver_body<T>& s = solver_bodies_[i];
+    s.inverse_mass = T(0);
+    s.inverse_inertia = mat3<T>{};
+    s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
+    state_.held.push_back(state_.bodies.ids()[i]);
+  }
+  bool held(std::uint32_t i) const noexcept { return held_[i] != 0; }
+
   void solve(T dt) {
     std::vector<body_record>& bodies = state_.bodies.values();
     const vec3<T> gravity_step = state_.settings.gravity * dt;
     solver_bodies_.resize(bodies.size());
+    held_.assign(bodies.size(), 0);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const rigid_body<T>& b = bodies[i].body;
       solver_body<T>& s = solver_bodies_[i];
@@ -1045,6 +1196,10 @@ class world {
         s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
         s.force_angular = s.inverse_inertia * (b.torque * dt);
         if constexpr (solver_policy::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
+        // A body its loads would take out of finite numbers, or past the
+        // speed limits, is held before anything couples it to another: a
+        // joint solved with it would carry the overflow into its partner.
+        if (!within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) hold(i);
       } else if (b.type == body_type::kinematic) {
         s.linear_velocity = b.kinematic_velocity;
         s.angular_velocity = b.kinematic_angular_velocity;
@@ -1054,13 +1209,19 @@ class world {
     const T move_dt = solver_policy::moves_bodies ? dt / T(state_.settings.solver.substeps) : dt;
     constraints_.clear();
     sources_.clear();
+    // Reserved exactly: grown by doubling, the largest per-step array
+    // would hold up to twice what it needs, and three times while it moves.
+    std::size_t manifold_count = 0;
+    for (const contact_record& c : state_.contacts) manifold_count += c.manifold_count;
+    constraints_.reserve(manifold_count);
+    sources_.reserve(manifold_count);
     for (std::uint32_t k = 0; k < state_.contacts.size(); ++k) {
       const contact_record& c = state_.contacts[k];
       if (!c.touching) continue;
       const std::uint32_t ia = dense(c.a), ib = dense(c.b);
-      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      if (held(ia) || held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
-        const contact_manifold<T>& manifold = c.manifolds[std::size_t(m)];
+        const contact_manifold<T>& manifold = slot_of(c, m).manifold;
         contact_constraint<T> cc;
         cc.body_a = ia, cc.body_b = ib;
         cc.normal = manifold.normal;
@@ -1094,7 +1255,7 @@ class world {
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
         cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
         cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
-        const manifold_impulse<T>& carried = c.impulses[std::size_t(m)];
+        const manifold_impulse<T>& carried = slot_of(c, m).impulse;
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
         cc.twist_impulse = carried.twist;
@@ -1120,7 +1281,7 @@ class world {
       const joint_record& r = state_.joints.values()[k];
       if (r.broken) continue;
       const std::uint32_t ia = dense(r.a), ib = dense(r.b);
-      if (!is_solved(bodies[ia]) && !is_solved(bodies[ib])) continue;
+      if (held(ia) || held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
       joints_.push_back(r.constraint);
       joints_.back().body_a = ia, joints_.back().body_b = ib;
       joint_sources_.push_back(k);
@@ -1131,7 +1292,7 @@ class world {
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
       contact_record& c = state_.contacts[sources_[j].record];
       const contact_constraint<T>& cc = constraints_[j];
-      manifold_impulse<T>& kept = c.impulses[sources_[j].manifold];
+      manifold_impulse<T>& kept = slot_of(c, int(sources_[j].manifold)).impulse;
       for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
       kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
       kept.twist = cc.twist_impulse;
@@ -1140,7 +1301,10 @@ class world {
       body_record& r = bodies[i];
       rigid_body<T>& b = r.body;
       r.previous = b.pose();
-      if (is_solved(r)) {
+      if (held(std::uint32_t(i))) {
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+      } else if (is_solved(r)) {
         const solver_body<T>& s = solver_bodies_[i];
         body_pose<T> x{b.position, b.orientation};
         // L changes by the torque's impulse and by what the contacts did to
@@ -1163,8 +1327,11 @@ class world {
           const mat3<T> turn = to_mat3(s.orientation);
           momentum.angular = turn * b.inertia * transpose(turn) * s.angular_velocity;
         }
+        // What the solve gave it can still overflow (or pass the limits):
+        // the body is then held after all, where it started the step.
         const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
-                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0);
+                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
+                            within_speed_limits(s.linear_velocity, s.angular_velocity) && within_bounds(x.position);
         if (finite) {
           b.linear_momentum = momentum.linear;
           b.angular_momentum = momentum.angular;
@@ -1173,12 +1340,19 @@ class world {
         } else {
           b.linear_momentum = {};
           b.angular_momentum = {};
-          if (failed_ == no_object) failed_ = state_.bodies.ids()[i].index;
+          hold(i);
         }
       } else if (b.type == body_type::kinematic) {
-        // A kinematic body's motion is prescribed: placed exactly.
-        b.position += b.kinematic_velocity * dt;
-        b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+        // A kinematic body's motion is prescribed: placed exactly, and
+        // stopped at the world's bounds.
+        const vec3<T> moved = b.position + b.kinematic_velocity * dt;
+        if (within_bounds(moved)) {
+          b.position = moved;
+          b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+        } else {
+          b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
+          hold(i);
+        }
         if (r.target == target_state::armed) r.target = target_state::arrived;
       }
       b.clear_loads();
@@ -1203,6 +1377,8 @@ class world {
   /// The joints' drift removed from where the bodies have moved to
   /// (joint_tree::project_joints), by either solver; velocities are left as
   /// solved.
+  /// A body held after its solve (hold() made it immovable) stays put,
+  /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record>& bodies = state_.bodies.values();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -1211,9 +1387,19 @@ class world {
     }
     solver_.project_joints(solver_bodies_, joints_, state_.settings.solver);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (!is_solved(bodies[i])) continue;
-      bodies[i].body.position = solver_bodies_[i].position;
-      bodies[i].body.orientation = solver_bodies_[i].orientation;
+      if (!is_solved(bodies[i]) || held(std::uint32_t(i))) continue;
+      const solver_body<T>& s = solver_bodies_[i];
+      if (within_bounds(s.position) && is_finite(s.orientation) && length_squared(s.orientation) > T(0)) {
+        bodies[i].body.position = s.position;
+        bodies[i].body.orientation = normalize(s.orientation);
+      } else {
+        rigid_body<T>& b = bodies[i].body;
+        b.position = bodies[i].previous.position;
+        b.orientation = bodies[i].previous.rotation;
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+        hold(i);
+      }
     }
   }
 
@@ -1353,7 +1539,27 @@ class world {
   detail::union_find islands_;
   std::vector<std::uint8_t> island_flag_;
   std::vector<T> island_timer_;
-  std::uint32_t failed_ = no_object;
+  std::vector<std::uint8_t> held_;  ///< per dense body: held in this step (hold())
+
+  /// How many user callbacks are running (for_each_contact, overlap,
+  /// visit_shape, draw). Not state: a copy of the world starts with none.
+  struct callback_depth {
+    int depth = 0;
+    callback_depth() = default;
+    callback_depth(const callback_depth&) noexcept {}
+    callback_depth& operator=(const callback_depth&) noexcept { return *this; }
+  };
+  struct in_callback {
+    const world& owner;
+    explicit in_callback(const world& w) noexcept : owner(w) { ++owner.callbacks_.depth; }
+    ~in_callback() { --owner.callbacks_.depth; }
+    in_callback(const in_callback&) = delete;
+    in_callback& operator=(const in_callback&) = delete;
+  };
+  mutable callback_depth callbacks_;
+  void refuse_in_callback(const char* message) const {
+    if (callbacks_.depth > 0) detail::report_error(error_code::invalid_parameter, message);
+  }
 };
 
 // ---- the members defined outside the class ----
@@ -1385,6 +1591,9 @@ auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, con
   if (def.type == body_type::dynamic) body.position = apply(def.pose, center);
   if (!is_finite(def.linear_velocity) || !is_finite(def.angular_velocity))
     detail::report_error(error_code::non_finite, "world::create_body: velocity is not finite");
+  require_speeds(def.linear_velocity, def.angular_velocity,
+                 "world::create_body: faster than max_linear_speed or max_angular_speed");
+  require_within_bounds(body.position, "world::create_body: the body is farther than max_coordinate from the origin");
   if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
     detail::report_error(error_code::invalid_parameter, "world::create_body: a static body cannot move");
   if (def.type != body_type::static_body) body.set_velocity(def.linear_velocity, def.angular_velocity);
@@ -1409,6 +1618,8 @@ body_id world<Config>::insert_body(const body_record& record) {
 
 template <class Config>
 void world<Config>::destroy_body(body_id id) {
+  refuse_in_callback("world::destroy_body: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::destroy_body: no such body (destroyed already?)");
   doomed_joints_.clear();
   for (std::size_t k = 0; k < state_.joints.size(); ++k) {
@@ -1418,7 +1629,7 @@ void world<Config>::destroy_body(body_id id) {
   for (const joint_id j : doomed_joints_) destroy_joint(j);
   std::erase_if(state_.contacts, [&](const contact_record& c) {
     if (c.a != id && c.b != id) return false;
-    if (c.touching) state_.ended.push_back({c.a, c.b});
+    end_contact(c);
     const body_id other = c.a == id ? c.b : c.a;
     wake_record(state_.bodies[other]);
     return true;
@@ -1431,13 +1642,20 @@ void world<Config>::destroy_body(body_id id) {
 
 template <class Config>
 void world<Config>::set_pose(body_id id, const transform<T>& pose) {
+  refuse_in_callback("world::set_pose: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::set_pose: no such body");
   body_record& r = state_.bodies[id];
-  rigid_body<T> moved = r.body;
-  moved.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
-  r.body = moved;
-  r.previous = moved.pose();
-  state_.broad.move(r.proxy, proxy_box(r));
+  body_record moved = r;
+  moved.body.set_pose({apply(pose, r.center), pose.rotation});  // refuses a bad pose
+  moved.previous = moved.body.pose();
+  const aabb<T> box = proxy_box(moved);
+  const bool plane_shape = r.shape.type == detail::shape_store<shapes, T>::template index_of<plane<T>>();
+  if (!within_bounds(moved.body.position) || (!plane_shape && (!within_bounds(box.lower) || !within_bounds(box.upper))))
+    detail::report_error(error_code::invalid_parameter,
+                         "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
+  r = moved;
+  state_.broad.move(r.proxy, box);
   wake_record(r);
 }
 
@@ -1454,30 +1672,44 @@ void world<Config>::set_target_pose(body_id id, const transform<T>& target, T dt
     detail::report_error(error_code::non_finite, "world::set_target_pose: the pose is not finite");
   if (!is_normalized(target.rotation))
     detail::report_error(error_code::not_normalized, "world::set_target_pose: the rotation is not a unit quaternion");
+  require_within_bounds(target.position, "world::set_target_pose: farther than max_coordinate from the origin", id);
   const vec3<T> rotation = rotation_between(r.body.orientation, target.rotation);
-  r.body.set_velocity((target.position - shape_pose_of(r).position) * (T(1) / dt), rotation * (T(1) / dt));
+  const vec3<T> linear = (target.position - shape_pose_of(r).position) * (T(1) / dt), angular = rotation * (T(1) / dt);
+  if (!is_finite(linear) || !is_finite(angular) || !within_speed_limits(linear, angular))
+    detail::report_error(error_code::invalid_parameter,
+                         "world::set_target_pose: reaching the target in dt is faster than max_linear_speed or "
+                         "max_angular_speed",
+                         id.index);
+  r.body.set_velocity(linear, angular);
   if (r.target == target_state::none) state_.targeted.push_back(id);
   r.target = target_state::armed;
 }
 
 template <class Config>
 joint_id world<Config>::create_joint(const joint_def<T>& def) {
+  refuse_in_callback("world::create_joint: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
   require(def.body_b, "world::create_joint: body_b does not exist (destroyed?)");
   if (def.body_a == def.body_b)
     detail::report_error(error_code::invalid_parameter, "world::create_joint: a joint needs two different bodies",
                          def.body_a.index);
   def.validate();
+  require_within_bounds(def.anchor_a, "world::create_joint: anchor_a is farther than max_coordinate from the origin");
+  require_within_bounds(def.anchor_b, "world::create_joint: anchor_b is farther than max_coordinate from the origin");
   body_record& ra = state_.bodies[def.body_a];
   body_record& rb = state_.bodies[def.body_b];
   if (ra.body.type != body_type::dynamic && rb.body.type != body_type::dynamic)
     detail::report_error(error_code::invalid_parameter, "world::create_joint: at least one body must be dynamic",
                          def.body_a.index);
 
+  const bool two_ends = def.type == joint_type::distance;
+  require_lever(ra.body, def.anchor_a, def.body_a);
+  require_lever(rb.body, two_ends ? def.anchor_b : def.anchor_a, def.body_b);
+
   // Nothing below can fail on the input.
   const rigid_body<T>& a = ra.body;
   const rigid_body<T>& b = rb.body;
-  const bool two_ends = def.type == joint_type::distance;
   joint_constraint<T> c;
   c.type = def.type;
   c.local_anchor_a = inverse_rotate(a.orientation, def.anchor_a - a.position);
@@ -1505,6 +1737,8 @@ joint_id world<Config>::create_joint(const joint_def<T>& def) {
 
 template <class Config>
 void world<Config>::destroy_joint(joint_id id) {
+  refuse_in_callback("world::destroy_joint: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
   require(id, "world::destroy_joint: no such joint (destroyed already?)");
   const joint_record& r = state_.joints[id];
   if (!r.broken) unjoin(r);
@@ -1515,13 +1749,15 @@ void world<Config>::destroy_joint(joint_id id) {
 
 template <class Config>
 void world<Config>::step(T dt) {
-  if (!std::isfinite(dt) || !(dt > T(0)))
-    detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and finite");
+  refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  if (!(dt > T(0) && dt <= max_dt))
+    detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and at most max_dt (1 s)");
   state_.begun.clear();
   state_.ended.clear();
   state_.broken.clear();
+  state_.held.clear();
   expire_targets();
-  failed_ = no_object;
   update_broad_phase();
   update_contacts();
   if constexpr (sleeping) wake_islands();
@@ -1531,9 +1767,12 @@ void world<Config>::step(T dt) {
   state_.time += dt;
   state_.last_dt = dt;
   ++state_.step_count;
-  if (failed_ != no_object)
+  if (!state_.held.empty())
     detail::report_error(error_code::non_finite,
-                         "world::step: a body's state became non-finite; it was left where it was", failed_);
+                         "world::step: a body's motion overflowed (not finite, past max_linear_speed or "
+                         "max_angular_speed, or beyond max_coordinate); it was held where it was, its contacts and joints left out of the "
+                         "step, and the other bodies stepped on (held_bodies() lists every one)",
+                         state_.held.front().index);
 }
 
 template <class Config>
@@ -1585,7 +1824,7 @@ class world_snapshot {
  private:
   friend class world<Config>;
   explicit world_snapshot(const typename world<Config>::state& s) : state_(s) {}
-  typename world<Config>::state state_{};
+  typename world<Config>::state state_;
 };
 
 }  // namespace impulse

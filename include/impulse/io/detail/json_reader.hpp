@@ -6,15 +6,24 @@
 //
 // Objects are read strictly: a key the reader does not know is an error, not
 // ignored, so that a misspelt "restitutoin" is found when the file is loaded
-// rather than when the ball fails to bounce.
+// rather than when the ball fails to bounce. A key given twice in one object
+// is an error too: JSON leaves open which of the two counts.
+//
+// Before the document is built in memory, scan_document() reads the text once
+// without building it, counting its values and levels and checking its keys,
+// so that a file which would take gigabytes as a document is refused at the
+// value that crosses the limit, having cost little more than the reading.
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -169,8 +178,13 @@ class json_reader {
       return n;
     }
     if (at.value.is_number_float()) {
+      // double(hi) rounds up to 2^63 for hi near INT64_MAX, where converting
+      // x would be undefined behaviour; 2^63 itself is the first double past
+      // int64_t, so x must also stay below it.
+      constexpr double past_int64 = 9223372036854775808.0;
       const double x = at.value.get<double>();
-      if (std::isfinite(x) && x == std::floor(x) && x >= double(lo) && x <= double(hi)) return std::int64_t(x);
+      if (std::isfinite(x) && x == std::floor(x) && x >= double(lo) && x <= double(hi) && x < past_int64)
+        return std::int64_t(x);
     }
     fail_expected(at, range);
   }
@@ -203,6 +217,100 @@ class json_reader {
   }
   std::string file_;
 };
+
+/// The first reading of a document, as nlohmann's SAX events. Nothing is
+/// built: it keeps only the keys of the objects it is inside, to find one
+/// given twice, which is at most what the document would keep of them. It
+/// refuses, with the JSON path of the value at fault, a value past
+/// `max_values` (the document built from the text takes memory in proportion
+/// to its values), nesting deeper than `max_depth`, and a key given twice in
+/// one object (the built document would silently keep one of the two).
+class document_scan final : public nlohmann::json_sax<json> {
+ public:
+  document_scan(const std::string& file, std::size_t max_values, int max_depth)
+      : file_(&file), max_values_(max_values), max_depth_(max_depth) {}
+
+  bool null() override { return scalar(); }
+  bool boolean(bool) override { return scalar(); }
+  bool number_integer(number_integer_t) override { return scalar(); }
+  bool number_unsigned(number_unsigned_t) override { return scalar(); }
+  bool number_float(number_float_t, const string_t&) override { return scalar(); }
+  bool string(string_t&) override { return scalar(); }
+  bool binary(binary_t&) override { return scalar(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& name) override {
+    level& object = levels_.back();
+    object.key = name;
+    if (!object.keys.insert(name).second)
+      throw scene_error(*file_, path(), "the key \"" + name + "\" is given twice in this object (JSON leaves open which one counts)");
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const json::exception& e) override {
+    // parse_error for bad syntax; out_of_range for a number past double's
+    // range (1e400), which is not a syntax error. (The fuzzer found the second.)
+    throw scene_error(*file_, "", std::string("not JSON: ") + e.what());
+  }
+
+ private:
+  /// An array or object being read: where in it the reader is, and an
+  /// object's keys so far.
+  struct level {
+    bool array = false;
+    std::size_t elements = 0;  ///< arrays: elements begun, so the current one is elements - 1
+    std::string key;           ///< objects: the key of the current member
+    std::set<std::string, std::less<>> keys;
+  };
+
+  /// Every value, container or not, begins here.
+  void begin_value() {
+    if (!levels_.empty() && levels_.back().array) ++levels_.back().elements;
+    if (++values_ > max_values_)
+      throw scene_error(*file_, path(),
+                        "more than " + std::to_string(max_values_) + " JSON values in the document (scene_limits::json_values)",
+                        error_code::capacity_exceeded);
+  }
+  bool scalar() {
+    begin_value();
+    return true;
+  }
+  bool open(bool array) {
+    begin_value();
+    if (levels_.size() >= std::size_t(max_depth_))
+      throw scene_error(*file_, path(), "nested deeper than " + std::to_string(max_depth_) + " levels (scene_limits::depth)",
+                        error_code::capacity_exceeded);
+    levels_.push_back({array, 0, {}, {}});
+    return true;
+  }
+  bool close() {
+    levels_.pop_back();
+    return true;
+  }
+  /// The JSON pointer of the value being read; built only for an error.
+  [[nodiscard]] std::string path() const {
+    std::string out;
+    for (const level& l : levels_) {
+      out += '/';  // appended on its own: GCC 12 at -O3 warns falsely on "/" + std::string (-Wrestrict)
+      out += l.array ? std::to_string(l.elements - 1) : json_at::escape(l.key);
+    }
+    return out;
+  }
+
+  const std::string* file_;
+  std::size_t max_values_;
+  int max_depth_;
+  std::size_t values_ = 0;
+  std::vector<level> levels_;
+};
+
+/// Reads `text` once with document_scan; throws its scene_error, or returns
+/// when the text may be built into a document.
+inline void scan_document(std::string_view text, const std::string& file, std::size_t max_values, int max_depth) {
+  document_scan scan(file, max_values, max_depth);
+  (void)json::sax_parse(text.begin(), text.end(), &scan);
+}
 
 }  // namespace detail
 }  // namespace impulse::io
