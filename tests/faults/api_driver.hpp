@@ -98,7 +98,7 @@ class api_driver {
   using T = typename World::scalar;
   /// How many bodies the driver keeps at most: enough for heaps, stacks and
   /// joint chains, few enough that a step stays cheap under a sanitizer.
-  static constexpr std::size_t max_bodies = 48;
+  static constexpr std::size_t max_bodies = 24;
 
   /// Calls made, refused (invalid_argument), and steps that held a body.
   struct counts {

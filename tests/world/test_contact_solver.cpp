@@ -251,12 +251,16 @@ TEST_CASE("the pyramid 1e6 m from the origin in double drifts as it does at the 
   CHECK(far_top > 19.0);
 }
 
+// Debug and sanitizer builds run the piles for a quarter of their 10 s
+// (test::long_run): the fall and the first impacts, where the contacts are
+// made, with no box sinking. Whether the pile settles is the optimised
+// builds' to show.
 TEST_CASE("the pile settles with sleeping off: kinetic energy under 1e-4 J per box after 10 s, none below y = 0.45") {
   world<test::awake_config> w;
   test::add_ground(w);
   const std::vector<body_id> pile = test::add_pile(w);
-  test::run(w, 600);
-  CHECK(w.kinetic_energy() / 1000.0f < 1e-4f);
+  test::run(w, test::long_run(600));
+  if (test::long_run(600) == 600) CHECK(w.kinetic_energy() / 1000.0f < 1e-4f);
   for (const body_id b : pile) REQUIRE(w.body(b).position.y >= 0.45f);
 }
 
@@ -264,7 +268,7 @@ TEST_CASE("the pile settles with sleeping on: every box asleep within 10 s, none
   world<test::sleeping_config> w;
   test::add_ground(w);
   const std::vector<body_id> pile = test::add_pile(w);
-  test::run(w, 600);
-  CHECK(w.awake_body_count() == 0);
+  test::run(w, test::long_run(600));
+  if (test::long_run(600) == 600) CHECK(w.awake_body_count() == 0);
   for (const body_id b : pile) REQUIRE(w.body(b).position.y >= 0.45f);
 }
