@@ -16617,18 +16617,18 @@ struct world_settings {
     if (!(max_coordinate > T(0) && max_coordinate <= coordinate_ceiling))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: max_coordinate must be positive and at most 1e8 (float) or 1e15 (double)");
-    // Gravity that would take a body past the speed limit within a second
-    // (the longest step) is an overflow waiting to happen: every body would
-    // be held at every step.
-    if (!(length_squared(gravity) <= max_linear_speed * max_linear_speed))
-      detail::report_error(error_code::invalid_parameter,
-                           "world_settings: gravity must be at most max_linear_speed per second");
     if (max_contact_pairs < 1)
       detail::report_error(error_code::invalid_parameter, "world_settings: max_contact_pairs must be >= 1");
     if (!(max_linear_speed > T(0) && max_linear_speed <= speed_ceiling) ||
         !(max_angular_speed > T(0) && max_angular_speed <= speed_ceiling))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: max_linear_speed and max_angular_speed must be positive and at most 1e6");
+    // Gravity that would take a body past the speed limit within a second
+    // (the longest step) is an overflow waiting to happen: every body would
+    // be held at every step.
+    if (!(length_squared(gravity) <= max_linear_speed * max_linear_speed))
+      detail::report_error(error_code::invalid_parameter,
+                           "world_settings: gravity must be at most max_linear_speed per second");
   }
 };
 
