@@ -365,7 +365,9 @@ class world {
   /// limits or out of finite numbers (finite input can still overflow: a
   /// force of 1e29 N on a kilogram) is held: it stays where it was with no
   /// velocity, its contacts and joints are left out of the step, and every
-  /// other body, its joint partners too, steps on. The step then throws
+  /// other body, its joint partners too, steps on. (A body found only after
+  /// the solve, which it took part in, is put back where it was, and the
+  /// joint projection treats it as fixed.) The step then throws
   /// impulse::invalid_argument (non_finite) naming the first held body; held_bodies()
   /// lists them all.
   void step(T dt);
