@@ -143,6 +143,8 @@ class api_driver {
       if (refused && state_hash(world_) != before)
         fail(n, name(op), ("a refused call changed the world: " + error_).c_str());
       if (!all_finite(world_)) fail(n, name(op), "a body became non-finite");
+      if (std::exchange(reentry_accepted_, false))
+        fail(n, name(op), "a call that changes the world's containers was accepted inside a callback");
       forget_dead();
     }
   }
@@ -431,7 +433,7 @@ class api_driver {
   }
 
   /// A call from inside a callback: refused if it would change what the
-  /// callback walks. Run for its promise that nothing else breaks.
+  /// callback walks (reentry_accepted_ records one that was not).
   template <class Next>
   void reenter(Next& next) {
     const std::uint32_t what = next();
@@ -447,12 +449,14 @@ class api_driver {
         }
       }
     };
-    bool refused = false;
+    // Stepping, destroying and creating change the containers a callback
+    // walks: each must be refused; a force may be applied.
+    const bool structural = what % 4 != 3;
     const auto guarded = [&] {
       try {
         inner();
+        if (structural) reentry_accepted_ = true;
       } catch (const impulse::invalid_argument&) {
-        refused = true;
       }
     };
     if ((what >> 2) % 2 == 0) {
@@ -460,7 +464,6 @@ class api_driver {
     } else {
       world_.overlap(impulse::aabb<T>{{-50, -50, -50}, {50, 50, 50}}, [&](impulse::body_id) { guarded(); });
     }
-    (void)refused;
   }
 
   /// Keeps the lists of destroyed ids short.
@@ -475,6 +478,7 @@ class api_driver {
   std::optional<impulse::world_snapshot<typename World::config>> saved_;
   counts counts_;
   bool hostile_ = false;  ///< whether this call's arguments may be hostile
+  bool reentry_accepted_ = false;
   std::string error_;  ///< the last refusal's message
 };
 

@@ -284,6 +284,7 @@ TEST_CASE("a kinematic target too far to reach within the speed limit in dt is r
         }) == error_code::invalid_parameter);
   CHECK(state_hash(w) == before);
   w.set_target_pose(platform, {{1, 0, 0}, quat<float>::identity()}, 1.0f / 60);  // 60 m/s: taken
+  CHECK(w.body(platform).kinematic_velocity.x == doctest::Approx(60.0f).epsilon(1e-5));
 }
 
 TEST_CASE("interpolated_pose refuses alpha outside [0, 1] or NaN") {
