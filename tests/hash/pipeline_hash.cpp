@@ -1,0 +1,104 @@
+// The step's results, bit for bit, pinned for the builds that record them:
+// `pile` and `large_pyramid` (docs/standard_scenes.md) after 600 steps,
+// hashed (scenes.hpp, transform_hash) and compared with the hashes below.
+// Rearranging the world's code (a stage moved to its own file, a record
+// to another container) must not change a bit of what it computes; a
+// change that means to must say so and record the new hashes here.
+//
+// Floating-point results depend on the compiler and its version, so each
+// hash belongs to one build, named by build_key(); the file is compiled
+// with contraction off (tests/CMakeLists.txt says why). A build with no
+// hash recorded checks that two runs of each scene hash alike. Only
+// optimised builds run the scenes: 600 steps of large_pyramid take about
+// 5 s at -O3 and would take minutes at -O0 under the sanitizers.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "../world/scenes.hpp"
+
+using namespace impulse;
+
+namespace {
+
+/// The compiler and what changes its arithmetic: fused multiply-add where
+/// code asks for it, the vector width the contact batches take.
+std::string build_key() {
+  std::string key =
+#if defined(__clang__)
+      "clang ";
+#elif defined(__GNUC__)
+      "g++ ";
+#else
+      "other ";
+#endif
+  key += __VERSION__;
+#if defined(__FMA__)
+  key += ", fma";
+#endif
+#if defined(__AVX512F__)
+  key += ", avx512f";
+#elif defined(__AVX2__)
+  key += ", avx2";
+#endif
+  return key;
+}
+
+struct recorded {
+  std::string_view build;
+  std::uint64_t pile, large_pyramid;
+};
+
+/// Recorded on 2026-11-26 (AMD EPYC, Debian 12) in the builds CI runs
+/// these in: the README's (g++ -O3 -march=native) and clang -O3
+/// -march=native.
+constexpr recorded hashes[] = {
+    {"g++ 12.2.0, fma, avx512f", 0x06bcdf2e4bf3c08aull, 0xeec9484cdc38918bull},
+    {"clang Debian Clang 14.0.6, fma, avx512f", 0x5c738d4cf93d9bceull, 0xba05d696aaa2945dull},
+};
+
+std::uint64_t pile_hash() {
+  world<> w;
+  ::test::add_ground(w);
+  ::test::add_pile(w);
+  ::test::run(w, 600);
+  return ::test::transform_hash(w);
+}
+
+/// `large_pyramid`: a 100-box base (5050 boxes of 100 kg), ground
+/// half-extents (400, 1, 400), sleeping off.
+std::uint64_t large_pyramid_hash() {
+  world<::test::awake_config> w;
+  ::test::add_ground(w, 0.6f, {}, 400.0f);
+  for (int k = 0; k < 100; ++k) {
+    const int n = 100 - k;
+    for (int i = 0; i < n; ++i) ::test::add_cube(w, {float(i) - float(n - 1) / 2, 0.5f + float(k), 0}, 100.0f);
+  }
+  ::test::run(w, 600);
+  return ::test::transform_hash(w);
+}
+
+}  // namespace
+
+#ifdef NDEBUG
+TEST_CASE("600 steps of pile and of large_pyramid hash as recorded for this build") {
+  const std::string key = build_key();
+  const std::uint64_t pile = pile_hash(), pyramid = large_pyramid_hash();
+  char line[160];
+  std::snprintf(line, sizeof line, "{\"%s\", 0x%016llxull, 0x%016llxull}", key.c_str(),
+                static_cast<unsigned long long>(pile), static_cast<unsigned long long>(pyramid));
+  INFO("this build's entry: ", std::string(line));
+  for (const recorded& r : hashes)
+    if (r.build == key) {
+      CHECK(pile == r.pile);
+      CHECK(pyramid == r.large_pyramid);
+      return;
+    }
+  MESSAGE("no hashes recorded for ", key, ": checking that a second run hashes alike");
+  CHECK(pile_hash() == pile);
+  CHECK(large_pyramid_hash() == pyramid);
+}
+#endif
