@@ -6901,12 +6901,18 @@ template <scalar_type T>
   return j.motor_impulse + j.lower_impulse - j.upper_impulse;
 }
 
-/// The last step's impulses applied again.
+/// The last step's impulses applied again. A joint in a tree
+/// (joint_tree.hpp) has its limit and motor rows applied here, and its
+/// tree applies the rest (joint_tree::warm_start).
 template <scalar_type T>
 void warm_start_joint(std::span<solver_body<T>> bodies, const joint_constraint<T>& j) noexcept {
   solver_body<T>& a = bodies[j.body_a];
   solver_body<T>& b = bodies[j.body_b];
   const velocity_pair<T> v = real_velocities(a, b);
+  if (j.in_tree) {
+    if (j.type == joint_type::hinge || j.type == joint_type::slider) j.axial.apply(v, a, b, axis_impulse(j));
+    return;
+  }
   switch (j.type) {
     case joint_type::ball:
       j.point.apply(v, a, b, j.point_impulse);
@@ -8448,6 +8454,31 @@ struct holding_rows {
     }
   }
 
+  /// What the joint has accumulated on the rows, in their order.
+  static void impulses(const joint_constraint<T>& j, T* out) noexcept {
+    const auto put = [&](int at, const vec3<T>& v) { out[at] = v.x, out[at + 1] = v.y, out[at + 2] = v.z; };
+    switch (j.type) {
+      case joint_type::ball:
+        put(0, j.point_impulse);
+        break;
+      case joint_type::hinge:
+        put(0, j.point_impulse);
+        out[3] = j.across_impulse[0], out[4] = j.across_impulse[1];
+        break;
+      case joint_type::slider:
+        put(0, j.rotation_impulse);
+        out[3] = j.across_impulse[0], out[4] = j.across_impulse[1];
+        break;
+      case joint_type::fixed:
+        put(0, j.point_impulse);
+        put(3, j.rotation_impulse);
+        break;
+      case joint_type::distance:
+        out[0] = j.axial_impulse;
+        break;
+    }
+  }
+
   /// The impulses λ of the rows added to what the joint has accumulated.
   static void accumulate(joint_constraint<T>& j, const T* lambda) noexcept {
     const auto take = [&](int at) { return vec3<T>{lambda[at], lambda[at + 1], lambda[at + 2]}; };
@@ -8515,6 +8546,7 @@ class joint_tree {
   /// unless `enabled`) and orders the nodes, children before parents.
   void build(std::span<const solver_body<T>> bodies, std::span<joint_constraint<T>> joints, bool enabled = true) {
     nodes_.clear();
+    load_.assign(bodies.size(), vec3<T>{});
     if (!enabled) {
       for (joint_constraint<T>& j : joints) j.in_tree = false;
       return;
@@ -8631,6 +8663,64 @@ class joint_tree {
     rows_.resize(joints.size());
   }
 
+  /// Forgets the loads add_load read (build does too): before a
+  /// substep's.
+  void clear_loads() noexcept { std::fill(load_.begin(), load_.end(), vec3<T>{}); }
+
+  /// Reads what a tree joint, prepared where the bodies are, held in the
+  /// last step or substep of length `h`: its geometric stiffness, which
+  /// factor adds to its bodies' inertia.
+  ///
+  /// A joint that pulls with force f at a lever r (from a body's centre of
+  /// mass) turns with the body: rotating it by δθ changes its torque by
+  /// [f]×[r]×·δθ, a stiffness the step does not see. Under a heavy load a
+  /// light link swings across it as a stiff spring, at about
+  /// ω = √(|f|·|r|/I) — 500 rad/s for the 1 kg links next to the pivot of a
+  /// chain holding 1000 kg — 8 rad in a step of 1/60 s, where the step's
+  /// linearisation follows about one; both solvers tore such chains tens of
+  /// metres open. Here h²·K, from h·λ = h²·f, is measured as Andrews,
+  /// Teichmann and Kry do ("Geometric Stiffness for Real-time Constrained
+  /// Multibody Dynamics", 2017): per axis, the length of K's column.
+  void add_load(std::span<const solver_body<T>> bodies, const joint_constraint<T>& j, T h) noexcept {
+    if (!j.in_tree) return;
+    if (j.type != joint_type::ball && j.type != joint_type::hinge && j.type != joint_type::fixed) return;
+    const mat3<T> pull = skew(j.point_impulse);
+    for (int s = 0; s < 2; ++s) {
+      const std::uint32_t b = s == 0 ? j.body_a : j.body_b;
+      if (!(bodies[b].inverse_mass > T(0))) continue;
+      const mat3<T> k = pull * skew(s == 0 ? j.point.ra : j.point.rb);
+      for (int c = 0; c < 3; ++c) load_[b][c] += h * length(k.col[c]);
+    }
+  }
+
+  /// The tree joints' last impulses applied again, after factor, through
+  /// the inertia the tree is solved with: the exact solve then lands where
+  /// it would from no start at all, as it does with the bodies' own
+  /// inertia. Applied through that, a chain tapering to 1000 kg tore as
+  /// before, each step's start undone by a solve that weighs the light
+  /// links as heavier (warm_start_joint applies their limits and motors).
+  void warm_start(std::span<solver_body<T>> bodies, std::span<const joint_constraint<T>> joints) const noexcept {
+    for (const node& m : nodes_) {
+      if (m.body) continue;
+      const joint_constraint<T>& j = joints[m.item];
+      T lambda[6] = {};
+      holding_rows<T>::impulses(j, lambda);
+      const holding_rows<T>& rows = rows_[m.item];
+      for (int s = 0; s < 2; ++s) {
+        solver_body<T>& b = bodies[s == 0 ? j.body_a : j.body_b];
+        if (!(b.inverse_mass > T(0))) continue;
+        vec3<T> linear{}, angular{};
+        for (int r = 0; r < m.size; ++r)
+          for (int c = 0; c < 3; ++c) {
+            linear[c] += rows.side[s][r][c] * lambda[r];
+            angular[c] += rows.side[s][r][3 + c] * lambda[r];
+          }
+        b.linear_velocity += linear * b.inverse_mass;
+        b.angular_velocity += solved_inverse_inertia(b, s == 0 ? j.body_a : j.body_b) * angular;
+      }
+    }
+  }
+
   /// The factors of H from the joints as prepare_joint left them. False,
   /// with every joint handed back to Gauss–Seidel, if a pivot block was not
   /// definite (rows that depend on each other; not met in a tree of the
@@ -8640,7 +8730,7 @@ class joint_tree {
       m.pivot = {};
       if (m.body) {
         const solver_body<T>& b = bodies[m.item];
-        const mat3<T> inertia = inverse_or_zero(b.inverse_inertia);
+        const mat3<T> inertia = solved_inertia(b, m.item);
         for (int i = 0; i < 3; ++i) {
           m.pivot[i][i] = T(1) / b.inverse_mass;
           for (int c = 0; c < 3; ++c) m.pivot[3 + i][3 + c] = inertia(i, c);
@@ -8762,6 +8852,28 @@ class joint_tree {
 
  private:
   static constexpr std::uint32_t none = ~std::uint32_t(0);
+
+  /// A tree body's inertia (world frame) as the tree solves it: its own,
+  /// with the geometric stiffness add_load measured added where that
+  /// passes it, so that no body turns faster under its joints' pull than
+  /// about a radian a step, and one that does not come near it is left as
+  /// it is. (All of it added, the chains held too, but a pendulum's period
+  /// would have moved; with three times the body's inertia left out, the
+  /// chain of 100 links tapering to 1000 kg tore 42 m open under
+  /// soft_step, and held with twice.)
+  [[nodiscard]] mat3<T> solved_inertia(const solver_body<T>& b, std::uint32_t index) const noexcept {
+    mat3<T> inertia = inverse_or_zero(b.inverse_inertia);
+    for (int i = 0; i < 3; ++i) inertia(i, i) += std::max(T(0), load_[index][i] - inertia(i, i));
+    return inertia;
+  }
+  /// Its inverse: the body's own where nothing was added.
+  [[nodiscard]] mat3<T> solved_inverse_inertia(const solver_body<T>& b, std::uint32_t index) const noexcept {
+    const mat3<T> own = inverse_or_zero(b.inverse_inertia);
+    for (int i = 0; i < 3; ++i)
+      if (load_[index][i] > own(i, i)) return inverse_or_zero(solved_inertia(b, index));
+    return b.inverse_inertia;
+  }
+
 
   /// Errors below this (m or rad) are not worth a factorisation: Newton's
   /// method has converged to rounding after two steps on the chain, and the
@@ -8996,6 +9108,7 @@ class joint_tree {
 
   std::vector<node> nodes_;  ///< children before parents
   std::vector<holding_rows<T>> rows_;  ///< per joint; filled for the tree joints
+  std::vector<vec3<T>> load_;          ///< per body: h²·K's columns' lengths (take_load), kg·m²
   std::vector<pose> kept_;             ///< the tree's bodies before a Newton step, node order
   bool reusable_ = false;              ///< whether the factor may serve the projection's next step
   // Scratch for build, kept to reuse its memory.
@@ -9193,8 +9306,11 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
+    const std::span<const solver_body<T>> read = bodies;
+    tree_.build(read, joints, settings.exact_joint_trees);
     for (joint_constraint<T>& j : joints) {
-      detail::prepare_joint(std::span<const solver_body<T>>(bodies), j);
+      detail::prepare_joint(read, j);
+      tree_.add_load(read, j, dt);
       if (settings.warm_starting) {
         detail::warm_start_joint(bodies, j);
       } else {
@@ -9203,9 +9319,7 @@ class basic_sequential_impulse {
     }
     const joint_pass<T> rigid_pass{softness<T>::rigid(), dt};
     for (contact_constraint<T>& c : contacts) row_targets(c, settings, inverse_dt);
-    const std::span<const solver_body<T>> read = bodies;
-    tree_.build(read, joints, settings.exact_joint_trees);
-    if (!tree_.empty()) tree_.factor(read, joints);
+    if (!tree_.empty() && tree_.factor(read, joints)) tree_.warm_start(bodies, joints);
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
     batches_.resize(graph_.batch_count());
     rows_.clear();
@@ -9391,10 +9505,8 @@ class basic_soft_step {
 
     detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations, T(0),
                              dt);
-    if (!settings.warm_starting) {
+    if (!settings.warm_starting)
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
-      for (joint_constraint<T>& j : joints) detail::forget_impulses(j);
-    }
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
     for (int substep = 0; substep < n; ++substep) {
@@ -9402,11 +9514,15 @@ class basic_soft_step {
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
       }
+      tree_.clear_loads();
       for (joint_constraint<T>& j : joints) {
         detail::prepare_joint(read, j);
+        tree_.add_load(read, j, h);
+        if (substep == 0 && !settings.warm_starting) detail::forget_impulses(j);
         detail::warm_start_joint(bodies, j);
       }
       const bool exact = !tree_.empty() && tree_.factor(read, joints);
+      if (exact) tree_.warm_start(bodies, joints);
       for (contact_constraint<T>& c : contacts) detail::warm_start(bodies, c);
       for (int i = 0; i < settings.substep_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);

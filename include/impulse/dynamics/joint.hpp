@@ -269,12 +269,18 @@ template <scalar_type T>
   return j.motor_impulse + j.lower_impulse - j.upper_impulse;
 }
 
-/// The last step's impulses applied again.
+/// The last step's impulses applied again. A joint in a tree
+/// (joint_tree.hpp) has its limit and motor rows applied here, and its
+/// tree applies the rest (joint_tree::warm_start).
 template <scalar_type T>
 void warm_start_joint(std::span<solver_body<T>> bodies, const joint_constraint<T>& j) noexcept {
   solver_body<T>& a = bodies[j.body_a];
   solver_body<T>& b = bodies[j.body_b];
   const velocity_pair<T> v = real_velocities(a, b);
+  if (j.in_tree) {
+    if (j.type == joint_type::hinge || j.type == joint_type::slider) j.axial.apply(v, a, b, axis_impulse(j));
+    return;
+  }
   switch (j.type) {
     case joint_type::ball:
       j.point.apply(v, a, b, j.point_impulse);

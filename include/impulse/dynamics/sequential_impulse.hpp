@@ -91,8 +91,11 @@ class basic_sequential_impulse {
         detail::forget_impulses(c);
       }
     }
+    const std::span<const solver_body<T>> read = bodies;
+    tree_.build(read, joints, settings.exact_joint_trees);
     for (joint_constraint<T>& j : joints) {
-      detail::prepare_joint(std::span<const solver_body<T>>(bodies), j);
+      detail::prepare_joint(read, j);
+      tree_.add_load(read, j, dt);
       if (settings.warm_starting) {
         detail::warm_start_joint(bodies, j);
       } else {
@@ -101,9 +104,7 @@ class basic_sequential_impulse {
     }
     const joint_pass<T> rigid_pass{softness<T>::rigid(), dt};
     for (contact_constraint<T>& c : contacts) row_targets(c, settings, inverse_dt);
-    const std::span<const solver_body<T>> read = bodies;
-    tree_.build(read, joints, settings.exact_joint_trees);
-    if (!tree_.empty()) tree_.factor(read, joints);
+    if (!tree_.empty() && tree_.factor(read, joints)) tree_.warm_start(bodies, joints);
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
     batches_.resize(graph_.batch_count());
     rows_.clear();

@@ -77,10 +77,8 @@ class basic_soft_step {
 
     detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations, T(0),
                              dt);
-    if (!settings.warm_starting) {
+    if (!settings.warm_starting)
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
-      for (joint_constraint<T>& j : joints) detail::forget_impulses(j);
-    }
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
     for (int substep = 0; substep < n; ++substep) {
@@ -88,11 +86,15 @@ class basic_soft_step {
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
       }
+      tree_.clear_loads();
       for (joint_constraint<T>& j : joints) {
         detail::prepare_joint(read, j);
+        tree_.add_load(read, j, h);
+        if (substep == 0 && !settings.warm_starting) detail::forget_impulses(j);
         detail::warm_start_joint(bodies, j);
       }
       const bool exact = !tree_.empty() && tree_.factor(read, joints);
+      if (exact) tree_.warm_start(bodies, joints);
       for (contact_constraint<T>& c : contacts) detail::warm_start(bodies, c);
       for (int i = 0; i < settings.substep_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
