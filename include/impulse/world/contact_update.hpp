@@ -1,0 +1,231 @@
+// impulse/world/contact_update.hpp — the step's collision stages: each
+// moving body's proxy moved in the broad phase, then the narrow phase over
+// the pairs it reports (docs/architecture.md, "The step").
+//
+// Each pair with a dynamic body gets its manifolds from the dispatcher of
+// the config's shape_list; points that keep their feature id keep their
+// impulses (warm start); a pair that has moved less than the reuse limits
+// since its last full test keeps that test's manifolds, carried with its
+// bodies. Pairs that start or stop touching become events. The records
+// stay sorted by proxy pair, merged with the broad phase's pairs in one
+// pass.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "world_state.hpp"
+
+namespace impulse::detail {
+
+template <class Config>
+struct contact_update {
+  using T = typename Config::scalar;
+  using dispatcher = typename world_state<Config>::dispatcher;
+
+  world_state<Config>& state;
+  step_scratch<Config>& scratch;
+
+  /// The broad phase, then the narrow phase.
+  void run() {
+    update_broad_phase();
+    update_contacts();
+  }
+
+ private:
+  void update_broad_phase() {
+    for (const body_record<T>& r : state.bodies.values())
+      if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r));
+    state.broad.update();
+  }
+
+
+  /// How far a pair may move before its pair test runs again
+  /// (world_settings::contact_reuse_distance and _angle), as collide
+  /// compares them.
+  struct reuse_limits {
+    T distance_squared;
+    T cos_half_angle;
+  };
+
+  void update_contacts() {
+    const std::span<const proxy_pair> pairs = state.broad.pairs();
+    std::vector<contact_record<T>>& old = state.contacts;
+    const world_settings<T>& s = state.settings;
+    const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
+                              std::cos(s.contact_reuse_angle / T(2))};
+    // Most steps have the last step's pairs: then the records are updated
+    // where they are, rather than copied over.
+    if (same_pairs(pairs)) {
+      for (contact_record<T>& c : old) collide(c, limits);
+      return;
+    }
+    scratch.next_contacts.clear();
+    scratch.next_contacts.reserve(std::min(pairs.size(), std::size_t(s.max_contact_pairs)));
+    // New pairs are taken while the records, old and new, stay within
+    // max_contact_pairs; those past it wait, and are counted.
+    const std::size_t room = std::size_t(s.max_contact_pairs) > old.size() ? s.max_contact_pairs - old.size() : 0;
+    std::size_t created = 0;
+    state.pairs_over_limit = 0;
+    std::size_t i = 0;
+    for (const proxy_pair& pair : pairs) {
+      while (i < old.size() && old[i].key < pair) state.end_contact(old[i++]);
+      if (i < old.size() && old[i].key == pair) {
+        scratch.next_contacts.push_back(old[i++]);
+      } else {
+        if (!may_touch(pair)) continue;
+        if (created == room) {
+          ++state.pairs_over_limit;
+          continue;
+        }
+        ++created;
+        const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+        const body_record<T>& ra = state.bodies[a];
+        const body_record<T>& rb = state.bodies[b];
+        contact_record<T> c{};
+        c.key = pair;
+        c.a = a, c.b = b;
+        c.friction = combine_friction(ra.material.friction, rb.material.friction);
+        c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
+        scratch.next_contacts.push_back(c);
+      }
+      collide(scratch.next_contacts.back(), limits);
+    }
+    while (i < old.size()) state.end_contact(old[i++]);
+    old.swap(scratch.next_contacts);
+  }
+
+  /// Whether a pair of proxies can make contact: one of its bodies is
+  /// dynamic, and no joint between them keeps them apart.
+  bool may_touch(const proxy_pair& pair) const {
+    const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+    const body_record<T>& ra = state.bodies[a];
+    const body_record<T>& rb = state.bodies[b];
+    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !state.joined_apart(a, b);
+  }
+
+  /// Whether the broad phase's pairs, less those that cannot touch, are
+  /// the records' pairs.
+  bool same_pairs(std::span<const proxy_pair> pairs) const {
+    const std::vector<contact_record<T>>& old = state.contacts;
+    std::size_t i = 0;
+    for (const proxy_pair& pair : pairs) {
+      if (i < old.size() && old[i].key == pair) ++i;
+      else if (may_touch(pair)) return false;
+    }
+    return i == old.size();
+  }
+
+  /// Gives the record n manifold slots, keeping its first ones: freed
+  /// slots are reused before the pool grows.
+  void resize_slots(contact_record<T>& c, int n) {
+    while (c.manifold_count > n) state.free_manifolds.push_back(c.slots[std::size_t(--c.manifold_count)]);
+    while (c.manifold_count < n) {
+      std::uint32_t slot;
+      if (!state.free_manifolds.empty()) {
+        slot = state.free_manifolds.back();
+        state.free_manifolds.pop_back();
+      } else {
+        slot = std::uint32_t(state.manifolds.size());
+        state.manifolds.emplace_back();
+      }
+      c.slots[std::size_t(c.manifold_count++)] = slot;
+    }
+  }
+
+  void collide(contact_record<T>& c, const reuse_limits& limits) {
+    const body_record<T>& ra = state.bodies[c.a];
+    const body_record<T>& rb = state.bodies[c.b];
+    // Two bodies that are not moving keep their manifolds: sleeping ones
+    // wake with the contacts they slept on.
+    if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
+    const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
+    const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
+    if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
+    std::array<contact_manifold<T>, max_manifolds> fresh;
+    const std::size_t n = dispatcher::collide(state.shape_ref_of(ra), pose_a, state.shape_ref_of(rb), pose_b,
+                                              state.settings.solver.speculative_distance,
+                                              std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
+    std::array<manifold_impulse<T>, max_manifolds> carried{};
+    for (std::size_t m = 0; m < n; ++m) {
+      // The old manifold with the nearest normal (a mesh's several keep
+      // theirs apart), then each point by its feature id.
+      int match = -1;
+      T best = T(0.95);  // normals within 18° count as the same face
+      for (int k = 0; k < c.manifold_count; ++k) {
+        const T d = dot(state.slot_of(c, k).manifold.normal, fresh[m].normal);
+        if (d > best) best = d, match = k;
+      }
+      if (match < 0) continue;
+      const contact_manifold<T>& before = state.slot_of(c, match).manifold;
+      const manifold_impulse<T>& had = state.slot_of(c, match).impulse;
+      carried[m].friction = had.friction;
+      carried[m].twist = had.twist;
+      for (int p = 0; p < fresh[m].count; ++p)
+        for (int q = 0; q < before.count; ++q)
+          if (before.points[std::size_t(q)].feature == fresh[m].points[std::size_t(p)].feature) {
+            carried[m].normal[std::size_t(p)] = had.normal[std::size_t(q)];
+            break;
+          }
+    }
+    resize_slots(c, int(n));
+    c.tested = true;
+    c.tested_relative = relative;
+    for (std::size_t m = 0; m < n; ++m) {
+      manifold_slot<T>& slot = state.slot_of(c, int(m));
+      slot.manifold = fresh[m];
+      slot.impulse = carried[m];
+      contact_manifold<T>& local = slot.tested_local;
+      local = fresh[m];
+      local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
+      for (int p = 0; p < local.count; ++p)
+        local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh[m].points[std::size_t(p)].position);
+    }
+    const bool touching = n > 0;
+    if (touching && !c.touching) state.begun.push_back({c.a, c.b});
+    if (!touching && c.touching) state.ended.push_back({c.a, c.b});
+    c.touching = touching;
+  }
+
+  /// Keeps the manifolds of the pair's last full test while B has moved
+  /// less than the reuse limits relative to A since then (a resting stack
+  /// skips its pair tests), and returns whether it did. Each point lies
+  /// midway between a point of A's surface and one of B's, `depth` apart
+  /// along the normal: the one on A and the normal stay with A, the one on
+  /// B is carried with B, and the depth and midpoint follow. For a corner
+  /// of B on a face of A the depth is exact, and the midpoint lags the
+  /// fresh one by half the corner's slide; a point clipped at the edge of
+  /// A's face is carried past it by as much. (Bullet refreshes its
+  /// persistent manifolds' points the same way; Jolt's body pair cache
+  /// reuses manifolds within the same limits.)
+  bool reuse_manifolds(contact_record<T>& c, const transform<T>& pose_a, const transform<T>& relative,
+                       const reuse_limits& limits) noexcept {
+    const vec3<T> shift = relative.position - c.tested_relative.position;
+    if (!(length_squared(shift) < limits.distance_squared)) return false;
+    // B's turn in A's frame since the test; |w| = cos(angle / 2).
+    const quat<T> turn = relative.rotation * conjugate(c.tested_relative.rotation);
+    if (!(std::abs(turn.w) > limits.cos_half_angle)) return false;
+    for (int m = 0; m < c.manifold_count; ++m) {
+      manifold_slot<T>& slot = state.slot_of(c, m);
+      const contact_manifold<T>& local = slot.tested_local;
+      contact_manifold<T>& out = slot.manifold;
+      out.normal = rotate(pose_a.rotation, local.normal);
+      for (int p = 0; p < local.count; ++p) {
+        const contact_point<T>& tested = local.points[std::size_t(p)];
+        const vec3<T> on_b = tested.position - local.normal * (tested.depth * T(0.5));
+        const vec3<T> moved = rotate(turn, on_b - c.tested_relative.position) + relative.position - on_b;
+        contact_point<T>& point = out.points[std::size_t(p)];
+        point.depth = tested.depth - dot(moved, local.normal);
+        point.position = apply(pose_a, tested.position + moved * T(0.5));
+      }
+    }
+    return true;
+  }
+};
+
+}  // namespace impulse::detail

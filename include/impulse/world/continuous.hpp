@@ -1,0 +1,175 @@
+// impulse/world/continuous.hpp — the step's continuous collision (with
+// `ccd` in the config; off, none of it is compiled): after the bodies
+// have moved, each bullet, and each body that crossed more than
+// ccd_motion_fraction of its thinnest half-extent, is swept from where it
+// started the step to where it ended, and stopped ccd_gap short of the
+// first body it would have met (Box2D v3's continuous stage: the rest of
+// its step is lost, and the next step's speculative contact resolves the
+// impact; its velocity is kept for that).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "../narrowphase/epa.hpp"
+#include "../narrowphase/ray_cast.hpp"
+#include "../narrowphase/time_of_impact.hpp"
+#include "world_state.hpp"
+
+namespace impulse::detail {
+
+/// What a body of this shape may cross in a step before it is swept, m:
+/// its thinnest half-extent.
+template <scalar_type T, class Shape>
+[[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
+  if constexpr (requires { shape.radius; }) {
+    return shape.radius;  // a ball's, and a capsule's across
+  } else if constexpr (requires { shape.local_aabb(); }) {
+    const aabb<T> box = shape.local_aabb();
+    const vec3<T> half = (box.upper - box.lower) * T(0.5);
+    return std::min({half.x, half.y, half.z});
+  } else {
+    return std::numeric_limits<T>::infinity();  // planes and meshes are static or kinematic: never swept
+  }
+}
+
+template <class Config>
+struct continuous_collision {
+  using T = typename Config::scalar;
+
+  world_state<Config>& state;
+  step_scratch<Config>& scratch;
+
+  /// Sweeps the bodies that need it (above).
+  void run() {
+    std::vector<body_record<T>>& bodies = state.bodies.values();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const body_record<T>& r = bodies[i];
+      if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
+      const T moved = length(r.body.position - r.previous.position);
+      if (r.bullet || moved > state.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
+    }
+  }
+
+ private:
+  void sweep_back(std::size_t i) {
+    body_record<T>& r = state.bodies.values()[i];
+    const body_id id = state.bodies.ids()[i];
+    const narrowphase::sweep<T> path{{r.previous.position - rotate(r.previous.rotation, r.center), r.previous.rotation},
+                                     shape_pose_of(r), r.center};
+    const aabb<T> swept = state.shape_store.visit(r.shape, [&](const auto& s) {
+      return merge(s.world_aabb(path.start), s.world_aabb(path.end));
+    });
+    T first = T(1);
+    state.broad.query(swept, [&](proxy_id proxy) {
+      const body_id other = unpack(state.broad.user_data(proxy));
+      if (other == id || state.joined_apart(id, other)) return;
+      const body_record<T>& o = state.bodies[other];
+      // Fast bodies meet the world; bullets meet moving bodies too, but
+      // not each other (each is already swept).
+      if (o.body.type == body_type::dynamic && (!r.bullet || o.bullet)) return;
+      const narrowphase::sweep<T> other_path{
+          {o.previous.position - rotate(o.previous.rotation, o.center), o.previous.rotation}, shape_pose_of(o),
+          o.center};
+      first = std::min(first, impact_time(r, path, o, other_path));
+    });
+    if (!(first < T(1))) return;
+    const transform<T> at = narrowphase::sweep_motion<T>(path).at(first);
+    r.body.position = apply(at, r.center);
+    r.body.orientation = at.rotation;
+  }
+
+  /// When r, moving along path, first comes within ccd_gap of o moving along
+  /// its own; 1 if not within the step. Convex pairs by convex_impact_time;
+  /// a mesh triangle by triangle (mesh_impact_time). Planes are
+  /// half-spaces, which nothing can cross unseen.
+  T impact_time(const body_record<T>& r, const narrowphase::sweep<T>& path, const body_record<T>& o,
+                const narrowphase::sweep<T>& other_path) const {
+    return state.shape_store.visit(r.shape, [&](const auto& mover) {
+      return state.shape_store.visit(o.shape, [&](const auto& target) {
+        using M = std::decay_t<decltype(mover)>;
+        using O = std::decay_t<decltype(target)>;
+        constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
+        constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
+        if constexpr (convex_mover && std::is_same_v<O, triangle_mesh<T>>) {
+          return mesh_impact_time(mover, path, target, other_path);
+        } else if constexpr (convex_mover && convex_target) {
+          return convex_impact_time(mover, path, target, other_path);
+        } else {
+          return T(1);
+        }
+      });
+    });
+  }
+
+  /// A convex pair. A ball against a body that does not turn is a sphere
+  /// cast, exact; other pairs are conservative advancement
+  /// (narrowphase/time_of_impact.hpp).
+  template <class M, class O>
+  T convex_impact_time(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+                       const narrowphase::sweep<T>& other_path) const {
+    const T gap = state.settings.ccd_gap;
+    if constexpr (std::is_same_v<M, sphere<T>>) {
+      if (other_path.start == other_path.end) {
+        // The ball's centre against the body grown by its radius.
+        const vec3<T> from = path.start.position, to = path.end.position;
+        const T distance = length(to - from);
+        const narrowphase::ray_hit<T> hit =
+            narrowphase::sphere_cast(ray<T>{from, to - from}, mover.radius, target, other_path.start);
+        // Starting within the grown body: the discrete contact has it (a
+        // ball rolling fast on the ground is not stopped by it).
+        if (!hit.hit || !(hit.fraction > T(0))) return T(1);
+        const T t = hit.fraction - gap / distance;
+        if (t > T(0)) return t;
+        return passed(mover, path, target, other_path, -hit.normal) ? T(0) : T(1);
+      }
+    }
+    narrowphase::toi_options<T> options;
+    options.target = gap;
+    options.tolerance = gap * T(0.25);
+    const narrowphase::toi_result<T> hit = narrowphase::time_of_impact(mover, path, target, other_path, options);
+    if (hit.state == narrowphase::toi_state::overlapping) return T(1);  // the discrete contacts have it
+    if (hit.state == narrowphase::toi_state::separated) return T(1);
+    if (hit.t > T(0)) return hit.t;
+    return passed(mover, path, target, other_path, hit.normal) ? T(0) : T(1);
+  }
+
+  /// The earliest impact on any triangle of the mesh near the mover's
+  /// sweep, each triangle a convex shape of its own.
+  template <class M>
+  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const triangle_mesh<T>& mesh,
+                     const narrowphase::sweep<T>& other_path) const {
+    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
+    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
+    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
+    const vec3<T> gap = vec3<T>::splat(state.settings.ccd_gap);
+    T first = T(1);
+    mesh.for_each_overlapping({near.lower - gap, near.upper + gap}, [&](std::size_t t) {
+      narrowphase::detail::convex_triangle<T> triangle;
+      mesh.triangle(t, triangle.v[0], triangle.v[1], triangle.v[2]);
+      first = std::min(first, convex_impact_time(mover, path, triangle, other_path));
+    });
+    return first;
+  }
+
+  /// For a pair that starts the step within ccd_gap (normal: from the
+  /// mover towards the other), whether the step ended with the mover
+  /// through the other or deeper in it than ccd_gap. Such a pair is the
+  /// discrete contacts' to handle, and they nearly always hold it; a body
+  /// that turns fast under the contact's impulse can still swing through
+  /// (a 2 cm plate hitting a wall at 150 m/s, spinning at 10 rad/s), and is
+  /// then put back where it started the step.
+  template <class M, class O>
+  bool passed(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+              const narrowphase::sweep<T>& other_path, const vec3<T>& normal) const {
+    const narrowphase::gjk_result<T> end = narrowphase::gjk_distance(mover, path.end, target, other_path.end);
+    if (!end.overlapping) return dot(end.on_b - end.on_a, normal) < T(0);
+    return narrowphase::epa_penetration(mover, path.end, target, other_path.end).depth > state.settings.ccd_gap;
+  }
+};
+
+}  // namespace impulse::detail

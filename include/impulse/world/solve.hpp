@@ -1,0 +1,372 @@
+// impulse/world/solve.hpp — the step's solve: the awake bodies and their
+// touching contacts and joints handed to the config's solver
+// (sequential_impulse, soft_step), which applies this step's forces, solves
+// the contacts and the joints (joint.hpp; trees of joints exactly,
+// joint_tree.hpp) and, if it moves the bodies itself, moves them; then the
+// write-back: the bodies moved by the config's integrator (or as the solver
+// left them), moved back onto their joints (project_joints), the impulses
+// kept for the next step's warm start, and the joints that pulled harder
+// than their thresholds broken.
+//
+// Bodies keep Baraff's state (rigid_body.hpp): the solver works on
+// velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step; the
+// write-back sets P = m·v, and L changed by the torque's impulse and by I_w
+// times what the contacts did to ω, so that with no contact L is constant
+// to the bit. The bodies then move by the integrator policy with L held
+// and ω = R·I⁻¹·Rᵀ·L at each stage: a free body precesses as accurately as
+// the integrator (RK4: fourth order). Forces are held constant over a step,
+// so every integrator gives the same velocity change, F·dt/m; the
+// integrator matters for the rotation, and for forces that depend on the
+// state within a step (springs). A solver that moves the bodies itself
+// (soft_step) holds ω through its substeps: ω is then the state, written
+// back as L = I_w·ω at the pose reached, and the gyroscopic term is taken
+// once a step, implicitly (gyroscopic_turn).
+//
+// A body that the step would take past the world's speed limits or out of
+// finite numbers is held (step_scratch::hold): before the solve if its
+// loads would, after it if what the solve gave it does.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "../dynamics/body_motion.hpp"
+#include "world_state.hpp"
+
+namespace impulse::detail {
+
+template <class Config>
+struct body_solve {
+  using T = typename Config::scalar;
+  using solver_policy = typename world_solver<Config>::type;
+  using integrator = typename Config::integrator;
+  using support = typename step_scratch<Config>::support;
+
+  world_state<Config>& state;
+  step_scratch<Config>& scratch;
+
+  /// Solves and moves the bodies over dt (above).
+  void run(T dt) {
+    std::vector<body_record<T>>& bodies = state.bodies.values();
+    const vec3<T> gravity_step = state.settings.gravity * dt;
+    scratch.solver_bodies.resize(bodies.size());
+    scratch.held.assign(bodies.size(), 0);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const rigid_body<T>& b = bodies[i].body;
+      solver_body<T>& s = scratch.solver_bodies[i];
+      s = solver_body<T>{};
+      s.position = b.position;
+      s.orientation = b.orientation;
+      if (is_solved(bodies[i])) {
+        s.inverse_mass = b.inverse_mass;
+        s.inverse_inertia = b.inverse_inertia_world();
+        s.linear_velocity = b.linear_momentum * b.inverse_mass;
+        s.angular_velocity = s.inverse_inertia * b.angular_momentum;
+        s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
+        s.force_angular = s.inverse_inertia * (b.torque * dt);
+        if constexpr (solver_policy::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
+        // A body its loads would take out of finite numbers, or past the
+        // speed limits, is held before anything couples it to another: a
+        // joint solved with it would carry the overflow into its partner.
+        if (!state.within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) scratch.hold(state, i);
+      } else if (b.type == body_type::kinematic) {
+        s.linear_velocity = b.kinematic_velocity;
+        s.angular_velocity = b.kinematic_angular_velocity;
+      }
+    }
+    // How long the bodies move in a straight line at a time.
+    const T move_dt = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    scratch.constraints.clear();
+    scratch.sources.clear();
+    // Reserved exactly: grown by doubling, the largest per-step array
+    // would hold up to twice what it needs, and three times while it moves.
+    std::size_t manifold_count = 0;
+    for (const contact_record<T>& c : state.contacts) manifold_count += c.manifold_count;
+    scratch.constraints.reserve(manifold_count);
+    scratch.sources.reserve(manifold_count);
+    for (std::uint32_t k = 0; k < state.contacts.size(); ++k) {
+      const contact_record<T>& c = state.contacts[k];
+      if (!c.touching) continue;
+      const std::uint32_t ia = state.dense(c.a), ib = state.dense(c.b);
+      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      for (int m = 0; m < c.manifold_count; ++m) {
+        const contact_manifold<T>& manifold = state.slot_of(c, m).manifold;
+        contact_constraint<T> cc;
+        cc.body_a = ia, cc.body_b = ib;
+        cc.normal = manifold.normal;
+        cc.friction = c.friction;
+        cc.restitution = c.restitution;
+        cc.count = manifold.count;
+        // Friction acts at the middle of the patch, with the mean distance
+        // of the points from it, times 2/3, as the lever of its twist: the
+        // mean radius of a uniformly pressed disc through its points.
+        vec3<T> middle{};
+        for (int p = 0; p < manifold.count; ++p) middle += manifold.points[std::size_t(p)].position;
+        middle = middle * (T(1) / T(manifold.count));
+        T spread = T(0);
+        for (int p = 0; p < manifold.count; ++p) spread += length(manifold.points[std::size_t(p)].position - middle);
+        cc.twist_radius = spread * (T(2) / T(3)) / T(manifold.count);
+        cc.anchor_a = middle - bodies[ia].body.position;
+        cc.anchor_b = middle - bodies[ib].body.position;
+        // The slip at the middle of the patch chooses the tangents.
+        const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
+        slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
+        // The positions move each centre in a straight line while each body
+        // turns exactly, so two points that move together at the velocity
+        // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
+        // a box stuck 2 m out on a platform turning at 1 rad/s crept
+        // outward 1.7 cm/s. Friction holds the patch at the relative
+        // velocity that cancels it (per substep, for a substepping solver,
+        // which moves the bodies in straight lines that much shorter).
+        const solver_body<T>& sa = scratch.solver_bodies[ia];
+        const solver_body<T>& sb = scratch.solver_bodies[ib];
+        const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
+                                cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
+        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
+        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
+        const manifold_impulse<T>& carried = state.slot_of(c, m).impulse;
+        cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
+        cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
+        cc.twist_impulse = carried.twist;
+        for (int p = 0; p < manifold.count; ++p) {
+          const contact_point<T>& point = manifold.points[std::size_t(p)];
+          contact_constraint_point<T>& cp = cc.points[p];
+          cp.offset_a = point.position - bodies[ia].body.position;
+          cp.offset_b = point.position - bodies[ib].body.position;
+          cp.depth = point.depth;
+          cp.normal_impulse = carried.normal[std::size_t(p)];
+        }
+        scratch.constraints.push_back(cc);
+        scratch.sources.push_back({k, std::uint32_t(m)});
+      }
+    }
+    if (state.settings.solver.warm_starting) {
+      // A substepping solver's impulses are per substep.
+      estimate_cold_loads(solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt);
+    }
+    scratch.joints.clear();
+    scratch.joint_sources.clear();
+    for (std::uint32_t k = 0; k < state.joints.size(); ++k) {
+      const joint_record<T>& r = state.joints.values()[k];
+      if (r.broken) continue;
+      const std::uint32_t ia = state.dense(r.a), ib = state.dense(r.b);
+      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      scratch.joints.push_back(r.constraint);
+      scratch.joints.back().body_a = ia, scratch.joints.back().body_b = ib;
+      scratch.joint_sources.push_back(k);
+    }
+    scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
+    scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    keep_joint_impulses(dt);
+    for (std::size_t j = 0; j < scratch.constraints.size(); ++j) {
+      contact_record<T>& c = state.contacts[scratch.sources[j].record];
+      const contact_constraint<T>& cc = scratch.constraints[j];
+      manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
+      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+      kept.twist = cc.twist_impulse;
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      body_record<T>& r = bodies[i];
+      rigid_body<T>& b = r.body;
+      r.previous = b.pose();
+      if (scratch.is_held(std::uint32_t(i))) {
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+      } else if (is_solved(r)) {
+        const solver_body<T>& s = scratch.solver_bodies[i];
+        body_pose<T> x{b.position, b.orientation};
+        // L changes by the torque's impulse and by what the contacts did to
+        // ω; written as that change rather than as I_w·ω, it stays constant
+        // to the bit when nothing acts on the body.
+        const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
+        body_momentum<T> momentum{s.linear_velocity * b.mass,
+                                  b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
+        if constexpr (!solver_policy::moves_bodies) {
+          // Free motion under the solved momenta, by the integrator policy:
+          // with L held, ω = R·I⁻¹·Rᵀ·L turns with the body at each stage,
+          // so the gyroscopic motion is as accurate as the integrator.
+          integrator::advance(x, momentum, dt, free_motion{b, s.bias_linear, s.bias_angular});
+        } else {
+          // The solver held ω through each substep while the body turned,
+          // so ω is its state: L = I_w·ω at the pose it reached. Kept as
+          // the change of L instead, a tumbling link's energy grew at each
+          // step (the tail of a swinging chain spun up to 3 000 rad/s).
+          x = {s.position, s.orientation};
+          const mat3<T> turn = to_mat3(s.orientation);
+          momentum.angular = turn * b.inertia * transpose(turn) * s.angular_velocity;
+        }
+        // What the solve gave it can still overflow (or pass the limits):
+        // the body is then held after all, where it started the step.
+        const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
+                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
+                            state.within_speed_limits(s.linear_velocity, s.angular_velocity) && state.within_bounds(x.position);
+        if (finite) {
+          b.linear_momentum = momentum.linear;
+          b.angular_momentum = momentum.angular;
+          b.position = x.position;
+          b.orientation = normalize(x.orientation);
+        } else {
+          b.linear_momentum = {};
+          b.angular_momentum = {};
+          scratch.hold(state, i);
+        }
+      } else if (b.type == body_type::kinematic) {
+        // A kinematic body's motion is prescribed: placed exactly, and
+        // stopped at the world's bounds.
+        const vec3<T> moved = b.position + b.kinematic_velocity * dt;
+        if (state.within_bounds(moved)) {
+          b.position = moved;
+          b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+        } else {
+          b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
+          scratch.hold(state, i);
+        }
+        if (r.target == target_state::armed) r.target = target_state::arrived;
+      }
+      b.clear_loads();
+    }
+    if (!scratch.joints.empty()) project_joints();
+  }
+
+ private:
+  /// For a solver that moves the bodies itself, holding ω over each
+  /// substep: the change of ω over the step that keeps L = I_w·ω as the
+  /// body turns (ω × I·ω, the gyroscopic term), taken implicitly by one
+  /// Newton step on I·(ω₂ − ω₁) + dt·ω₂ × I·ω₂ = 0 (Catto, "Numerical
+  /// Methods", GDC 2015). Explicitly, the term adds energy: a thin link
+  /// whipped at the end of a chain spun itself up to 3 000 rad/s.
+  static vec3<T> gyroscopic_turn(const rigid_body<T>& b, const vec3<T>& omega, T dt) noexcept {
+    const mat3<T> inertia = b.inertia_world();
+    const vec3<T> spin = inertia * omega;
+    const mat3<T> slope = inertia + (skew(omega) * inertia - skew(spin)) * dt;
+    const std::optional<mat3<T>> inverse = try_inverse(slope);
+    return inverse ? -(*inverse * (cross(omega, spin) * dt)) : vec3<T>{};
+  }
+
+  /// The joints' drift removed from where the bodies have moved to
+  /// (joint_tree::project_joints), by either solver; velocities are left as
+  /// solved.
+  /// A body held after its solve (hold() made it immovable) stays put,
+  /// and a projection that would leave a body non-finite is undone for it.
+  void project_joints() {
+    std::vector<body_record<T>>& bodies = state.bodies.values();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      scratch.solver_bodies[i].position = bodies[i].body.position;
+      scratch.solver_bodies[i].orientation = bodies[i].body.orientation;
+    }
+    scratch.solver.project_joints(scratch.solver_bodies, scratch.joints, state.settings.solver);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (!is_solved(bodies[i]) || scratch.is_held(std::uint32_t(i))) continue;
+      const solver_body<T>& s = scratch.solver_bodies[i];
+      if (state.within_bounds(s.position) && is_finite(s.orientation) && length_squared(s.orientation) > T(0)) {
+        bodies[i].body.position = s.position;
+        bodies[i].body.orientation = normalize(s.orientation);
+      } else {
+        rigid_body<T>& b = bodies[i].body;
+        b.position = bodies[i].previous.position;
+        b.orientation = bodies[i].previous.rotation;
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+        scratch.hold(state, i);
+      }
+    }
+  }
+
+  /// Keeps what each solved joint accumulated, and breaks those whose
+  /// impulse this step (per substep, for a substepping solver, whose
+  /// impulses are per substep) exceeded their thresholds.
+  void keep_joint_impulses(T dt) {
+    const T h = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    for (std::size_t n = 0; n < scratch.joints.size(); ++n) {
+      joint_record<T>& r = state.joints.values()[scratch.joint_sources[n]];
+      r.constraint = scratch.joints[n];
+      const joint_reaction<T> applied = reaction_of(scratch.joints[n]);
+      r.force = applied.linear * (T(1) / h);
+      r.torque = applied.angular * (T(1) / h);
+      const T force = length(r.force), torque = length(r.torque);
+      if (force > r.def.break_force || torque > r.def.break_torque) {
+        r.broken = true;
+        state.unjoin(r);
+        state.wake_joint(r);
+        state.broken.push_back({state.joints.ids()[scratch.joint_sources[n]], r.a, r.b, state.time + dt, force, torque});
+      }
+    }
+  }
+
+  /// A first guess of the normal impulses of touching contacts that have
+  /// none to carry over: the weight they hold up.
+  ///
+  /// Warm starting makes each step's iterations continue the last step's,
+  /// but a new contact starts from nothing, and Gauss–Seidel moves a load
+  /// only so far per sweep: down a stack one contact per sweep, and from a
+  /// heavy body into a light one beneath it by about the mass ratio's
+  /// inverse per sweep. A 100 kg box set on a 1 kg one sinks 4 cm in the
+  /// first ten steps before the carried-over impulses catch up (200 sweeps
+  /// in the first step still leave 6 mm). So when a contact is new and
+  /// holds a body up against gravity (its normal within 45° of vertical),
+  /// its first impulse is that body's weight over the step, plus what rests
+  /// on the body through other new contacts, shared evenly among the
+  /// contacts holding it: loads are passed down from the highest body. The
+  /// iterations then correct the guess like any carried-over impulse; it
+  /// only sets where they start.
+  void estimate_cold_loads(T dt) {
+    const T g = length(state.settings.gravity);
+    if (!(g > T(0))) return;
+    const vec3<T> up = state.settings.gravity * (T(-1) / g);
+    scratch.supports.clear();
+    for (std::uint32_t j = 0; j < scratch.constraints.size(); ++j) {
+      const contact_constraint<T>& c = scratch.constraints[j];
+      bool cold = true, touching = false;
+      for (int p = 0; p < c.count; ++p) {
+        cold = cold && c.points[p].normal_impulse == T(0);
+        touching = touching || c.points[p].depth >= -state.settings.solver.linear_slop;
+      }
+      if (!cold || !touching) continue;  // a gap still to close carries no load yet
+      T lift = dot(c.normal, up);
+      std::uint32_t upper = c.body_b, lower = c.body_a;
+      if (lift < T(0)) std::swap(upper, lower), lift = -lift;
+      if (lift < T(0.7071) || scratch.solver_bodies[upper].inverse_mass == T(0)) continue;
+      scratch.supports.push_back({dot(scratch.solver_bodies[upper].position, up), upper, lower, j, lift});
+    }
+    if (scratch.supports.empty()) return;
+    std::sort(scratch.supports.begin(), scratch.supports.end(), [](const support& x, const support& y) {
+      return x.height != y.height ? x.height > y.height : x.upper < y.upper;
+    });
+    scratch.load.assign(scratch.solver_bodies.size(), T(0));
+    for (std::size_t first = 0; first < scratch.supports.size();) {
+      const std::uint32_t upper = scratch.supports[first].upper;
+      std::size_t last = first;
+      while (last < scratch.supports.size() && scratch.supports[last].upper == upper) ++last;
+      const T share = (g * dt / scratch.solver_bodies[upper].inverse_mass + scratch.load[upper]) / T(last - first);
+      for (std::size_t k = first; k < last; ++k) {
+        contact_constraint<T>& c = scratch.constraints[scratch.supports[k].constraint];
+        const T per_point = share / (scratch.supports[k].lift * T(c.count));
+        for (int p = 0; p < c.count; ++p) c.points[p].normal_impulse = per_point;
+        if (scratch.solver_bodies[scratch.supports[k].lower].inverse_mass > T(0)) scratch.load[scratch.supports[k].lower] += share;
+      }
+      first = last;
+    }
+  }
+
+  /// A body moving freely with the momenta the solver left it, plus the
+  /// position pass's pseudo-velocities, as the integrator policy's system
+  /// (body_motion.hpp): momentum constant over the step.
+  struct free_motion {
+    const rigid_body<T>& body;
+    vec3<T> bias_linear, bias_angular;
+    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
+      body_kinematics<T> k = kinematics_of(body, x, p);
+      k.linear_velocity += bias_linear;
+      k.angular_velocity += bias_angular;
+      return pose_rate(k, x.orientation);
+    }
+    body_momentum<T> momentum_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+  };
+};
+
+}  // namespace impulse::detail

@@ -1,0 +1,353 @@
+// impulse/world/world_state.hpp — what a world is: its records (bodies,
+// contacts, joints), its broad phase and shapes, its events and clock, as
+// plain data, with the queries every stage asks of them; and the scratch
+// one step rebuilds. The stages of the step (docs/architecture.md, "The
+// step") are functions over these two: contact_update.hpp, islands.hpp,
+// solve.hpp, continuous.hpp; debug_drawing.hpp reads the state.
+//
+// The state is everything a step reads: world_snapshot copies it, and the
+// same state stepped twice gives the same bits. The scratch holds nothing
+// a step needs from the last one; it is kept only so that a warm world
+// allocates nothing.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "../broadphase/broad_phase.hpp"
+#include "../config.hpp"
+#include "../core/error.hpp"
+#include "../core/slot_map.hpp"
+#include "../dynamics/contact_constraint.hpp"
+#include "../dynamics/island.hpp"
+#include "../dynamics/joint.hpp"
+#include "../dynamics/rigid_body.hpp"
+#include "../narrowphase/dispatch.hpp"
+#include "body_def.hpp"
+#include "shape_store.hpp"
+#include "world_traits.hpp"
+
+namespace impulse::detail {
+
+/// Manifolds one pair can have: one for two convex shapes, one per
+/// distinct normal against a mesh (a box in a corner of it: two or three).
+inline constexpr int max_manifolds = 4;
+
+/// Where a kinematic body is with its set_target_pose: none, moving there
+/// in the coming step, or arrived (its velocities kept until the next step
+/// begins, then zeroed unless a new target came).
+enum class target_state : std::uint8_t { none, armed, arrived };
+
+template <scalar_type T>
+struct body_record {
+  rigid_body<T> body;
+  impulse::material<T> material;
+  shape_handle shape;
+  vec3<T> center{};      ///< centre of mass in shape space
+  proxy_id proxy;
+  transform<T> previous;  ///< the centre-of-mass pose at the start of the last step
+  T sleep_timer = T(0);   ///< s spent below the sleep speeds
+  bool awake = true;
+  std::uint64_t user_data = 0;
+  target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
+  bool bullet = false;
+  T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
+};
+
+/// One manifold of a touching pair: where it touches, the impulses the
+/// solver carries to the next step, and what the last full pair test
+/// found, in A's shape frame (contact_update.hpp, reuse_manifolds, carries
+/// it with the bodies).
+template <scalar_type T>
+struct manifold_slot {
+  contact_manifold<T> manifold;
+  manifold_impulse<T> impulse;
+  contact_manifold<T> tested_local;
+};
+
+/// A pair of bodies whose boxes overlap, and what the narrow phase and the
+/// solver know of it. Kept sorted by proxy pair, the broad phase's order,
+/// so that each step's pairs merge with the last step's in one pass, with
+/// no lookup. Its manifolds live in world_state::manifolds, so that a pair
+/// whose boxes overlap but whose shapes do not touch (most pairs in a heap)
+/// costs this record alone: 80 bytes in float, where it cost 1 KB with
+/// four manifolds inline.
+template <scalar_type T>
+struct contact_record {
+  proxy_pair key;
+  body_id a, b;  ///< a owns key.a
+  T friction = T(0), restitution = T(0);
+  std::uint8_t manifold_count = 0;
+  bool touching = false;
+  bool tested = false;              ///< whether tested_relative holds a full pair test's
+  transform<T> tested_relative{};  ///< B's shape frame in A's at the last full test
+  std::array<std::uint32_t, max_manifolds> slots{};  ///< the first manifold_count name its manifolds
+};
+
+/// A joint, with the impulses it carries between steps and what it
+/// applied in the last one.
+template <scalar_type T>
+struct joint_record {
+  joint_constraint<T> constraint;  ///< in the bodies' frames; body places set each step
+  joint_def<T> def;                ///< as created
+  body_id a, b;
+  vec3<T> force{}, torque{};  ///< on B in the last step, N and N·m
+  bool broken = false;
+};
+
+// ---- what every stage asks of a record ----
+
+template <scalar_type T>
+[[nodiscard]] transform<T> shape_pose_of(const body_record<T>& r) noexcept {
+  return {r.body.position - rotate(r.body.orientation, r.center), r.body.orientation};
+}
+template <scalar_type T>
+void wake_record(body_record<T>& r) noexcept {
+  r.awake = true;
+  r.sleep_timer = T(0);
+}
+/// Whether the body moves this step: dynamic and awake, or kinematic with a
+/// velocity.
+template <scalar_type T>
+[[nodiscard]] bool is_moving(const body_record<T>& r) noexcept {
+  if (r.body.type == body_type::dynamic) return r.awake;
+  if (r.body.type == body_type::kinematic)
+    return r.body.kinematic_velocity != vec3<T>{} || r.body.kinematic_angular_velocity != vec3<T>{};
+  return false;
+}
+/// Whether the solver moves the body: dynamic and awake.
+template <scalar_type T>
+[[nodiscard]] bool is_solved(const body_record<T>& r) noexcept {
+  return r.body.type == body_type::dynamic && r.awake;
+}
+
+/// A body id as a broad-phase proxy's user data, and back.
+[[nodiscard]] inline std::uint64_t pack(body_id id) noexcept {
+  return std::uint64_t(id.index) | (std::uint64_t(id.generation) << 32);
+}
+[[nodiscard]] inline body_id unpack(std::uint64_t data) noexcept {
+  return body_id{std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32)};
+}
+/// The key of an unordered pair of bodies.
+[[nodiscard]] inline std::uint64_t pair_key(body_id a, body_id b) noexcept {
+  const std::uint32_t low = std::min(a.index, b.index), high = std::max(a.index, b.index);
+  return (std::uint64_t(high) << 32) | low;
+}
+
+/// The rigid body `def` makes of `shape`: its exact mass properties at
+/// def.material.density, or scaled to def.mass. Refuses a mass that is not
+/// finite and non-negative, and a dynamic plane or mesh.
+template <scalar_type T, class Shape>
+[[nodiscard]] rigid_body<T> make_body(const body_def<T>& def, const Shape& shape) {
+  if (!std::isfinite(def.mass) || def.mass < T(0))
+    report_error(error_code::non_finite,
+                 "world::create_body: mass must be finite and >= 0 (a body that cannot move is static)");
+  if (def.type != body_type::dynamic) return rigid_body<T>::fixed(def.type, def.pose);
+  if constexpr (requires { mass_properties_of(shape, T(1)); }) {
+    mass_properties<T> p = mass_properties_of(shape, def.material.density);
+    if (def.mass > T(0)) {
+      p.inertia = p.inertia * (def.mass / p.mass);
+      p.mass = def.mass;
+    }
+    rigid_body<T> b = rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
+    return b;
+  } else {
+    report_error(error_code::invalid_parameter,
+                 "world::create_body: planes and triangle meshes can only be static or kinematic");
+  }
+}
+/// Where a dynamic body of `shape` has its centre of mass, in shape space.
+template <scalar_type T, class Shape>
+[[nodiscard]] vec3<T> centre_of_mass(const body_def<T>& def, const Shape& shape) {
+  if constexpr (requires { mass_properties_of(shape, T(1)); }) {
+    return mass_properties_of(shape, def.material.density).center;
+  } else {
+    return {};
+  }
+}
+
+/// A world's state: everything a step reads and writes.
+template <class Config>
+struct world_state {
+  using T = typename Config::scalar;
+  using shapes = typename world_shapes<Config>::type;
+  using broad_phase_type = typename world_broadphase<Config>::type::template type<T>;
+  using dispatcher = narrowphase::dispatcher<shapes, T>;
+
+  world_settings<T> settings{};
+  slot_map<body_record<T>, body_id> bodies;
+  slot_map<joint_record<T>, joint_id> joints;
+  /// The body pairs joined without collide_connected (pair_key), sorted,
+  /// once per such joint: their proxies' pairs make no contact.
+  std::vector<std::uint64_t> joined;
+  std::vector<joint_broken_event<T>> broken;
+  std::vector<body_id> held;      ///< held in the last step (world::step)
+  std::vector<body_id> targeted;  ///< kinematic bodies with a target_state other than none
+  using store_type = impulse::detail::shape_store<shapes, T>;
+  store_type shape_store;
+  broad_phase_type broad;
+  std::vector<contact_record<T>> contacts;
+  std::vector<manifold_slot<T>> manifolds;    ///< the touching pairs' manifolds
+  std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
+  std::size_t pairs_over_limit = 0;          ///< in the last step: see world::pairs_over_limit
+  std::vector<contact_event> begun, ended;
+  T time = T(0), accumulator = T(0), last_dt = T(0);
+  std::uint64_t step_count = 0;
+
+  // ---- bodies ----
+
+  /// A body's place in the dense arrays (bodies.values(), the solver's).
+  [[nodiscard]] std::uint32_t dense(body_id id) const noexcept { return std::uint32_t(bodies.dense_index(id)); }
+  [[nodiscard]] aabb<T> bounds_of(const body_record<T>& r) const {
+    const transform<T> pose = shape_pose_of(r);
+    return shape_store.visit(r.shape, [&](const auto& s) { return s.world_aabb(pose); });
+  }
+  /// The box the broad phase keeps: the shape's, grown by the speculative
+  /// distance.
+  [[nodiscard]] aabb<T> proxy_box(const body_record<T>& r) const {
+    const aabb<T> box = expand(bounds_of(r), settings.solver.speculative_distance);
+    // A plane's box spans every finite value already: grown, it must not
+    // overflow into infinities the broad phase refuses.
+    const vec3<T> big = vec3<T>::splat(std::numeric_limits<T>::max());
+    return {max(box.lower, -big), min(box.upper, big)};
+  }
+  [[nodiscard]] typename dispatcher::shape_ref shape_ref_of(const body_record<T>& r) const noexcept {
+    return {shape_store.address(r.shape), r.shape.type};
+  }
+  void wake_all() noexcept {
+    for (body_record<T>& r : bodies.values()) wake_record(r);
+  }
+  /// Whether a point is within max_coordinate of the origin on every axis
+  /// (false for NaN).
+  [[nodiscard]] bool within_bounds(const vec3<T>& p) const noexcept {
+    const T m = settings.max_coordinate;
+    return std::abs(p.x) <= m && std::abs(p.y) <= m && std::abs(p.z) <= m;
+  }
+  /// Whether both speeds are within the world's limits (false for NaN).
+  [[nodiscard]] bool within_speed_limits(const vec3<T>& linear, const vec3<T>& angular) const noexcept {
+    const T v = settings.max_linear_speed, w = settings.max_angular_speed;
+    return length_squared(linear) <= v * v && length_squared(angular) <= w * w;
+  }
+
+  /// Refuses a finite point farther than max_coordinate from the origin.
+  void require_within_bounds(const vec3<T>& p, const char* message, body_id id = body_id{}) const {
+    if (is_finite(p) && !within_bounds(p)) report_error(error_code::invalid_parameter, message, id.index);
+  }
+  /// Refuses finite speeds past the world's limits.
+  void require_speeds(const vec3<T>& linear, const vec3<T>& angular, const char* message,
+                      body_id id = body_id{}) const {
+    if (is_finite(linear) && is_finite(angular) && !within_speed_limits(linear, angular))
+      report_error(error_code::invalid_parameter, message, id.index);
+  }
+  /// Refuses a joint anchor farther from a dynamic body's centre of mass
+  /// than world_settings::max_joint_lever radii of gyration.
+  void require_lever(const rigid_body<T>& b, const vec3<T>& anchor, body_id id) const {
+    if (b.type != body_type::dynamic) return;
+    const T smallest = std::min({b.inertia(0, 0), b.inertia(1, 1), b.inertia(2, 2)});
+    const T reach = settings.max_joint_lever;
+    if (!(length_squared(anchor - b.position) * b.mass <= reach * reach * smallest))
+      report_error(error_code::invalid_parameter,
+                   "world::create_joint: an anchor is farther from a dynamic body than max_joint_lever radii of "
+                   "gyration",
+                   id.index);
+  }
+
+  // ---- contacts ----
+
+  [[nodiscard]] manifold_slot<T>& slot_of(const contact_record<T>& c, int m) noexcept {
+    return manifolds[c.slots[std::size_t(m)]];
+  }
+  [[nodiscard]] const manifold_slot<T>& slot_of(const contact_record<T>& c, int m) const noexcept {
+    return manifolds[c.slots[std::size_t(m)]];
+  }
+  /// A record that is dropped: its pair ends, its manifolds are freed.
+  void end_contact(const contact_record<T>& c) {
+    if (c.touching) ended.push_back({c.a, c.b});
+    for (int m = 0; m < c.manifold_count; ++m) free_manifolds.push_back(c.slots[std::size_t(m)]);
+  }
+
+  // ---- joints ----
+
+  /// Whether a joint between the two keeps them from colliding.
+  [[nodiscard]] bool joined_apart(body_id a, body_id b) const noexcept {
+    return !joined.empty() && std::binary_search(joined.begin(), joined.end(), pair_key(a, b));
+  }
+  /// Lets the joint's bodies collide again (if it had stopped them).
+  void unjoin(const joint_record<T>& r) {
+    if (r.def.collide_connected) return;
+    const auto at = std::lower_bound(joined.begin(), joined.end(), pair_key(r.a, r.b));
+    if (at != joined.end() && *at == pair_key(r.a, r.b)) joined.erase(at);
+  }
+  void wake_joint(const joint_record<T>& r) {
+    wake_record(bodies[r.a]);
+    wake_record(bodies[r.b]);
+  }
+  /// The joint's parts and errors at the bodies' present poses.
+  [[nodiscard]] joint_constraint<T> measure(const joint_record<T>& r) const {
+    std::array<solver_body<T>, 2> ends{};
+    const rigid_body<T>& a = bodies[r.a].body;
+    const rigid_body<T>& b = bodies[r.b].body;
+    ends[0].position = a.position, ends[0].orientation = a.orientation;
+    ends[1].position = b.position, ends[1].orientation = b.orientation;
+    joint_constraint<T> c = r.constraint;
+    c.body_a = 0, c.body_b = 1;
+    prepare_joint(std::span<const solver_body<T>>(ends), c);
+    return c;
+  }
+};
+
+/// What one step rebuilds: the solver and its arrays, the next contact
+/// records, the islands. Not part of the state (a snapshot leaves it out);
+/// kept to allocate nothing once warm.
+template <class Config>
+struct step_scratch {
+  using T = typename Config::scalar;
+  using solver_type = typename world_solver<Config>::type::template type<T>;
+
+  /// A solved manifold's record and its place among the record's manifolds.
+  struct constraint_source {
+    std::uint32_t record;
+    std::uint32_t manifold;
+  };
+  /// A new contact holding a body up (solve.hpp, estimate_cold_loads).
+  struct support {
+    T height;  ///< of the upper body, along −gravity
+    std::uint32_t upper, lower, constraint;
+    T lift;  ///< the normal's component along −gravity
+  };
+
+  solver_type solver{};
+  std::vector<contact_record<T>> next_contacts;
+  std::vector<solver_body<T>> solver_bodies;  ///< per dense body
+  std::vector<contact_constraint<T>> constraints;
+  std::vector<constraint_source> sources;
+  std::vector<joint_constraint<T>> joints;
+  std::vector<std::uint32_t> joint_sources;  ///< each solved joint's dense place
+  std::vector<joint_id> doomed_joints;       ///< world::destroy_body's
+  std::vector<support> supports;
+  std::vector<T> load;
+  union_find islands;
+  std::vector<std::uint8_t> island_flag;
+  std::vector<T> island_timer;
+  std::vector<std::uint8_t> held;  ///< per dense body: held in this step (hold)
+
+  /// Holds dense body i for this step: it keeps its pose, loses its
+  /// velocity, and its contacts and joints are left out (world::step).
+  void hold(world_state<Config>& state, std::size_t i) {
+    held[i] = 1;
+    solver_body<T>& s = solver_bodies[i];
+    s.inverse_mass = T(0);
+    s.inverse_inertia = mat3<T>{};
+    s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
+    state.held.push_back(state.bodies.ids()[i]);
+  }
+  [[nodiscard]] bool is_held(std::uint32_t i) const noexcept { return held[i] != 0; }
+};
+
+}  // namespace impulse::detail
