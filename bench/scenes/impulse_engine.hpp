@@ -85,7 +85,7 @@ class impulse_engine {
   [[nodiscard]] std::string config() const {
     // soft_step's work is its substeps (one soft and one relax sweep
     // each); sequential_impulse's its velocity iterations.
-    constexpr bool substepping = sleeping_world::solver_policy::moves_bodies;
+    constexpr bool substepping = sleeping_world::solver_type::moves_bodies;
     const int count = std::visit(
         [](const auto& w) {
           return substepping ? settings_of(w).solver.substeps : settings_of(w).solver.velocity_iterations;

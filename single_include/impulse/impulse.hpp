@@ -1313,12 +1313,6 @@ consteval bool check_broad_phase() {
   return broad_phase<B, T>;
 }
 
-/// A broad-phase policy for a config: it declares its kind and its
-/// `type<T>` is a broad phase for both scalars.
-template <class P>
-concept broad_phase_policy = broadphase_policy<P> && broad_phase<typename P::template type<float>, float> &&
-                             broad_phase<typename P::template type<double>, double>;
-
 }  // namespace impulse::broadphase
 // ---- end impulse/broadphase/broad_phase.hpp ----
 // ---- begin impulse/broadphase/brute_force.hpp ----
@@ -6156,7 +6150,7 @@ struct contact_constraint {
   T twist_radius = T(0);  ///< m: the lever of the patch's friction about its middle
   /// The relative velocity along each tangent the friction rows hold the
   /// patch at, m/s: not 0 but what cancels the bodies' curving over the
-  /// step (world.hpp, solve, says why), so that a box stuck to a turning
+  /// step (world/solve.hpp says why), so that a box stuck to a turning
   /// platform stays where it is on it.
   T slip_target1 = T(0), slip_target2 = T(0);
   T tangent_impulse1 = T(0), tangent_impulse2 = T(0);  ///< N·s
@@ -9277,6 +9271,11 @@ namespace impulse {
 template <scalar_type T>
 class basic_sequential_impulse {
  public:
+  /// The world moves the bodies after the solve (contact_solver.hpp).
+  static constexpr bool moves_bodies = false;
+  /// Its impulses act over the whole step.
+  static T impulse_step(const solver_settings<T>&, T dt) noexcept { return dt; }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
   }
@@ -9429,8 +9428,6 @@ namespace solver {
 /// impulses (dynamics/sequential_impulse.hpp).
 struct sequential_impulse {
   static constexpr policy_kind kind = policy_kind::solver;
-  /// The world moves the bodies after the solve.
-  static constexpr bool moves_bodies = false;
   template <scalar_type T>
   using type = basic_sequential_impulse<T>;
 };
@@ -9468,6 +9465,11 @@ namespace impulse {
 template <scalar_type T>
 class basic_soft_step {
  public:
+  /// It moves the bodies itself, substep by substep (contact_solver.hpp).
+  static constexpr bool moves_bodies = true;
+  /// Its impulses are per substep.
+  static T impulse_step(const solver_settings<T>& settings, T dt) noexcept { return dt / T(settings.substeps); }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
     for (contact_constraint<T>& c : contacts)
@@ -9591,9 +9593,6 @@ namespace solver {
 /// (dynamics/soft_step.hpp).
 struct soft_step {
   static constexpr policy_kind kind = policy_kind::solver;
-  /// It moves the bodies itself, substep by substep, and its impulses are
-  /// per substep.
-  static constexpr bool moves_bodies = true;
   template <scalar_type T>
   using type = basic_soft_step<T>;
 };
@@ -16983,6 +16982,102 @@ class shape_store<shape_list<Shapes...>, T> {
 // members are filled in here when a config leaves them out: every shape, a
 // dynamic BVH, sequential impulses, sleeping on, CCD off.
 
+// ---- begin impulse/dynamics/contact_solver.hpp ----
+// impulse/dynamics/contact_solver.hpp — what the world asks of a solver:
+// the contact_solver concept, and the check that names what a solver
+// lacks.
+//
+// A config's `solver` is a policy struct (`kind = policy_kind::solver`)
+// whose `type<T>` is the solver: sequential_impulse.hpp and soft_step.hpp
+// hold the two the library ships, and a user's own plugs in the same way
+// (tests/world/test_user_solver.cpp builds a plain projected Gauss–Seidel).
+// Each step the world (world/solve.hpp) makes one solver_body per body and
+// one contact_constraint per touching manifold and joint_constraint per
+// joint, then calls, in order:
+//
+//   prepare(bodies, contacts)          the contacts' masses and anchors
+//   solve(bodies, contacts, joints, settings, dt)
+//                                      this step's forces (force_linear,
+//                                      force_angular: velocity changes)
+//                                      applied and the rows solved; the
+//                                      impulses left in the constraints
+//                                      are kept for the next step's warm
+//                                      start
+//   project_joints(bodies, joints, settings)
+//                                      after the bodies have moved: their
+//                                      poses put back onto their joints
+//
+// and reads two constants of its type:
+//
+//   moves_bodies        false: the world moves the bodies with the solved
+//                       velocities plus bias_linear and bias_angular (the
+//                       position pass's pseudo-velocities), by the
+//                       integrator policy; true: the solver moves them
+//                       itself, holding ω through its substeps, and the
+//                       world takes their poses
+//   impulse_step(settings, dt)
+//                       the time over which one of its impulses acts: dt,
+//                       or a substep's length for a solver whose impulses
+//                       are per substep (the world turns a joint's impulse
+//                       into its force with it, and guesses new contacts'
+//                       first impulses from the weight over it)
+
+
+
+namespace impulse {
+
+// One requirement per member, so that the loud check below can name the
+// one that is missing.
+namespace detail {
+template <class S, class T>
+concept solver_prepares = requires(S& s, std::span<const solver_body<T>> bodies,
+                                   std::span<contact_constraint<T>> contacts) { s.prepare(bodies, contacts); };
+template <class S, class T>
+concept solver_solves = requires(S& s, std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                                 std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+  s.solve(bodies, contacts, joints, settings, dt);
+};
+template <class S, class T>
+concept solver_projects = requires(S& s, std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
+                                   const solver_settings<T>& settings) { s.project_joints(bodies, joints, settings); };
+template <class S>
+concept solver_says_who_moves = requires {
+  { S::moves_bodies } -> std::convertible_to<bool>;
+};
+template <class S, class T>
+concept solver_has_impulse_step = requires(const solver_settings<T>& settings, T dt) {
+  { S::impulse_step(settings, dt) } -> std::same_as<T>;
+};
+}  // namespace detail
+
+/// Quiet form: true when S is a contact solver over scalar T.
+template <class S, class T>
+concept contact_solver = std::default_initializable<S> && std::copyable<S> && detail::solver_prepares<S, T> &&
+                         detail::solver_solves<S, T> && detail::solver_projects<S, T> &&
+                         detail::solver_says_who_moves<S> && detail::solver_has_impulse_step<S, T>;
+
+/// Loud form: `static_assert(check_contact_solver<S, T>());` fails with one
+/// message per missing member, naming it.
+template <class S, class T>
+consteval bool check_contact_solver() {
+  static_assert(std::default_initializable<S> && std::copyable<S>,
+                "impulse solver: must be default constructible and copyable (a world is a value)");
+  static_assert(detail::solver_prepares<S, T>,
+                "impulse solver: missing `prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>)`");
+  static_assert(detail::solver_solves<S, T>,
+                "impulse solver: missing `solve(std::span<solver_body<T>>, std::span<contact_constraint<T>>, "
+                "std::span<joint_constraint<T>>, const solver_settings<T>&, T dt)`");
+  static_assert(detail::solver_projects<S, T>,
+                "impulse solver: missing `project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, "
+                "const solver_settings<T>&)`");
+  static_assert(detail::solver_says_who_moves<S>, "impulse solver: missing `static constexpr bool moves_bodies`");
+  static_assert(detail::solver_has_impulse_step<S, T>,
+                "impulse solver: missing `static T impulse_step(const solver_settings<T>&, T dt)`");
+  return contact_solver<S, T>;
+}
+
+}  // namespace impulse
+// ---- end impulse/dynamics/contact_solver.hpp ----
 
 namespace impulse::detail {
 
@@ -17031,6 +17126,57 @@ consteval bool world_ccd() {
     return C::ccd;
   } else {
     return false;
+  }
+}
+
+/// A body standing still: the system a world's integrator is checked on.
+template <scalar_type T>
+struct still_body {
+  body_pose<T> position_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+  body_momentum<T> momentum_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+};
+
+template <class I, class T>
+concept world_integrator = requires(body_pose<T>& x, body_momentum<T>& p, T h) { I::advance(x, p, h, still_body<T>{}); };
+template <class C, class T>
+consteval bool integrator_advances() {
+  if constexpr (has_integrator<C>) {
+    return world_integrator<typename C::integrator, T>;
+  } else {
+    return false;
+  }
+}
+template <class P, class T>
+concept makes_type = requires { typename P::template type<T>; };
+
+/// What the world calls of its config's policies, beyond check_config's
+/// kinds: `static_assert(check_world_config<C>());` fails with a message
+/// naming the policy and the member it lacks. The world calls the
+/// integrator's advance (body_motion.hpp), its broad phase's operations
+/// (broadphase/broad_phase.hpp) and its solver's (contact_solver.hpp).
+template <class C>
+consteval bool check_world_config() {
+  if constexpr (!check_config<C>()) {
+    return false;
+  } else {
+    using T = typename C::scalar;
+    using broadphase_policy = typename world_broadphase<C>::type;
+    using solver_policy = typename world_solver<C>::type;
+    static_assert(has_integrator<C>, "impulse world: the config names no `integrator`; inherit impulse::default_config");
+    constexpr bool integrates = integrator_advances<C, T>();
+    static_assert(!has_integrator<C> || integrates,
+                  "impulse world: the config's integrator has no static `advance(body_pose<T>&, "
+                  "body_momentum<T>&, T h, system)` (integrators/ode_state.hpp)");
+    static_assert(makes_type<broadphase_policy, T>,
+                  "impulse world: the config's broadphase has no member template `type<T>`");
+    static_assert(makes_type<solver_policy, T>, "impulse world: the config's solver has no member template `type<T>`");
+    if constexpr (makes_type<broadphase_policy, T> && makes_type<solver_policy, T>) {
+      static_assert(broadphase::check_broad_phase<typename broadphase_policy::template type<T>, T>());
+      static_assert(check_contact_solver<typename solver_policy::template type<T>, T>());
+      return integrates;
+    } else {
+      return false;
+    }
   }
 }
 
@@ -17927,7 +18073,7 @@ namespace impulse::detail {
 template <class Config>
 struct body_solve {
   using T = typename Config::scalar;
-  using solver_policy = typename world_solver<Config>::type;
+  using solver_type = typename step_scratch<Config>::solver_type;
   using integrator = typename Config::integrator;
   using support = typename step_scratch<Config>::support;
 
@@ -17953,7 +18099,7 @@ struct body_solve {
         s.angular_velocity = s.inverse_inertia * b.angular_momentum;
         s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
         s.force_angular = s.inverse_inertia * (b.torque * dt);
-        if constexpr (solver_policy::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
+        if constexpr (solver_type::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
         // A body its loads would take out of finite numbers, or past the
         // speed limits, is held before anything couples it to another: a
         // joint solved with it would carry the overflow into its partner.
@@ -17963,8 +18109,9 @@ struct body_solve {
         s.angular_velocity = b.kinematic_angular_velocity;
       }
     }
-    // How long the bodies move in a straight line at a time.
-    const T move_dt = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    // How long the bodies move in a straight line at a time: the solver's
+    // impulse step (a substepping solver's substep).
+    const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
     scratch.constraints.clear();
     scratch.sources.clear();
     // Reserved exactly: grown by doubling, the largest per-step array
@@ -18030,8 +18177,7 @@ struct body_solve {
       }
     }
     if (state.settings.solver.warm_starting) {
-      // A substepping solver's impulses are per substep.
-      estimate_cold_loads(solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt);
+      estimate_cold_loads(solver_type::impulse_step(state.settings.solver, dt));
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
@@ -18071,7 +18217,7 @@ struct body_solve {
         const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
         body_momentum<T> momentum{s.linear_velocity * b.mass,
                                   b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
-        if constexpr (!solver_policy::moves_bodies) {
+        if constexpr (!solver_type::moves_bodies) {
           // Free motion under the solved momenta, by the integrator policy:
           // with L held, ω = R·I⁻¹·Rᵀ·L turns with the body at each stage,
           // so the gyroscopic motion is as accurate as the integrator.
@@ -18166,7 +18312,7 @@ struct body_solve {
   /// impulse this step (per substep, for a substepping solver, whose
   /// impulses are per substep) exceeded their thresholds.
   void keep_joint_impulses(T dt) {
-    const T h = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    const T h = solver_type::impulse_step(state.settings.solver, dt);
     for (std::size_t n = 0; n < scratch.joints.size(); ++n) {
       joint_record<T>& r = state.joints.values()[scratch.joint_sources[n]];
       r.constraint = scratch.joints[n];
@@ -18261,7 +18407,7 @@ namespace impulse {
 
 template <class Config>
 class world {
-  static_assert(check_config<Config>());
+  static_assert(detail::check_world_config<Config>());
 
  public:
   using config = Config;
@@ -18284,8 +18430,6 @@ class world {
   /// thousand years (finite) would carry every body out of finite numbers.
   static constexpr T max_dt = T(1);
 
-  static_assert(broadphase::broad_phase<broad_phase_type, T>,
-                "impulse world: the config's broadphase is not a broad phase for its scalar");
 
   explicit world(const world_settings<T>& settings = {});
   // Declared here and defaulted after the class, so that an explicit

@@ -22,7 +22,7 @@ using impulse::broadphase::basic_brute_force;
 
 static_assert(broadphase::broad_phase<basic_brute_force<float>, float>);
 static_assert(broadphase::broad_phase<basic_brute_force<double>, double>);
-static_assert(broadphase::broad_phase_policy<broadphase::brute_force>);
+static_assert(broadphase::broad_phase<broadphase::brute_force::type<float>, float>);
 
 using test::cube;
 

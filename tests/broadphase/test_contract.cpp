@@ -30,11 +30,16 @@ using scalar_of = std::remove_cvref_t<decltype(std::declval<BroadPhase>().box(pr
       basic_dynamic_bvh<float>, basic_dynamic_bvh<double>, basic_octree<float>, basic_octree<double>, \
       basic_spatial_hash<float>, basic_spatial_hash<double>
 
-static_assert(broad_phase_policy<brute_force>);
-static_assert(broad_phase_policy<sweep_and_prune>);
-static_assert(broad_phase_policy<dynamic_bvh>);
-static_assert(broad_phase_policy<octree>);
-static_assert(broad_phase_policy<spatial_hash>);
+// Every policy declares its kind, and its type<T> is a broad phase for
+// both scalars: what a world's config check asks (world_traits.hpp).
+template <class P>
+constexpr bool whole_policy = broadphase_policy<P> && broad_phase<typename P::template type<float>, float> &&
+                              broad_phase<typename P::template type<double>, double>;
+static_assert(whole_policy<brute_force>);
+static_assert(whole_policy<sweep_and_prune>);
+static_assert(whole_policy<dynamic_bvh>);
+static_assert(whole_policy<octree>);
+static_assert(whole_policy<spatial_hash>);
 
 TEST_CASE_TEMPLATE("a destroyed proxy is never reported even before the next update", BP, IMPULSE_ALL_BROAD_PHASES) {
   using T = scalar_of<BP>;

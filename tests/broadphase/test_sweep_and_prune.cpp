@@ -22,7 +22,7 @@ using impulse::broadphase::basic_sweep_and_prune;
 
 static_assert(broadphase::broad_phase<basic_sweep_and_prune<float>, float>);
 static_assert(broadphase::broad_phase<basic_sweep_and_prune<double>, double>);
-static_assert(broadphase::broad_phase_policy<broadphase::sweep_and_prune>);
+static_assert(broadphase::broad_phase<broadphase::sweep_and_prune::type<float>, float>);
 static_assert(broadphase::check_broad_phase<basic_sweep_and_prune<float>, float>());
 
 using test::cube;

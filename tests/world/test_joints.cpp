@@ -247,7 +247,7 @@ TEST_CASE_TEMPLATE("a body on a vertical slider falls at g along it and does not
   for (int i = 0; i < 60; ++i) w.step(::test::step_dt<T>);
   // The free fall of symplectic Euler over n steps (soft_step: substeps)
   // of h: y = −g·h²·n(n+1)/2.
-  const T n = T(60) * (World::solver_policy::moves_bodies ? T(w.settings().solver.substeps) : T(1));
+  const T n = T(60) * (World::solver_type::moves_bodies ? T(w.settings().solver.substeps) : T(1));
   const T fallen = T(-9.81) / (n * n) * n * (n + 1) / T(2);
   CHECK(std::abs(w.joint_position(slider) - fallen) < T(2e-3));
   const vec3<T> at = w.body(block).position;

@@ -97,10 +97,4 @@ consteval bool check_broad_phase() {
   return broad_phase<B, T>;
 }
 
-/// A broad-phase policy for a config: it declares its kind and its
-/// `type<T>` is a broad phase for both scalars.
-template <class P>
-concept broad_phase_policy = broadphase_policy<P> && broad_phase<typename P::template type<float>, float> &&
-                             broad_phase<typename P::template type<double>, double>;
-
 }  // namespace impulse::broadphase

@@ -118,7 +118,7 @@ struct contact_constraint {
   T twist_radius = T(0);  ///< m: the lever of the patch's friction about its middle
   /// The relative velocity along each tangent the friction rows hold the
   /// patch at, m/s: not 0 but what cancels the bodies' curving over the
-  /// step (world.hpp, solve, says why), so that a box stuck to a turning
+  /// step (world/solve.hpp says why), so that a box stuck to a turning
   /// platform stays where it is on it.
   T slip_target1 = T(0), slip_target2 = T(0);
   T tangent_impulse1 = T(0), tangent_impulse2 = T(0);  ///< N·s

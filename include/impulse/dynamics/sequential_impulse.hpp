@@ -62,6 +62,11 @@ namespace impulse {
 template <scalar_type T>
 class basic_sequential_impulse {
  public:
+  /// The world moves the bodies after the solve (contact_solver.hpp).
+  static constexpr bool moves_bodies = false;
+  /// Its impulses act over the whole step.
+  static T impulse_step(const solver_settings<T>&, T dt) noexcept { return dt; }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
   }
@@ -214,8 +219,6 @@ namespace solver {
 /// impulses (dynamics/sequential_impulse.hpp).
 struct sequential_impulse {
   static constexpr policy_kind kind = policy_kind::solver;
-  /// The world moves the bodies after the solve.
-  static constexpr bool moves_bodies = false;
   template <scalar_type T>
   using type = basic_sequential_impulse<T>;
 };

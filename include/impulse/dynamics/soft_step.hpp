@@ -40,6 +40,11 @@ namespace impulse {
 template <scalar_type T>
 class basic_soft_step {
  public:
+  /// It moves the bodies itself, substep by substep (contact_solver.hpp).
+  static constexpr bool moves_bodies = true;
+  /// Its impulses are per substep.
+  static T impulse_step(const solver_settings<T>& settings, T dt) noexcept { return dt / T(settings.substeps); }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
     for (contact_constraint<T>& c : contacts)
@@ -163,9 +168,6 @@ namespace solver {
 /// (dynamics/soft_step.hpp).
 struct soft_step {
   static constexpr policy_kind kind = policy_kind::solver;
-  /// It moves the bodies itself, substep by substep, and its impulses are
-  /// per substep.
-  static constexpr bool moves_bodies = true;
   template <scalar_type T>
   using type = basic_soft_step<T>;
 };

@@ -42,7 +42,7 @@ namespace impulse::detail {
 template <class Config>
 struct body_solve {
   using T = typename Config::scalar;
-  using solver_policy = typename world_solver<Config>::type;
+  using solver_type = typename step_scratch<Config>::solver_type;
   using integrator = typename Config::integrator;
   using support = typename step_scratch<Config>::support;
 
@@ -68,7 +68,7 @@ struct body_solve {
         s.angular_velocity = s.inverse_inertia * b.angular_momentum;
         s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
         s.force_angular = s.inverse_inertia * (b.torque * dt);
-        if constexpr (solver_policy::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
+        if constexpr (solver_type::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
         // A body its loads would take out of finite numbers, or past the
         // speed limits, is held before anything couples it to another: a
         // joint solved with it would carry the overflow into its partner.
@@ -78,8 +78,9 @@ struct body_solve {
         s.angular_velocity = b.kinematic_angular_velocity;
       }
     }
-    // How long the bodies move in a straight line at a time.
-    const T move_dt = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    // How long the bodies move in a straight line at a time: the solver's
+    // impulse step (a substepping solver's substep).
+    const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
     scratch.constraints.clear();
     scratch.sources.clear();
     // Reserved exactly: grown by doubling, the largest per-step array
@@ -145,8 +146,7 @@ struct body_solve {
       }
     }
     if (state.settings.solver.warm_starting) {
-      // A substepping solver's impulses are per substep.
-      estimate_cold_loads(solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt);
+      estimate_cold_loads(solver_type::impulse_step(state.settings.solver, dt));
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
@@ -186,7 +186,7 @@ struct body_solve {
         const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
         body_momentum<T> momentum{s.linear_velocity * b.mass,
                                   b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
-        if constexpr (!solver_policy::moves_bodies) {
+        if constexpr (!solver_type::moves_bodies) {
           // Free motion under the solved momenta, by the integrator policy:
           // with L held, ω = R·I⁻¹·Rᵀ·L turns with the body at each stage,
           // so the gyroscopic motion is as accurate as the integrator.
@@ -281,7 +281,7 @@ struct body_solve {
   /// impulse this step (per substep, for a substepping solver, whose
   /// impulses are per substep) exceeded their thresholds.
   void keep_joint_impulses(T dt) {
-    const T h = solver_policy::moves_bodies ? dt / T(state.settings.solver.substeps) : dt;
+    const T h = solver_type::impulse_step(state.settings.solver, dt);
     for (std::size_t n = 0; n < scratch.joints.size(); ++n) {
       joint_record<T>& r = state.joints.values()[scratch.joint_sources[n]];
       r.constraint = scratch.joints[n];

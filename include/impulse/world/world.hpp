@@ -46,7 +46,7 @@ namespace impulse {
 
 template <class Config>
 class world {
-  static_assert(check_config<Config>());
+  static_assert(detail::check_world_config<Config>());
 
  public:
   using config = Config;
@@ -69,8 +69,6 @@ class world {
   /// thousand years (finite) would carry every body out of finite numbers.
   static constexpr T max_dt = T(1);
 
-  static_assert(broadphase::broad_phase<broad_phase_type, T>,
-                "impulse world: the config's broadphase is not a broad phase for its scalar");
 
   explicit world(const world_settings<T>& settings = {});
   // Declared here and defaulted after the class, so that an explicit

@@ -7,8 +7,11 @@
 // dynamic BVH, sequential impulses, sleeping on, CCD off.
 #pragma once
 
+#include "../broadphase/broad_phase.hpp"
 #include "../broadphase/dynamic_bvh.hpp"
 #include "../core/policy.hpp"
+#include "../dynamics/body_motion.hpp"
+#include "../dynamics/contact_solver.hpp"
 #include "../dynamics/sequential_impulse.hpp"
 #include "../dynamics/soft_step.hpp"
 #include "../shapes/box.hpp"
@@ -65,6 +68,57 @@ consteval bool world_ccd() {
     return C::ccd;
   } else {
     return false;
+  }
+}
+
+/// A body standing still: the system a world's integrator is checked on.
+template <scalar_type T>
+struct still_body {
+  body_pose<T> position_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+  body_momentum<T> momentum_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
+};
+
+template <class I, class T>
+concept world_integrator = requires(body_pose<T>& x, body_momentum<T>& p, T h) { I::advance(x, p, h, still_body<T>{}); };
+template <class C, class T>
+consteval bool integrator_advances() {
+  if constexpr (has_integrator<C>) {
+    return world_integrator<typename C::integrator, T>;
+  } else {
+    return false;
+  }
+}
+template <class P, class T>
+concept makes_type = requires { typename P::template type<T>; };
+
+/// What the world calls of its config's policies, beyond check_config's
+/// kinds: `static_assert(check_world_config<C>());` fails with a message
+/// naming the policy and the member it lacks. The world calls the
+/// integrator's advance (body_motion.hpp), its broad phase's operations
+/// (broadphase/broad_phase.hpp) and its solver's (contact_solver.hpp).
+template <class C>
+consteval bool check_world_config() {
+  if constexpr (!check_config<C>()) {
+    return false;
+  } else {
+    using T = typename C::scalar;
+    using broadphase_policy = typename world_broadphase<C>::type;
+    using solver_policy = typename world_solver<C>::type;
+    static_assert(has_integrator<C>, "impulse world: the config names no `integrator`; inherit impulse::default_config");
+    constexpr bool integrates = integrator_advances<C, T>();
+    static_assert(!has_integrator<C> || integrates,
+                  "impulse world: the config's integrator has no static `advance(body_pose<T>&, "
+                  "body_momentum<T>&, T h, system)` (integrators/ode_state.hpp)");
+    static_assert(makes_type<broadphase_policy, T>,
+                  "impulse world: the config's broadphase has no member template `type<T>`");
+    static_assert(makes_type<solver_policy, T>, "impulse world: the config's solver has no member template `type<T>`");
+    if constexpr (makes_type<broadphase_policy, T> && makes_type<solver_policy, T>) {
+      static_assert(broadphase::check_broad_phase<typename broadphase_policy::template type<T>, T>());
+      static_assert(check_contact_solver<typename solver_policy::template type<T>, T>());
+      return integrates;
+    } else {
+      return false;
+    }
   }
 }
 
