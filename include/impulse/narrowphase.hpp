@@ -13,8 +13,9 @@
 // shapes by conservative advancement (narrowphase/time_of_impact.hpp);
 // static triangle meshes against spheres, capsules, boxes and hulls, and
 // rays against them (narrowphase/mesh.hpp);
-// and the table of pair tests built from a config's shape_list
-// (narrowphase/dispatch.hpp).
+// the table of pair tests built from a config's shape_list
+// (narrowphase/dispatch.hpp); and the tolerances they all decide by
+// (narrowphase/tolerances.hpp).
 #pragma once
 
 #include "narrowphase/analytic.hpp"
@@ -29,4 +30,5 @@
 #include "narrowphase/mesh.hpp"
 #include "narrowphase/ray_cast.hpp"
 #include "narrowphase/time_of_impact.hpp"
+#include "narrowphase/tolerances.hpp"
 #include "narrowphase/triangle.hpp"

@@ -5964,6 +5964,184 @@ template <scalar_type T>
 // on a plane, a clipped face) keeps four by `reduce_to_four`.
 
 
+// ---- begin impulse/narrowphase/tolerances.hpp ----
+// impulse/narrowphase/tolerances.hpp — the narrow phase's tolerances, in one
+// place, each with its unit and the reason for its value.
+//
+// These are compile-time constants, not runtime knobs: each one decides
+// geometry (which axis, which feature, which points), so that the same
+// poses give the same contacts in every world. Most are relative (a
+// fraction of a length, the sine or cosine of an angle) and so the same in
+// float and double; the few that follow the rounding of the scalar type
+// differ. GJK, EPA and GJK ray casting run their arithmetic in double
+// whatever T is (gjk.hpp), so their tolerances are doubles, chosen by the
+// shapes' scalar type T.
+//
+// Loop bounds and capacities stay next to their code (gjk.hpp's and
+// ray_cast.hpp's 64 iterations, epa.hpp's polytope, mesh.hpp's 16
+// manifolds), and the time of impact's tolerances are runtime options
+// (toi_options, time_of_impact.hpp).
+
+
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+struct tolerances {
+  // ---- separating axes -----------------------------------------------------
+
+  /// Squared sine of the angle between two edges (|a × b|² / (|a|²·|b|²))
+  /// below which their cross product is no axis: edges within about 0.06°
+  /// of parallel. Their axis is then a face axis already tested, and the
+  /// cross product's direction is rounding noise that would report a
+  /// separation along no real axis. box_box.hpp (whose axes are unit),
+  /// hull_hull.hpp, capsule_polyhedron.hpp and mesh.hpp.
+  static constexpr T parallel_edge_sine_squared = T(1e-6);
+
+  /// Faces are preferred: an edge axis wins over the best face axis, and
+  /// the second shape's face over the first's (box_box.hpp, hull_hull.hpp;
+  /// for a mesh the polyhedron's face over the triangle's), only if its
+  /// separation is larger by this fraction of the face's |separation|
+  /// (relative)…
+  static constexpr T face_preference_of_depth = T(0.05);
+  /// …plus this fraction of a size (relative; m once multiplied): the
+  /// least half extent of the smaller shape (box_box.hpp, hull_hull.hpp),
+  /// of the capsule's radius and the polyhedron's least half extent
+  /// (capsule_polyhedron.hpp), of the polyhedron facing a triangle
+  /// (mesh.hpp). Without the bias, two faces resting on each other hop
+  /// between near-equal axes from step to step, and their contact points
+  /// and ids hop with them (Catto, GDC 2013, biases the choice the same
+  /// way).
+  static constexpr T face_preference_of_size = T(0.01);
+
+  /// Rounding allowed in mesh.hpp's tests that an edge pair's axis N is
+  /// supported by both edges (the polyhedron's edge lies between its faces'
+  /// normals, a triangle's edge faces out along N): a dot product of unit
+  /// vectors (sines, a cosine) may fall this far below zero, so that an
+  /// axis on the border of where an edge supports its shape (along one of
+  /// its faces' normals, or in a triangle's plane) is not refused on the
+  /// rounding of a sign. capsule_polyhedron.hpp tests the same support of
+  /// a polyhedron's edge with no slack (`< 0`); the two are kept as they
+  /// are.
+  static constexpr T edge_support_slack = T(1e-6);
+
+  // ---- normals -------------------------------------------------------------
+
+  /// Cosine above which two unit normals count as one: about 2.6°. mesh.hpp
+  /// merges the manifolds of triangles whose normals agree this well, so
+  /// that a box on a flat mesh of many triangles gets one manifold of four
+  /// points; capsule_polyhedron.hpp takes a face's contact when GJK's
+  /// normal is this close to the face's, so that a capsule lying on a box
+  /// stands on two points, not one.
+  static constexpr T same_normal_cosine = T(0.999);
+  /// Sine of the angle between a capsule's core and a face's plane
+  /// (|axis · normal|) below which the capsule lies along the face (about
+  /// 2.9°) and is clipped to it, so that it rests on both ends
+  /// (capsule_polyhedron.hpp).
+  static constexpr T segment_along_face_sine = T(0.05);
+  /// Squared sine of the angle between two capsules' cores
+  /// (|da × db|² / (|da|²·|db|²)) below which they are nearly parallel (about
+  /// 0.57°) and touch along a line: two points, at the ends of their
+  /// overlap, so that one can rest on the other (analytic.hpp). Not the
+  /// same test as parallel_edge_sine_squared: this one chooses a line
+  /// contact, that one drops an axis that is noise.
+  static constexpr T parallel_capsule_sine_squared = T(1e-4);
+
+  // ---- contact points ------------------------------------------------------
+
+  /// Distance from a line, as a fraction of the line's length (relative),
+  /// within which contact points count as lying on it: reduce_to_four
+  /// (manifold.hpp) keeps a line's two ends, and not a third point that
+  /// only rounding put off the line (a capsule lying across a face).
+  static constexpr T collinear_fraction = T(1e-3);
+  /// The same 1e-3, squared, for mesh.hpp's merger, which compares squared
+  /// distances: written out, since 1e-3 squared in float is not the float
+  /// nearest 1e-6.
+  static constexpr T collinear_fraction_squared = T(1e-6);
+  /// Half-width of the band across a clipped patch's centre, as a fraction
+  /// of the patch's spread (its points' largest offset from the centre
+  /// along the face's axes; relative), inside which a point counts as on
+  /// the negative side when its quarter is chosen (detail/clipping.hpp), so
+  /// that the two ends of a line of contact do not toss between quarters,
+  /// and change feature ids, across it.
+  static constexpr T quarter_dead_band = T(0.01);
+  /// Contact points of neighbouring triangles closer than this fraction of
+  /// the shape's size (a sphere's or capsule's radius, a polyhedron's least
+  /// half extent; relative) are one point, the deeper kept (mesh.hpp): a
+  /// shape resting on a shared edge or corner otherwise gets the same
+  /// point twice and fills its four with duplicates.
+  static constexpr T weld_fraction = T(1e-4);
+  /// A triangle's corners within this fraction of its longest edge
+  /// (relative) of each other along a direction support it together, as an
+  /// edge or the face (mesh.hpp, supporting_feature): a box face resting on
+  /// a triangle is supported by the triangle's face, not by the corner that
+  /// rounding puts an ulp higher, which would be an internal feature.
+  static constexpr T feature_fraction = T(1e-4);
+  /// A sphere's centre or a capsule's core closer than this fraction of
+  /// the radius (relative) to a triangle lies on it: the direction between
+  /// them is rounding, and the triangle's face normal is taken instead
+  /// (mesh.hpp).
+  static constexpr T core_offset_fraction = T(1e-3);
+  /// A capsule's core is clipped to a triangle's prism with the prism's
+  /// side planes pushed out by this fraction of the radius (relative), so
+  /// that a core standing exactly on an edge or a corner is not clipped
+  /// away by rounding on both sides of it (mesh.hpp).
+  static constexpr T prism_slack_fraction = T(1e-4);
+
+  // ---- closest points, GJK, EPA, ray casts -----------------------------------
+
+  /// Squared sine of a triangle's angle at a (|ab × ac|² / (|ab|²·|ac|²),
+  /// relative) below which it has no face, only edges: 64 ulps of T, above
+  /// the rounding of the cross product, whose barycentric weights would
+  /// otherwise divide by it (triangle.hpp).
+  static constexpr T degenerate_triangle = T(64) * scalar_traits<T>::epsilon;
+  /// GJK's tetrahedron is a sliver when its volume is below this fraction
+  /// of its longest edge cubed (relative): the origin's side of its faces
+  /// is then rounding, every face is tried, and the origin is never taken
+  /// to be inside it (gjk.hpp). Compared in the simplex's scalar (double).
+  static constexpr T sliver_volume = T(1e-6);
+  /// GJK ends once the support plane along −v is within this fraction of
+  /// |v| of v (relative, van den Bergen's ε): about float's rounding of
+  /// the support points for float shapes, and well above double's for
+  /// double ones (gjk.hpp).
+  static constexpr double gjk_tolerance = std::is_same_v<T, float> ? 1e-6 : 1e-12;
+  /// GJK takes the shapes to overlap when v is shorter than this fraction
+  /// of the simplex's size (relative): 4 ulps of T, the rounding of the
+  /// support points that make v (gjk.hpp).
+  static constexpr double gjk_overlap_rounding = 4.0 * double(scalar_traits<T>::epsilon);
+  /// EPA ends when the support point along the nearest face's normal is
+  /// within this fraction of the face's distance plus 1 m (relative); the
+  /// depth then agrees with the exact one to 1.1e-6 m in float and 1.3e-15 m
+  /// in double over about 1 880 random box pairs (epa.hpp).
+  static constexpr double epa_tolerance = std::is_same_v<T, float> ? 1e-6 : 1e-10;
+  /// While EPA blows GJK's simplex up to a tetrahedron, a support point
+  /// spans a new direction only if it lies this fraction of the simplex's
+  /// size (relative) off what the simplex spans, so that no face is built
+  /// on rounding (epa.hpp)…
+  static constexpr double epa_new_direction = 1e-9;
+  /// …and the size is taken as at least this, m, so that a simplex shrunk
+  /// to the origin still has a tolerance above zero.
+  static constexpr double epa_least_size = 1e-30;
+  /// GJK ray casting stands on a polytope once the simplex's nearest point
+  /// is within this fraction of the simplex's size (relative): close to
+  /// float's rounding for float shapes, and far above double's for double
+  /// ones (ray_cast.hpp).
+  static constexpr double ray_gjk_tolerance = std::is_same_v<T, float> ? 1e-7 : 1e-12;
+  /// …and on a rounded shape (a sphere, a capsule) once its distance from
+  /// the core is the radius to this fraction (8 double ulps, relative):
+  /// there |v| is about the radius, and its rounding, not ray_gjk_tolerance,
+  /// limits how closely the point can be put on the surface.
+  static constexpr double ray_rounded_tolerance = 8.0 * std::numeric_limits<double>::epsilon();
+  /// The plane through the last three support points is taken as the
+  /// polytope's face when no support point lies beyond it by more than
+  /// this fraction of the simplex's size (1000 ulps of T, relative): the
+  /// face's plane is exact to rounding, where GJK's own point stalls about
+  /// that far in front of the face (ray_cast.hpp).
+  static constexpr double ray_face_tolerance = 1e3 * double(scalar_traits<T>::epsilon);
+};
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/tolerances.hpp ----
 
 namespace impulse {
 
@@ -6043,7 +6221,7 @@ void reduce_to_four(std::span<const contact_point<T>> candidates, const vec3<T>&
   const contact_point<T> d = pick(added);
   out.add(a);
   out.add(b);
-  if (std::abs(area(c)) <= T(1e-3) * across(b.position - a.position)) {
+  if (std::abs(area(c)) <= narrowphase::tolerances<T>::collinear_fraction * across(b.position - a.position)) {
     // All on one line, to 0.1 % of ab's length (rounding leaves the points
     // of a capsule lying across a face a hair off it): its two ends (b and
     // the farthest from b), and the deepest if it lies between them.
@@ -9786,8 +9964,9 @@ using aabbd = aabb<double>;
 // shapes by conservative advancement (narrowphase/time_of_impact.hpp);
 // static triangle meshes against spheres, capsules, boxes and hulls, and
 // rays against them (narrowphase/mesh.hpp);
-// and the table of pair tests built from a config's shape_list
-// (narrowphase/dispatch.hpp).
+// the table of pair tests built from a config's shape_list
+// (narrowphase/dispatch.hpp); and the tolerances they all decide by
+// (narrowphase/tolerances.hpp).
 
 // ---- begin impulse/narrowphase/analytic.hpp ----
 // impulse/narrowphase/analytic.hpp — closed-form pair tests between
@@ -10204,7 +10383,8 @@ contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, con
   constexpr T tiny = scalar_traits<T>::zero_length_squared;
   // Nearly parallel (the cores' directions within about 0.5° of each
   // other): the two ends of their overlap along a, each against b's core.
-  if (la > tiny && lb > tiny && length_squared(cross(da, db)) <= T(1e-4) * la * lb) {
+  if (la > tiny && lb > tiny &&
+      length_squared(cross(da, db)) <= tolerances<T>::parallel_capsule_sine_squared * la * lb) {
     const T s0 = std::clamp(dot(b0 - a0, da) / la, T(0), T(1)), s1 = std::clamp(dot(b1 - a0, da) / la, T(0), T(1));
     const T lo = std::min(s0, s1), hi = std::max(s0, s1);
     if (hi > lo) {
@@ -10394,7 +10574,7 @@ void choose_by_quarter(const patch_point<T>* points, int count, const vec3<T>& u
   T spread = T(0);
   for (int c = 0; c < count; ++c)
     spread = std::max(spread, std::max(std::abs(dot(points[c].x - centre, u)), std::abs(dot(points[c].x - centre, v))));
-  const T dead_band = T(0.01) * spread;
+  const T dead_band = tolerances<T>::quarter_dead_band * spread;
   const auto quarter = [&](const vec3<T>& x) {
     return int(dot(x - centre, u) > dead_band) | (int(dot(x - centre, v) > dead_band) << 1);
   };
@@ -10466,15 +10646,18 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
       // Edges within about 0.06° of parallel: their axis is a face axis
       // already tested, and its direction is rounding noise.
       const T l2 = length_squared(L);
-      if (l2 < T(1e-6)) continue;
+      if (l2 < tolerances<T>::parallel_edge_sine_squared) continue;
       const vec3<T> axis = L / std::sqrt(l2);
       const T s = std::abs(dot(t, axis)) - (detail::projected_radius(A, axis) + detail::projected_radius(B, axis));
       if (s > margin) return m;
       if (s > edge.separation) edge = {s, 3 * i + j};
     }
   }
-  const T tolerance = T(0.01) * std::min(min_component(a.half_extents), min_component(b.half_extents));
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance =
+      tolerances<T>::face_preference_of_size * std::min(min_component(a.half_extents), min_component(b.half_extents));
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   const bool reference_is_b = clearly_better(face_b.separation, face_a.separation);
   const T best_face = reference_is_b ? face_b.separation : face_a.separation;
 
@@ -12153,7 +12336,7 @@ triangle_point<T> closest_point_on_triangle(const vec3<T>& p, const vec3<T>& a, 
   // The face's area (twice, squared) decides whether there is a face at all.
   const T area2 = length_squared(cross(ab, ac));
   const T scale = length_squared(ab) * length_squared(ac);
-  if (!(area2 > T(64) * scalar_traits<T>::epsilon * scale) || !(scale > T(0))) {
+  if (!(area2 > tolerances<T>::degenerate_triangle * scale) || !(scale > T(0))) {
     // Degenerate: the nearest of the three edges.
     const auto on_edge = [&](const vec3<T>& from, const vec3<T>& to) {
       return detail::closest_point_on_segment(from, to, p);
@@ -12326,7 +12509,7 @@ struct simplex {
     T scale = T(0);
     for (int k = 1; k < 4; ++k) scale = std::max(scale, length_squared(w[k] - w[0]));
     const T volume = dot(cross(w[1] - w[0], w[2] - w[0]), w[3] - w[0]);
-    const bool sliver = !(std::abs(volume) > T(1e-6) * scale * std::sqrt(scale));
+    const bool sliver = !(std::abs(volume) > tolerances<T>::sliver_volume * scale * std::sqrt(scale));
     T best = std::numeric_limits<T>::infinity();
     simplex nearest = *this;
     vec3<T> point{};
@@ -12369,7 +12552,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
   using R = double;
   const auto wide = [](const vec3<T>& x) { return detail::wide(x); };
   const auto narrow = [](const vec3<R>& x) { return detail::narrow<T>(x); };
-  constexpr R relative = sizeof(T) < sizeof(R) ? R(1e-6) : R(1e-12);
+  constexpr R relative = tolerances<T>::gjk_tolerance;
   constexpr int max_iterations = 64;
   detail::simplex<R> s;
   gjk_result<T> result;
@@ -12398,7 +12581,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
     // points (in T) that make it.
     R size = R(0);
     for (int k = 0; k < s.size; ++k) size = std::max(size, length_squared(s.w[k]));
-    const R rounding = R(4) * R(scalar_traits<T>::epsilon);
+    const R rounding = tolerances<T>::gjk_overlap_rounding;
     if (s.size == 4 || length2 <= rounding * rounding * size) {
       result.overlapping = true;
       result.distance = T(0);
@@ -12681,7 +12864,7 @@ contact_manifold<T> collide_polyhedra(const PA& a, const transform<T>& pose_a, c
       // Edges within about 0.06° of parallel: their axis is a face axis
       // already tested, and its direction is rounding noise.
       const T l2 = length_squared(L);
-      if (!(l2 > T(1e-6) * length_squared(da) * length_squared(db))) continue;
+      if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(da) * length_squared(db))) continue;
       L /= std::sqrt(l2);
       if (dot(L, pa - inside_a) < T(0)) L = -L;
       const T s = dot(L, pb - pa);
@@ -12690,8 +12873,10 @@ contact_manifold<T> collide_polyhedra(const PA& a, const transform<T>& pose_a, c
     }
   }
 
-  const T tolerance = T(0.01) * std::min(least_half_extent(a), least_half_extent(b));
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance = tolerances<T>::face_preference_of_size * std::min(least_half_extent(a), least_half_extent(b));
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   const bool prefer_b = clearly_better(face_b.separation, face_a.separation);
   const best& preferred = prefer_b ? face_b : face_a;
 
@@ -12864,7 +13049,9 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const vec3<T> n = (g.on_b - g.on_a) / g.distance;  // from the core into the polyhedron
     const std::size_t f = nearest_face(-n);
     const vec3<T> fn = poly.plane(f).normal;
-    if (dot(fn, -n) > T(0.999) && std::abs(dot(axis, fn)) < T(0.05) && face_contact(f)) return m;
+    if (dot(fn, -n) > tolerances<T>::same_normal_cosine &&
+        std::abs(dot(axis, fn)) < tolerances<T>::segment_along_face_sine && face_contact(f))
+      return m;
     m.normal = apply_direction(pose_p, n);
     m.add({apply(pose_p, (g.on_a + n * r + g.on_b) * T(0.5)), r - g.distance, (1u << 30) | std::uint32_t(f)});
     return m;
@@ -12892,7 +13079,7 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const vec3<T> a = vertices[edges[e].a], ab = vertices[edges[e].b] - a;
     vec3<T> L = cross(p1 - p0, ab);
     const T l2 = length_squared(L);
-    if (!(l2 > T(1e-6) * length_squared(p1 - p0) * length_squared(ab))) continue;
+    if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(p1 - p0) * length_squared(ab))) continue;
     L /= std::sqrt(l2);
     const vec3<T> n1 = poly.plane(edges[e].face_ab).normal, n2 = poly.plane(edges[e].face_ba).normal;
     if (dot(L, n1 + n2) < T(0)) L = -L;  // out of the polyhedron
@@ -12900,8 +13087,10 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const T s = dot(L, p0 - a) - r;
     if (s > edge.separation) edge = {s, e, L};
   }
-  const T tolerance = T(0.01) * std::min(r, least_half_extent(poly));
-  const bool edge_wins = edge.separation > face.separation + T(0.05) * std::abs(face.separation) + tolerance;
+  const T tolerance = tolerances<T>::face_preference_of_size * std::min(r, least_half_extent(poly));
+  const bool edge_wins =
+      edge.separation >
+      face.separation + tolerances<T>::face_preference_of_depth * std::abs(face.separation) + tolerance;
   if (!edge_wins && face_contact(face.index)) return m;
   if (edge.separation == -std::numeric_limits<T>::infinity()) {
     // No edge axis (a segment parallel to every edge cannot happen for a
@@ -13904,7 +14093,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
   if (!prepare_ray(r, max_fraction, ur)) return out;
   // In double whatever T is, as GJK (gjk.hpp).
   using R = double;
-  constexpr R epsilon = sizeof(T) < sizeof(R) ? R(1e-7) : R(1e-12);
+  constexpr R epsilon = tolerances<T>::ray_gjk_tolerance;
   constexpr int max_iterations = 64;
   const vec3<R> o = wide(ur.origin), u = wide(ur.direction);
   const R radius = R(core_radius<T>(shape)) + R(grown);
@@ -13954,7 +14143,8 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
     // Around a core, |v| ≈ radius is not small, and its rounding (not the
     // tolerance) limits how closely x can be put at the radius: it steps on
     // to a few ulps of it, in about as many more iterations.
-    const R tolerance = (radius > R(0) ? R(8) * std::numeric_limits<R>::epsilon() : epsilon) * (std::sqrt(size2) + radius);
+    const R tolerance =
+        (radius > R(0) ? R(tolerances<T>::ray_rounded_tolerance) : epsilon) * (std::sqrt(size2) + radius);
     // x stands on the shape: inside the simplex (a tetrahedron round the
     // origin), or within the tolerance of the radius from the core.
     if (s.size == 4 || length(next) <= radius + tolerance) stands = true;
@@ -13990,7 +14180,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
       n = n / n_length;
       const vec3<R> p = wide(world_core_support(shape, pose, narrow<T>(n)));
       const R height = dot(n, x - s.a[0]), approach = dot(n, u);
-      const R face_tolerance = R(1e3) * R(scalar_traits<T>::epsilon) * size;
+      const R face_tolerance = tolerances<T>::ray_face_tolerance * size;
       if (dot(n, p - s.a[0]) <= face_tolerance && approach < R(0) && std::abs(height) <= length(v) + epsilon * size) {
         lambda = std::clamp(lambda - height / approach, R(0), max_distance);
         plane = n;
@@ -14046,10 +14236,6 @@ constexpr std::uint32_t mesh_feature(std::uint32_t triangle, mesh_contact kind, 
   return ((triangle & 0xffffffu) << 8) | (std::uint32_t(kind) << 5) | (std::uint32_t(region) << 2) | (slot & 3u);
 }
 
-/// Normals within about 2.6° of each other belong in one manifold.
-template <scalar_type T>
-inline constexpr T same_normal_cosine = T(0.999);
-
 /// One triangle of a mesh as a convex shape, in the mesh's frame: the
 /// support and vertices that GJK, EPA and time_of_impact ask of a shape,
 /// for the sweeps of continuous collision against a mesh.
@@ -14096,7 +14282,7 @@ inline triangle_region edge_region(int k) noexcept { return triangle_region(3 + 
 inline triangle_region corner_region(int k) noexcept { return triangle_region(k % 3); }
 
 /// Merges the manifolds of single triangles into few: one per normal
-/// (within same_normal_cosine), at most `capacity`, each reduced to four
+/// (within tolerances::same_normal_cosine), at most `capacity`, each reduced to four
 /// points. Positions and normals in the working frame.
 template <scalar_type T>
 class manifold_merger {
@@ -14109,7 +14295,7 @@ class manifold_merger {
     if (m.empty()) return;
     for (std::size_t g = 0; g < count_; ++g) {
       contact_manifold<T>& group = groups_[g];
-      if (dot(group.normal, m.normal) <= same_normal_cosine<T>) continue;
+      if (dot(group.normal, m.normal) <= tolerances<T>::same_normal_cosine) continue;
       contact_point<T> candidates[2 * contact_manifold<T>::capacity];
       std::size_t n = 0;
       for (const contact_point<T>& p : group.contacts()) candidates[n++] = p;
@@ -14188,7 +14374,7 @@ class manifold_merger {
     for (std::size_t i = 0; i < n && straight; ++i) {
       // Twice the area of e0, e1, i over the line's length: i's distance from the line.
       const T twice_area2 = length_squared(cross(line, across(candidates[i].position - candidates[e0].position)));
-      straight = twice_area2 <= T(1e-6) * length2 * length2;
+      straight = twice_area2 <= tolerances<T>::collinear_fraction_squared * length2 * length2;
     }
     if (!straight) {
       reduce_to_four(std::span<const contact_point<T>>(candidates, n), normal, group);
@@ -14226,7 +14412,7 @@ void collide_ball_triangle(const vec3<T>& centre, T r, const mesh_triangle<T>& t
   const T distance = length(d);
   if (distance - r > margin) return;
   if (q.region == triangle_region::face || !keeps_normal(q.region, tri.active) ||
-      !(distance > T(1e-3) * r)) {
+      !(distance > tolerances<T>::core_offset_fraction * r)) {
     // Along the face normal: the sphere's lowest point against the plane.
     m.normal = n;
     m.add({centre - n * ((r + height) * T(0.5)), r - height,
@@ -14272,9 +14458,9 @@ void collide_capsule_triangle(const vec3<T>& p0, const vec3<T>& p1, T r, const m
   const T distance = std::sqrt(best);
   if (distance - r > margin) return;
 
-  const vec3<T> normal = distance > T(1e-3) * r ? (on_segment - on_triangle) / distance : n;
-  if (region != triangle_region::face && keeps_normal(region, tri.active) && distance > T(1e-3) * r &&
-      dot(normal, n) >= T(0)) {
+  const vec3<T> normal = distance > tolerances<T>::core_offset_fraction * r ? (on_segment - on_triangle) / distance : n;
+  if (region != triangle_region::face && keeps_normal(region, tri.active) &&
+      distance > tolerances<T>::core_offset_fraction * r && dot(normal, n) >= T(0)) {
     m.normal = normal;
     m.add({(on_triangle + on_segment - normal * r) * T(0.5), r - distance,
            mesh_feature(tri.index, mesh_contact::closest, region, 0)});
@@ -14286,7 +14472,7 @@ void collide_capsule_triangle(const vec3<T>& p0, const vec3<T>& p1, T r, const m
   // sides of it), each end within reach.
   T t0 = T(0), t1 = T(1);
   const vec3<T> d = p1 - p0;
-  const T slack = T(1e-4) * r;
+  const T slack = tolerances<T>::prism_slack_fraction * r;
   for (int k = 0; k < 3; ++k) {
     const vec3<T>& p = tri.v[std::size_t(k)];
     const vec3<T> w = normalize_or(cross(tri.v[std::size_t((k + 1) % 3)] - p, n), n);  // out across the edge
@@ -14389,7 +14575,7 @@ void collide_polyhedron_triangle(const posed_polyhedron<Poly, T>& P, const mesh_
       vec3<T> L = cross(et, ep);
       const T l2 = length_squared(L);
       // Within about 0.06° of parallel: the axis is a face's, tested above.
-      if (!(l2 > T(1e-6) * length_squared(et) * length_squared(ep))) continue;
+      if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(et) * length_squared(ep))) continue;
       L /= std::sqrt(l2);
       const T tp = dot(L, p), to = dot(L, opposite);
       const T t_lo = std::min(tp, to), t_hi = std::max(tp, to);
@@ -14406,18 +14592,21 @@ void collide_polyhedron_triangle(const posed_polyhedron<Poly, T>& P, const mesh_
       // the triangle's edge faces N (outward across it, or along ±n).
       const vec3<T> n1 = P.planes[e.face_ab].normal, n2 = P.planes[e.face_ba].normal;
       const vec3<T> N = dot(L, n1 + n2) > T(0) ? -L : L;
-      if (dot(cross(n1, -N), cross(-N, n2)) < -T(1e-6)) continue;
-      if (dot(N, out_t) < -T(1e-6) * length(out_t)) continue;
+      if (dot(cross(n1, -N), cross(-N, n2)) < -tolerances<T>::edge_support_slack) continue;
+      if (dot(N, out_t) < -tolerances<T>::edge_support_slack * length(out_t)) continue;
       const T s = dot(N, L) > T(0) ? along : against;
       if (s > edge.separation) edge = {s, k, j, N};
     }
   }
 
-  const T tolerance = T(0.01) * P.least_half_extent;
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance = tolerances<T>::face_preference_of_size * P.least_half_extent;
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   // Corners within this of each other along a normal are one feature.
   const T feature_tolerance =
-      T(1e-4) * std::max(length(tri.v[1] - tri.v[0]), std::max(length(tri.v[2] - tri.v[1]), length(tri.v[0] - tri.v[2])));
+      tolerances<T>::feature_fraction *
+      std::max(length(tri.v[1] - tri.v[0]), std::max(length(tri.v[2] - tri.v[1]), length(tri.v[0] - tri.v[2])));
 
   // The triangle's face as the reference: the polyhedron's incident face
   // (of the faces at its deepest vertex, the most opposed to n) clipped to
@@ -14586,7 +14775,7 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const aabb<T> box = aabb<T>::from_center_half_extents({}, vec3<T>::splat(s.radius + margin));
-  return collide_mesh(mesh, frame, box, T(1e-4) * s.radius, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * s.radius, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_ball_triangle(vec3<T>{}, s.radius, tri, margin, m);
                       });
@@ -14598,7 +14787,7 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const vec3<T> half = rotate(frame.shape_rotation, vec3<T>{T(0), c.half_height, T(0)});
   const aabb<T> box = aabb<T>::from_center_half_extents({}, abs(half) + vec3<T>::splat(c.radius + margin));
-  return collide_mesh(mesh, frame, box, T(1e-4) * c.radius, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * c.radius, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_capsule_triangle(-half, half, c.radius, tri, margin, m);
                       });
@@ -14620,7 +14809,7 @@ std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transfor
   const posed_polyhedron<Poly, T> posed{poly,  vertices.data(), local.size(), planes.data(),
                                         least, rotate(frame.shape_rotation, center(local_bounds))};
   const aabb<T> box = expand(transform_aabb(local_bounds, transform<T>{{}, frame.shape_rotation}), margin);
-  return collide_mesh(mesh, frame, box, T(1e-4) * least, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * least, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_polyhedron_triangle(posed, tri, margin, m);
                       });
@@ -14985,7 +15174,7 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
   // it does not span yet (the axes, then normals of what it has).
   double scale = 0.0;
   for (int k = 0; k < poly.vertex_count; ++k) scale = std::max(scale, length(poly.vertices[std::size_t(k)].w));
-  const double tiny = 1e-9 * std::max(scale, 1e-30);
+  const double tiny = tolerances<T>::epa_new_direction * std::max(scale, double(tolerances<T>::epa_least_size));
   const vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   if (poly.vertex_count == 0) poly.add_vertex(support(axes[0]));
   for (int k = 0; poly.vertex_count < 2 && k < 6; ++k) {
@@ -15035,7 +15224,7 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
   poly.add_face(0, 2, 3, inside);
   poly.add_face(1, 3, 2, inside);
 
-  constexpr double relative = sizeof(T) < sizeof(double) ? 1e-6 : 1e-10;
+  constexpr double relative = tolerances<T>::epa_tolerance;
   // Every edge of every live face, at most: the horizon of a visible set
   // that is not a disk (rounding) can be longer than the faces it gets.
   struct directed_edge {

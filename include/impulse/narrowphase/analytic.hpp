@@ -43,6 +43,7 @@
 #include "../shapes/plane.hpp"
 #include "../shapes/sphere.hpp"
 #include "manifold.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -220,7 +221,8 @@ contact_manifold<T> collide(const capsule<T>& a, const transform<T>& pose_a, con
   constexpr T tiny = scalar_traits<T>::zero_length_squared;
   // Nearly parallel (the cores' directions within about 0.5° of each
   // other): the two ends of their overlap along a, each against b's core.
-  if (la > tiny && lb > tiny && length_squared(cross(da, db)) <= T(1e-4) * la * lb) {
+  if (la > tiny && lb > tiny &&
+      length_squared(cross(da, db)) <= tolerances<T>::parallel_capsule_sine_squared * la * lb) {
     const T s0 = std::clamp(dot(b0 - a0, da) / la, T(0), T(1)), s1 = std::clamp(dot(b1 - a0, da) / la, T(0), T(1));
     const T lo = std::min(s0, s1), hi = std::max(s0, s1);
     if (hi > lo) {

@@ -53,6 +53,7 @@
 #include "analytic.hpp"
 #include "detail/clipping.hpp"
 #include "manifold.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -109,15 +110,18 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
       // Edges within about 0.06° of parallel: their axis is a face axis
       // already tested, and its direction is rounding noise.
       const T l2 = length_squared(L);
-      if (l2 < T(1e-6)) continue;
+      if (l2 < tolerances<T>::parallel_edge_sine_squared) continue;
       const vec3<T> axis = L / std::sqrt(l2);
       const T s = std::abs(dot(t, axis)) - (detail::projected_radius(A, axis) + detail::projected_radius(B, axis));
       if (s > margin) return m;
       if (s > edge.separation) edge = {s, 3 * i + j};
     }
   }
-  const T tolerance = T(0.01) * std::min(min_component(a.half_extents), min_component(b.half_extents));
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance =
+      tolerances<T>::face_preference_of_size * std::min(min_component(a.half_extents), min_component(b.half_extents));
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   const bool reference_is_b = clearly_better(face_b.separation, face_a.separation);
   const T best_face = reference_is_b ? face_b.separation : face_a.separation;
 

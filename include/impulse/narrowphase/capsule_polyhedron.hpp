@@ -39,6 +39,7 @@
 #include "gjk.hpp"
 #include "hull_hull.hpp"
 #include "manifold.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -104,7 +105,9 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const vec3<T> n = (g.on_b - g.on_a) / g.distance;  // from the core into the polyhedron
     const std::size_t f = nearest_face(-n);
     const vec3<T> fn = poly.plane(f).normal;
-    if (dot(fn, -n) > T(0.999) && std::abs(dot(axis, fn)) < T(0.05) && face_contact(f)) return m;
+    if (dot(fn, -n) > tolerances<T>::same_normal_cosine &&
+        std::abs(dot(axis, fn)) < tolerances<T>::segment_along_face_sine && face_contact(f))
+      return m;
     m.normal = apply_direction(pose_p, n);
     m.add({apply(pose_p, (g.on_a + n * r + g.on_b) * T(0.5)), r - g.distance, (1u << 30) | std::uint32_t(f)});
     return m;
@@ -132,7 +135,7 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const vec3<T> a = vertices[edges[e].a], ab = vertices[edges[e].b] - a;
     vec3<T> L = cross(p1 - p0, ab);
     const T l2 = length_squared(L);
-    if (!(l2 > T(1e-6) * length_squared(p1 - p0) * length_squared(ab))) continue;
+    if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(p1 - p0) * length_squared(ab))) continue;
     L /= std::sqrt(l2);
     const vec3<T> n1 = poly.plane(edges[e].face_ab).normal, n2 = poly.plane(edges[e].face_ba).normal;
     if (dot(L, n1 + n2) < T(0)) L = -L;  // out of the polyhedron
@@ -140,8 +143,10 @@ contact_manifold<T> collide_capsule_polyhedron(const capsule<T>& c, const transf
     const T s = dot(L, p0 - a) - r;
     if (s > edge.separation) edge = {s, e, L};
   }
-  const T tolerance = T(0.01) * std::min(r, least_half_extent(poly));
-  const bool edge_wins = edge.separation > face.separation + T(0.05) * std::abs(face.separation) + tolerance;
+  const T tolerance = tolerances<T>::face_preference_of_size * std::min(r, least_half_extent(poly));
+  const bool edge_wins =
+      edge.separation >
+      face.separation + tolerances<T>::face_preference_of_depth * std::abs(face.separation) + tolerance;
   if (!edge_wins && face_contact(face.index)) return m;
   if (edge.separation == -std::numeric_limits<T>::infinity()) {
     // No edge axis (a segment parallel to every edge cannot happen for a

@@ -43,6 +43,7 @@
 
 #include "detail/scratch_buffer.hpp"
 #include "gjk.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -159,7 +160,7 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
   // it does not span yet (the axes, then normals of what it has).
   double scale = 0.0;
   for (int k = 0; k < poly.vertex_count; ++k) scale = std::max(scale, length(poly.vertices[std::size_t(k)].w));
-  const double tiny = 1e-9 * std::max(scale, 1e-30);
+  const double tiny = tolerances<T>::epa_new_direction * std::max(scale, double(tolerances<T>::epa_least_size));
   const vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   if (poly.vertex_count == 0) poly.add_vertex(support(axes[0]));
   for (int k = 0; poly.vertex_count < 2 && k < 6; ++k) {
@@ -209,7 +210,7 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
   poly.add_face(0, 2, 3, inside);
   poly.add_face(1, 3, 2, inside);
 
-  constexpr double relative = sizeof(T) < sizeof(double) ? 1e-6 : 1e-10;
+  constexpr double relative = tolerances<T>::epa_tolerance;
   // Every edge of every live face, at most: the horizon of a visible set
   // that is not a disk (rounding) can be longer than the faces it gets.
   struct directed_edge {

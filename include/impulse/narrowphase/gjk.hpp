@@ -44,10 +44,10 @@
 #include <initializer_list>
 #include <limits>
 
-#include "../math/scalar_traits.hpp"
 #include "../math/transform.hpp"
 #include "../shapes/capsule.hpp"
 #include "../shapes/sphere.hpp"
+#include "tolerances.hpp"
 #include "triangle.hpp"
 
 namespace impulse::narrowphase {
@@ -177,7 +177,7 @@ struct simplex {
     T scale = T(0);
     for (int k = 1; k < 4; ++k) scale = std::max(scale, length_squared(w[k] - w[0]));
     const T volume = dot(cross(w[1] - w[0], w[2] - w[0]), w[3] - w[0]);
-    const bool sliver = !(std::abs(volume) > T(1e-6) * scale * std::sqrt(scale));
+    const bool sliver = !(std::abs(volume) > tolerances<T>::sliver_volume * scale * std::sqrt(scale));
     T best = std::numeric_limits<T>::infinity();
     simplex nearest = *this;
     vec3<T> point{};
@@ -220,7 +220,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
   using R = double;
   const auto wide = [](const vec3<T>& x) { return detail::wide(x); };
   const auto narrow = [](const vec3<R>& x) { return detail::narrow<T>(x); };
-  constexpr R relative = sizeof(T) < sizeof(R) ? R(1e-6) : R(1e-12);
+  constexpr R relative = tolerances<T>::gjk_tolerance;
   constexpr int max_iterations = 64;
   detail::simplex<R> s;
   gjk_result<T> result;
@@ -249,7 +249,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
     // points (in T) that make it.
     R size = R(0);
     for (int k = 0; k < s.size; ++k) size = std::max(size, length_squared(s.w[k]));
-    const R rounding = R(4) * R(scalar_traits<T>::epsilon);
+    const R rounding = tolerances<T>::gjk_overlap_rounding;
     if (s.size == 4 || length2 <= rounding * rounding * size) {
       result.overlapping = true;
       result.distance = T(0);

@@ -53,6 +53,7 @@
 #include "detail/clipping.hpp"
 #include "detail/scratch_buffer.hpp"
 #include "manifold.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -212,7 +213,7 @@ contact_manifold<T> collide_polyhedra(const PA& a, const transform<T>& pose_a, c
       // Edges within about 0.06° of parallel: their axis is a face axis
       // already tested, and its direction is rounding noise.
       const T l2 = length_squared(L);
-      if (!(l2 > T(1e-6) * length_squared(da) * length_squared(db))) continue;
+      if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(da) * length_squared(db))) continue;
       L /= std::sqrt(l2);
       if (dot(L, pa - inside_a) < T(0)) L = -L;
       const T s = dot(L, pb - pa);
@@ -221,8 +222,10 @@ contact_manifold<T> collide_polyhedra(const PA& a, const transform<T>& pose_a, c
     }
   }
 
-  const T tolerance = T(0.01) * std::min(least_half_extent(a), least_half_extent(b));
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance = tolerances<T>::face_preference_of_size * std::min(least_half_extent(a), least_half_extent(b));
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   const bool prefer_b = clearly_better(face_b.separation, face_a.separation);
   const best& preferred = prefer_b ? face_b : face_a;
 

@@ -23,6 +23,7 @@
 #include <span>
 
 #include "../math/vec3.hpp"
+#include "tolerances.hpp"
 
 namespace impulse {
 
@@ -102,7 +103,7 @@ void reduce_to_four(std::span<const contact_point<T>> candidates, const vec3<T>&
   const contact_point<T> d = pick(added);
   out.add(a);
   out.add(b);
-  if (std::abs(area(c)) <= T(1e-3) * across(b.position - a.position)) {
+  if (std::abs(area(c)) <= narrowphase::tolerances<T>::collinear_fraction * across(b.position - a.position)) {
     // All on one line, to 0.1 % of ab's length (rounding leaves the points
     // of a capsule lying across a face a hair off it): its two ends (b and
     // the farthest from b), and the deepest if it lies between them.

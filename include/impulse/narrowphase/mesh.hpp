@@ -106,6 +106,7 @@
 #include "hull_hull.hpp"
 #include "manifold.hpp"
 #include "ray_cast.hpp"
+#include "tolerances.hpp"
 #include "triangle.hpp"
 
 namespace impulse::narrowphase {
@@ -119,10 +120,6 @@ constexpr std::uint32_t mesh_feature(std::uint32_t triangle, mesh_contact kind, 
                                      std::uint32_t slot) noexcept {
   return ((triangle & 0xffffffu) << 8) | (std::uint32_t(kind) << 5) | (std::uint32_t(region) << 2) | (slot & 3u);
 }
-
-/// Normals within about 2.6° of each other belong in one manifold.
-template <scalar_type T>
-inline constexpr T same_normal_cosine = T(0.999);
 
 /// One triangle of a mesh as a convex shape, in the mesh's frame: the
 /// support and vertices that GJK, EPA and time_of_impact ask of a shape,
@@ -170,7 +167,7 @@ inline triangle_region edge_region(int k) noexcept { return triangle_region(3 + 
 inline triangle_region corner_region(int k) noexcept { return triangle_region(k % 3); }
 
 /// Merges the manifolds of single triangles into few: one per normal
-/// (within same_normal_cosine), at most `capacity`, each reduced to four
+/// (within tolerances::same_normal_cosine), at most `capacity`, each reduced to four
 /// points. Positions and normals in the working frame.
 template <scalar_type T>
 class manifold_merger {
@@ -183,7 +180,7 @@ class manifold_merger {
     if (m.empty()) return;
     for (std::size_t g = 0; g < count_; ++g) {
       contact_manifold<T>& group = groups_[g];
-      if (dot(group.normal, m.normal) <= same_normal_cosine<T>) continue;
+      if (dot(group.normal, m.normal) <= tolerances<T>::same_normal_cosine) continue;
       contact_point<T> candidates[2 * contact_manifold<T>::capacity];
       std::size_t n = 0;
       for (const contact_point<T>& p : group.contacts()) candidates[n++] = p;
@@ -262,7 +259,7 @@ class manifold_merger {
     for (std::size_t i = 0; i < n && straight; ++i) {
       // Twice the area of e0, e1, i over the line's length: i's distance from the line.
       const T twice_area2 = length_squared(cross(line, across(candidates[i].position - candidates[e0].position)));
-      straight = twice_area2 <= T(1e-6) * length2 * length2;
+      straight = twice_area2 <= tolerances<T>::collinear_fraction_squared * length2 * length2;
     }
     if (!straight) {
       reduce_to_four(std::span<const contact_point<T>>(candidates, n), normal, group);
@@ -300,7 +297,7 @@ void collide_ball_triangle(const vec3<T>& centre, T r, const mesh_triangle<T>& t
   const T distance = length(d);
   if (distance - r > margin) return;
   if (q.region == triangle_region::face || !keeps_normal(q.region, tri.active) ||
-      !(distance > T(1e-3) * r)) {
+      !(distance > tolerances<T>::core_offset_fraction * r)) {
     // Along the face normal: the sphere's lowest point against the plane.
     m.normal = n;
     m.add({centre - n * ((r + height) * T(0.5)), r - height,
@@ -346,9 +343,9 @@ void collide_capsule_triangle(const vec3<T>& p0, const vec3<T>& p1, T r, const m
   const T distance = std::sqrt(best);
   if (distance - r > margin) return;
 
-  const vec3<T> normal = distance > T(1e-3) * r ? (on_segment - on_triangle) / distance : n;
-  if (region != triangle_region::face && keeps_normal(region, tri.active) && distance > T(1e-3) * r &&
-      dot(normal, n) >= T(0)) {
+  const vec3<T> normal = distance > tolerances<T>::core_offset_fraction * r ? (on_segment - on_triangle) / distance : n;
+  if (region != triangle_region::face && keeps_normal(region, tri.active) &&
+      distance > tolerances<T>::core_offset_fraction * r && dot(normal, n) >= T(0)) {
     m.normal = normal;
     m.add({(on_triangle + on_segment - normal * r) * T(0.5), r - distance,
            mesh_feature(tri.index, mesh_contact::closest, region, 0)});
@@ -360,7 +357,7 @@ void collide_capsule_triangle(const vec3<T>& p0, const vec3<T>& p1, T r, const m
   // sides of it), each end within reach.
   T t0 = T(0), t1 = T(1);
   const vec3<T> d = p1 - p0;
-  const T slack = T(1e-4) * r;
+  const T slack = tolerances<T>::prism_slack_fraction * r;
   for (int k = 0; k < 3; ++k) {
     const vec3<T>& p = tri.v[std::size_t(k)];
     const vec3<T> w = normalize_or(cross(tri.v[std::size_t((k + 1) % 3)] - p, n), n);  // out across the edge
@@ -463,7 +460,7 @@ void collide_polyhedron_triangle(const posed_polyhedron<Poly, T>& P, const mesh_
       vec3<T> L = cross(et, ep);
       const T l2 = length_squared(L);
       // Within about 0.06° of parallel: the axis is a face's, tested above.
-      if (!(l2 > T(1e-6) * length_squared(et) * length_squared(ep))) continue;
+      if (!(l2 > tolerances<T>::parallel_edge_sine_squared * length_squared(et) * length_squared(ep))) continue;
       L /= std::sqrt(l2);
       const T tp = dot(L, p), to = dot(L, opposite);
       const T t_lo = std::min(tp, to), t_hi = std::max(tp, to);
@@ -480,18 +477,21 @@ void collide_polyhedron_triangle(const posed_polyhedron<Poly, T>& P, const mesh_
       // the triangle's edge faces N (outward across it, or along ±n).
       const vec3<T> n1 = P.planes[e.face_ab].normal, n2 = P.planes[e.face_ba].normal;
       const vec3<T> N = dot(L, n1 + n2) > T(0) ? -L : L;
-      if (dot(cross(n1, -N), cross(-N, n2)) < -T(1e-6)) continue;
-      if (dot(N, out_t) < -T(1e-6) * length(out_t)) continue;
+      if (dot(cross(n1, -N), cross(-N, n2)) < -tolerances<T>::edge_support_slack) continue;
+      if (dot(N, out_t) < -tolerances<T>::edge_support_slack * length(out_t)) continue;
       const T s = dot(N, L) > T(0) ? along : against;
       if (s > edge.separation) edge = {s, k, j, N};
     }
   }
 
-  const T tolerance = T(0.01) * P.least_half_extent;
-  const auto clearly_better = [&](T s, T than) { return s > than + T(0.05) * std::abs(than) + tolerance; };
+  const T tolerance = tolerances<T>::face_preference_of_size * P.least_half_extent;
+  const auto clearly_better = [&](T s, T than) {
+    return s > than + tolerances<T>::face_preference_of_depth * std::abs(than) + tolerance;
+  };
   // Corners within this of each other along a normal are one feature.
   const T feature_tolerance =
-      T(1e-4) * std::max(length(tri.v[1] - tri.v[0]), std::max(length(tri.v[2] - tri.v[1]), length(tri.v[0] - tri.v[2])));
+      tolerances<T>::feature_fraction *
+      std::max(length(tri.v[1] - tri.v[0]), std::max(length(tri.v[2] - tri.v[1]), length(tri.v[0] - tri.v[2])));
 
   // The triangle's face as the reference: the polyhedron's incident face
   // (of the faces at its deepest vertex, the most opposed to n) clipped to
@@ -660,7 +660,7 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const aabb<T> box = aabb<T>::from_center_half_extents({}, vec3<T>::splat(s.radius + margin));
-  return collide_mesh(mesh, frame, box, T(1e-4) * s.radius, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * s.radius, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_ball_triangle(vec3<T>{}, s.radius, tri, margin, m);
                       });
@@ -672,7 +672,7 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const vec3<T> half = rotate(frame.shape_rotation, vec3<T>{T(0), c.half_height, T(0)});
   const aabb<T> box = aabb<T>::from_center_half_extents({}, abs(half) + vec3<T>::splat(c.radius + margin));
-  return collide_mesh(mesh, frame, box, T(1e-4) * c.radius, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * c.radius, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_capsule_triangle(-half, half, c.radius, tri, margin, m);
                       });
@@ -694,7 +694,7 @@ std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transfor
   const posed_polyhedron<Poly, T> posed{poly,  vertices.data(), local.size(), planes.data(),
                                         least, rotate(frame.shape_rotation, center(local_bounds))};
   const aabb<T> box = expand(transform_aabb(local_bounds, transform<T>{{}, frame.shape_rotation}), margin);
-  return collide_mesh(mesh, frame, box, T(1e-4) * least, flip, out,
+  return collide_mesh(mesh, frame, box, tolerances<T>::weld_fraction * least, flip, out,
                       [&](const mesh_triangle<T>& tri, contact_manifold<T>& m) {
                         collide_polyhedron_triangle(posed, tri, margin, m);
                       });

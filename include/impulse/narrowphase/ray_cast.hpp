@@ -98,6 +98,7 @@
 #include "../shapes/plane.hpp"
 #include "../shapes/sphere.hpp"
 #include "gjk.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -374,7 +375,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
   if (!prepare_ray(r, max_fraction, ur)) return out;
   // In double whatever T is, as GJK (gjk.hpp).
   using R = double;
-  constexpr R epsilon = sizeof(T) < sizeof(R) ? R(1e-7) : R(1e-12);
+  constexpr R epsilon = tolerances<T>::ray_gjk_tolerance;
   constexpr int max_iterations = 64;
   const vec3<R> o = wide(ur.origin), u = wide(ur.direction);
   const R radius = R(core_radius<T>(shape)) + R(grown);
@@ -424,7 +425,8 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
     // Around a core, |v| ≈ radius is not small, and its rounding (not the
     // tolerance) limits how closely x can be put at the radius: it steps on
     // to a few ulps of it, in about as many more iterations.
-    const R tolerance = (radius > R(0) ? R(8) * std::numeric_limits<R>::epsilon() : epsilon) * (std::sqrt(size2) + radius);
+    const R tolerance =
+        (radius > R(0) ? R(tolerances<T>::ray_rounded_tolerance) : epsilon) * (std::sqrt(size2) + radius);
     // x stands on the shape: inside the simplex (a tetrahedron round the
     // origin), or within the tolerance of the radius from the core.
     if (s.size == 4 || length(next) <= radius + tolerance) stands = true;
@@ -460,7 +462,7 @@ gjk_ray_cast_result<T> run_gjk_ray_cast(const ray<T>& r, const Shape& shape, con
       n = n / n_length;
       const vec3<R> p = wide(world_core_support(shape, pose, narrow<T>(n)));
       const R height = dot(n, x - s.a[0]), approach = dot(n, u);
-      const R face_tolerance = R(1e3) * R(scalar_traits<T>::epsilon) * size;
+      const R face_tolerance = tolerances<T>::ray_face_tolerance * size;
       if (dot(n, p - s.a[0]) <= face_tolerance && approach < R(0) && std::abs(height) <= length(v) + epsilon * size) {
         lambda = std::clamp(lambda - height / approach, R(0), max_distance);
         plane = n;

@@ -18,9 +18,9 @@
 
 #include <cstdint>
 
-#include "../math/scalar_traits.hpp"
 #include "../math/vec3.hpp"
 #include "analytic.hpp"
+#include "tolerances.hpp"
 
 namespace impulse::narrowphase {
 
@@ -51,7 +51,7 @@ triangle_point<T> closest_point_on_triangle(const vec3<T>& p, const vec3<T>& a, 
   // The face's area (twice, squared) decides whether there is a face at all.
   const T area2 = length_squared(cross(ab, ac));
   const T scale = length_squared(ab) * length_squared(ac);
-  if (!(area2 > T(64) * scalar_traits<T>::epsilon * scale) || !(scale > T(0))) {
+  if (!(area2 > tolerances<T>::degenerate_triangle * scale) || !(scale > T(0))) {
     // Degenerate: the nearest of the three edges.
     const auto on_edge = [&](const vec3<T>& from, const vec3<T>& to) {
       return detail::closest_point_on_segment(from, to, p);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../../math/vec3.hpp"
+#include "../tolerances.hpp"
 
 namespace impulse::narrowphase::detail {
 
@@ -56,7 +57,7 @@ void choose_by_quarter(const patch_point<T>* points, int count, const vec3<T>& u
   T spread = T(0);
   for (int c = 0; c < count; ++c)
     spread = std::max(spread, std::max(std::abs(dot(points[c].x - centre, u)), std::abs(dot(points[c].x - centre, v))));
-  const T dead_band = T(0.01) * spread;
+  const T dead_band = tolerances<T>::quarter_dead_band * spread;
   const auto quarter = [&](const vec3<T>& x) {
     return int(dot(x - centre, u) > dead_band) | (int(dot(x - centre, v) > dead_band) << 1);
   };
