@@ -10,7 +10,7 @@
 // order their ratio shows (1 for Euler and symplectic Euler, 2 for the
 // midpoint rule, 4 for RK4), in double so that RK4's error is not lost
 // under rounding. The RK4 run at 1/60 s is written, every half second and
-// coloured by speed, to out/compare_integrators.ipr.
+// colored by speed, to out/compare_integrators.ipr.
 //
 //   build/native/examples/compare_integrators
 #include <algorithm>
@@ -87,7 +87,7 @@ int main() {
               drag_rate, duration);
   std::printf("  %-17s %9s %9s %12s %12s %8s\n", "integrator", "ms 1/30", "ms 1/60", "error 1/30", "error 1/60",
               "order");
-  impulse::io::particle_recorder recording(impulse::io::colour_by::speed, 15);
+  impulse::io::particle_recorder recording(impulse::io::color_by::speed, 15);
   const bool ok = report<in::euler>("euler", 1) && report<in::symplectic_euler>("symplectic_euler", 1) &&
                   report<in::midpoint>("midpoint", 2) && report<in::rk4>("rk4", 4, &recording);
   std::printf("  each observed order within 0.3 of its theory: %s\n", ok ? "yes" : "NO");

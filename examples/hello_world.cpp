@@ -1,6 +1,6 @@
 // hello_world: a world, a ground and a box dropped from 4 m; prints the box's
 // height every third of a second and checks that it comes to rest on the
-// ground (its centre half a metre up, within 1 cm). The README's first program.
+// ground (its center half a metre up, within 1 cm). The README's first program.
 #include <cmath>
 #include <cstdio>
 
@@ -19,7 +19,7 @@ int main() {
   for (int step = 1; step <= 120; ++step) {
     world.step(1.0f / 60);
     const float y = world.shape_pose(box).position.y;
-    if (step % 20 == 0) std::printf("t = %.2f s  box centre at y = %.3f m\n", step / 60.0, y);
+    if (step % 20 == 0) std::printf("t = %.2f s  box center at y = %.3f m\n", step / 60.0, y);
   }
   return std::abs(world.shape_pose(box).position.y - 0.5f) < 0.01f ? 0 : 1;
 }

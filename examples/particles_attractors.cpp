@@ -57,7 +57,7 @@ int main() {
   // projection leaves, plane_collider::rounding_at(x); `worst` ≤ 1 is that promise.
   T worst = 0, deepest = 0;  // over the run, in budgets; this second, in m
   const int steps_per_second = int(std::lround(1 / dt));
-  impulse::io::particle_recorder recording(impulse::io::colour_by::speed, 8);
+  impulse::io::particle_recorder recording(impulse::io::color_by::speed, 8);
   for (int step = 1; step <= int(seconds) * steps_per_second; ++step) {
     const T t = T(lab.time());
     auto& f = lab.force<point_forces>();

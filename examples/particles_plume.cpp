@@ -57,7 +57,7 @@ int main() {
               "strength %.0f·t N·m²\n", plume.size(), double(radius), double(h), double(ramp));
   std::printf("   t   strength  pull below / g  lifted  predicted  slid in, m (mean)\n");
   double first_lift = -1;
-  impulse::io::particle_recorder recording(impulse::io::colour_by::speed, 8);
+  impulse::io::particle_recorder recording(impulse::io::color_by::speed, 8);
   for (int step = 0; step < 12 * 120; ++step) {
     const T strength = ramp * T(plume.time());
     plume.force<point_forces>().points[0].strength = strength;

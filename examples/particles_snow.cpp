@@ -40,7 +40,7 @@ int main() {
               double(expected));
   std::printf("   t   live  dropped  in air  on ground  drift speed (m/s)  spread (expect %.2f)  "
               "ground drift (m)\n", double(breeze.velocity.x * breeze.variation / std::sqrt(T(3))));
-  impulse::io::particle_recorder recording(impulse::io::colour_by::age);
+  impulse::io::particle_recorder recording(impulse::io::color_by::age);
   while (snow.time() < 60 - dt / 2) {
     snow.step(dt);
     if (std::lround(snow.time() / dt) % 12 == 0) recording.record(snow);  // 5 frames a second
@@ -48,7 +48,7 @@ int main() {
     if (step % 300 != 0) continue;
 
     // Drift of the flakes in the air (speed) and on the ground (distance:
-    // the cloud is centred on x = 0, so their mean x is how far they went,
+    // the cloud is centered on x = 0, so their mean x is how far they went,
     // about w·20 m / 1.96 m/s ≈ 20.4 m, plus a creep along the floor: the
     // wind's push in one step, dt·k·w/m, is undone at contact only as speed).
     const auto x = snow.positions();

@@ -18,7 +18,7 @@
 
 #include "impulse/io/gltf.hpp"
 #include "impulse/io/scene.hpp"
-#include "impulse/io/snapshot.hpp"
+#include "impulse/io/picture.hpp"
 
 using T = float;
 struct config : impulse::default_config {
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
     }
     if (seesaw_hit && !pictured && world.body(projectile).linear_velocity().y < 0) {
       pictured = true;
-      picture = impulse::io::snapshot(world, eye);
+      picture = impulse::io::render(world, eye);
       report("the ball is at the top of its flight (the picture)");
     }
     if (!in_cup && cup.holds(world.body(projectile).position)) {
@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   const bool saved = recording.save(out_file.c_str());
   std::printf("  wrote %s (%zu frames, %.1f MB)\n", out_file.c_str(), recording.frame_count(),
               double(recording.glb().size()) / 1e6);
-  if (!pictured) picture = impulse::io::snapshot(world, eye);
+  if (!pictured) picture = impulse::io::render(world, eye);
   const bool drawn = impulse::io::save_png(picture, picture_file);
   std::printf("  wrote %s (%d x %d)\n", picture_file.c_str(), picture.width, picture.height);
   return stays && lever_hit && seesaw_hit && saved && drawn ? 0 : 1;

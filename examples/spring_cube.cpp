@@ -1,12 +1,12 @@
 // spring_cube — a cube hanging from a spring at one corner: it swings,
-// turns as the corner drags it round, and settles with its centre straight
+// turns as the corner drags it round, and settles with its center straight
 // below the corner.
 //
 // The spring (k = 100 N/m, c = 2 N·s/m along the spring, rest length
 // 0.5 m) holds the corner (½, ½, ½) of a 1 kg unit cube from the anchor
 // (0, 3, 0); the cube starts at rest, unturned, off to one side. Air drag
 // (a force field evaluated at every RK4 stage) lets it settle. At rest the
-// spring is vertical and stretched by m·g/k, and the centre hangs √¾ below
+// spring is vertical and stretched by m·g/k, and the center hangs √¾ below
 // the corner: the program checks both and exits non-zero if either is off by
 // more than 1e-4. The first 20 s are written to out/spring_cube.glb.
 #include <cmath>
@@ -60,7 +60,7 @@ int main() {
 
   const cube_view view{system, cube};
   impulse::io::gltf_recorder recording(view);
-  std::printf("    t    centre (m)                  turned (deg)  |omega| (rad/s)  energy (J)\n");
+  std::printf("    t    center (m)                  turned (deg)  |omega| (rad/s)  energy (J)\n");
   const T dt = 1.0 / 120;
   for (int i = 0; i <= 60 * 120; ++i) {
     if (i % 600 == 0 || i == 30 || i == 120) {
@@ -82,7 +82,7 @@ int main() {
   const vec3<T> up = normalize(rotate(b.orientation, corner));
   const T position_error = length(b.position - expected);
   const T tilt = std::atan2(length(cross(up, vec3<T>{0, 1, 0})), up.y);
-  std::printf("equilibrium: centre off by %.2e m, corner-to-centre axis off vertical by %.2e rad\n", position_error,
+  std::printf("equilibrium: center off by %.2e m, corner-to-center axis off vertical by %.2e rad\n", position_error,
               tilt);
   const bool ok = position_error < 1e-4 && tilt < 1e-4 && saved;
   std::printf("%s\n", ok ? "ok" : "FAILED: the cube did not settle where statics says");

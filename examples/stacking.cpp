@@ -14,7 +14,7 @@
 
 #include "impulse/io/gltf.hpp"
 #include "impulse/io/scene.hpp"
-#include "impulse/io/snapshot.hpp"
+#include "impulse/io/picture.hpp"
 
 struct config : impulse::default_config {};
 using T = float;
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   const bool saved = recording.save(out_file.c_str());
   const std::string picture = out_file.substr(0, out_file.rfind('.')) + ".png";
   const impulse::io::camera<T> eye{.position = {4, 9, 22}, .target = {1.5, 4, 0}};
-  const bool drawn = impulse::io::save_png(impulse::io::snapshot(world, eye), picture);
+  const bool drawn = impulse::io::save_png(impulse::io::render(world, eye), picture);
   std::printf("  wrote %s and %s\n", out_file.c_str(), picture.c_str());
   // A stack that stands still: no box moves a centimetre, and all sleep.
   return drift < T(0.01) && asleep_at > 0 && saved && drawn ? 0 : 1;

@@ -9,7 +9,7 @@ Four headers, each a layer over one before it:
   impulse_io.hpp     #include "impulse.hpp", then the optional io headers that need
                      nothing but the standard library: io/gltf.hpp (recordings
                      for the viewer), io/particle_recording.hpp, io/shape_mesh.hpp,
-                     io/snapshot.hpp.
+                     io/picture.hpp.
   impulse_scene.hpp  #include "impulse_io.hpp", then io/scene.hpp (scene files),
                      which needs nlohmann-json: <nlohmann/json.hpp> stays a
                      system include, found on the include path.
@@ -64,11 +64,11 @@ LAYERS = [
         "impulse/io/gltf.hpp",
         "impulse/io/particle_recording.hpp",
         "impulse/io/shape_mesh.hpp",
-        "impulse/io/snapshot.hpp",
+        "impulse/io/picture.hpp",
     ], [
         "The optional io headers that need only the standard library: io/gltf.hpp",
         "(runs recorded as .glb for the viewer), io/particle_recording.hpp (.ipr),",
-        "io/shape_mesh.hpp and io/snapshot.hpp (PNG pictures). Includes the core",
+        "io/shape_mesh.hpp and io/picture.hpp (PNG pictures). Includes the core",
         "single header impulse.hpp, which must sit beside this file. Kept out of",
         "impulse.hpp so that a program that only steps a world does not parse them",
         "(<string>, <charconv>, the file writers).",

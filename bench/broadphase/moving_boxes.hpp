@@ -3,22 +3,22 @@
 // them draw for draw.
 //
 // Every scene draws from impulse::lcg32 seeded 2026, in the order written
-// below, in float; a step is dt = 1/60 s. Each box is drawn as its centre
+// below, in float; a step is dt = 1/60 s. Each box is drawn as its center
 // (x, y, z) then its half extents (x, y, z), then what the scene says.
 //
 // uniform     N boxes in the cube [0, L]³, L = 1.5·∛N m; half extents
 //             uniform in [0.1, 0.6] m (about one overlap per box). Then a
 //             draw u: if u < 0.25 the box stands still, else its velocity
 //             is uniform in [−2, 2]³ m/s, reflected at the cube's faces
-//             (a component is negated when the centre is outside [0, L]
+//             (a component is negated when the center is outside [0, L]
 //             and moving further out).
-// clustered   Eight cluster centres uniform in [0, 3L]³ drawn first; each box
-//             picks a cluster (next() % 8) and lies at its centre plus
+// clustered   Eight cluster centers uniform in [0, 3L]³ drawn first; each box
+//             picks a cluster (next() % 8) and lies at its center plus
 //             (a + b + c)·0.1·L per axis, a, b, c uniform in [−1, 1];
 //             sizes and motion as uniform, reflected at [0, 3L]³.
 // falling     A static ground box [−S/2 − 1, S/2 + 1] × [−1, 0] ×
 //  pile       [−S/2 − 1, S/2 + 1] (proxy 0), S = 0.7·√N m; then N − 1
-//             boxes with centres x, z uniform in [−S/2, S/2], half extents
+//             boxes with centers x, z uniform in [−S/2, S/2], half extents
 //             uniform in [0.2, 0.5] m, bottom at rest uniform in [1, 11] m
 //             and a landing height for the bottom uniform in [0, 1] m.
 //             Each falls from rest under 9.81 m/s² (symplectic Euler,
@@ -78,16 +78,16 @@ class moving_boxes {
     if (d == distribution::clustered)
       for (vec& c : clusters) c = random_vec(0, reach);
     for (int i = 0; i < n; ++i) {
-      vec centre;
+      vec center;
       if (d == distribution::clustered) {
         const vec& c = clusters[random_.next() % 8];
         const vec a = random_vec(-1, 1), b = random_vec(-1, 1), e = random_vec(-1, 1);
-        centre = c + (a + b + e) * (0.1f * L);
+        center = c + (a + b + e) * (0.1f * L);
       } else {
-        centre = random_vec(0, L);
+        center = random_vec(0, L);
       }
       const vec half = random_vec(0.1f, 0.6f);
-      boxes_.push_back({centre - half, centre + half});
+      boxes_.push_back({center - half, center + half});
       const bool still = uniform(0, 1) < 0.25f;
       bodies_.push_back({still ? vec{} : random_vec(-2, 2), 0, !still});
     }

@@ -16,7 +16,7 @@ import csv
 import sys
 from collections import defaultdict
 
-STYLE = {  # colour, line style
+STYLE = {  # color, line style
     "brute_force": ("black", ":"),
     "sweep_and_prune": ("tab:blue", "-"),
     "spatial_hash": ("tab:green", "-"),
@@ -54,8 +54,8 @@ def plot(us, algorithms, png_path):
             points = sorted(us.get((a, d), {}).items())
             if not points:
                 continue
-            colour, style = STYLE[a]
-            ax.loglog([n for n, _ in points], [t for _, t in points], style, color=colour, marker="o", label=a)
+            color, style = STYLE[a]
+            ax.loglog([n for n, _ in points], [t for _, t in points], style, color=color, marker="o", label=a)
         ax.set_title(d.replace("_", " "))
         ax.set_xlabel("moving boxes N")
         ax.grid(True, which="both", alpha=0.3)

@@ -7,7 +7,7 @@
 //   (c, −r, 0) m for column c and row r in 0..N−1; in row 0 the seven
 //   columns N/2 − 3 … N/2 + 3 are static, the rest dynamic.
 // - A ball joint from each body to the one above it (row r − 1) and to the
-//   one on its left (column c − 1), anchored midway between their centres:
+//   one on its left (column c − 1), anchored midway between their centers:
 //   2·N·(N − 1) joints (19 800). Joined bodies do not collide; the others
 //   do (friction 0.6, restitution 0).
 // - Gravity (0, −9.81, 0), dt = 1/60, no sleeping, no damping; 300 steps.

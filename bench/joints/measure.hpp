@@ -19,7 +19,7 @@ namespace joints_bench {
 struct result {
   double ms_per_step = 0;  ///< median of the last half of the steps
   double worst_gap = 0;    ///< m, the largest gap between a joint's anchors at the end
-  double lowest = 0;       ///< m, the lowest body's centre at the end
+  double lowest = 0;       ///< m, the lowest body's center at the end
   int moving = 0;          ///< bodies faster than 0.1 m/s at the end
 };
 

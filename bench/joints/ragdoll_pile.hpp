@@ -5,7 +5,7 @@
 // ragdoll, standing, in its own frame (y up, facing +z, so +x is its
 // left), 11 bodies:
 //
-//   body          shape, m                                   centre, m          mass, kg
+//   body          shape, m                                   center, m          mass, kg
 //   pelvis        box, half-extents (0.15, 0.10, 0.10)       (0, 0, 0)          10
 //   torso         box, half-extents (0.18, 0.25, 0.11)       (0, 0.35, 0)       20
 //   head          sphere, radius 0.11                        (0, 0.71, 0)       5
@@ -29,12 +29,12 @@
 // column (i, k), layer l (0..4) lies on its back: its frame is turned by
 // R = R_y(90°·(l mod 2))·R_x(−90°) and its pelvis placed at
 // (3·(i − 1.5), 0.5 + 0.5·l, 3·(k − 1.5)), so each layer crosses the one
-// below. The ground is a static box of half-extents (20, 0.5, 20) centred
+// below. The ground is a static box of half-extents (20, 0.5, 20) centered
 // at (0, −0.5, 0). Friction 0.6, restitution 0 everywhere; gravity
 // (0, −9.81, 0), dt = 1/60, no sleeping, no damping; 600 steps.
 // Measured: ms/step (median of the last 300 steps, the pile settled), the
 // largest gap between a joint's anchors at the end, the lowest body's
-// centre and the bodies still moving faster than 0.1 m/s.
+// center and the bodies still moving faster than 0.1 m/s.
 //
 // Bullet: as bench/joints/main.cpp says; balls as btPoint2PointConstraint,
 // hinges as btHingeConstraint with setLimit at its defaults (softness 0.9,
@@ -58,7 +58,7 @@ struct ragdoll_part {
   enum class shape_kind { box, sphere, capsule };
   shape_kind shape;
   double size[3];  ///< box: half-extents; sphere: radius; capsule: radius, half the segment
-  double centre[3];
+  double center[3];
   double mass;
 };
 
@@ -143,7 +143,7 @@ result run_ragdolls_impulse(const ragdoll_pile_spec& spec, bool exact = true) {
         const std::size_t first = bodies.size();
         for (const ragdoll_part& part : ragdoll_pile_spec::parts) {
           impulse::body_def<T> d;
-          d.pose.position = to_world(part.centre);
+          d.pose.position = to_world(part.center);
           d.pose.rotation = turn;
           d.mass = T(part.mass);
           d.material.friction = T(ragdoll_pile_spec::friction);
@@ -217,7 +217,7 @@ inline result run_ragdolls_bullet(const ragdoll_pile_spec& spec) {
           btVector3 inertia(0, 0, 0);
           shapes[n]->calculateLocalInertia(btScalar(part.mass), inertia);
           btRigidBody::btRigidBodyConstructionInfo info(btScalar(part.mass), nullptr, shapes[n].get(), inertia);
-          info.m_startWorldTransform = btTransform(turn, frame * v(part.centre));
+          info.m_startWorldTransform = btTransform(turn, frame * v(part.center));
           info.m_friction = friction;
           w.add_body(info);
         }

@@ -49,7 +49,7 @@
 // bench/scenes will time): the plane y = 0 (`collide` with a plane) and a
 // flat mesh of 100 × 100 one-metre squares (20 000 triangles, `collide`
 // with a triangle_mesh through its tree), each shape at a random spot and
-// turn, its lowest point up to half its depth below the centre into the
+// turn, its lowest point up to half its depth below the center into the
 // ground or above it (half overlapping). The reference is the exact
 // height of its lowest point.
 #include <algorithm>
@@ -330,16 +330,16 @@ shape_spec on_ground(shape_kind k, impulse::lcg32& random, double& lowest_height
   const world_core core = core_of(s);
   double lowest = core.vertices[0].y;
   for (const v3& v : core.vertices) lowest = std::min(lowest, v.y);
-  lowest -= core.radius;  // below the centre: < 0
-  // The centre stays above the ground (a mesh is one-sided): the lowest
-  // point from half its depth below the centre into the ground to as far
+  lowest -= core.radius;  // below the center: < 0
+  // The center stays above the ground (a mesh is one-sided): the lowest
+  // point from half its depth below the center into the ground to as far
   // above it.
   lowest_height = random.uniform(-0.5, 0.5) * -lowest;
   s.pose.position = {random.uniform(-45.0, 45.0), lowest_height - lowest, random.uniform(-45.0, 45.0)};
   return s;
 }
 
-/// The ground as a mesh: n × n one-metre squares centred on the origin.
+/// The ground as a mesh: n × n one-metre squares centered on the origin.
 template <class T>
 impulse::triangle_mesh<T> ground_mesh(int n) {
   std::vector<vec3<T>> vertices;

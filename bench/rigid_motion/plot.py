@@ -24,7 +24,7 @@ import statistics
 import sys
 from collections import defaultdict
 
-INTEGRATORS = {  # colour, marker, stages
+INTEGRATORS = {  # color, marker, stages
     "euler": ("tab:red", "o", 1),
     "symplectic_euler": ("tab:purple", "x", 1),
     "midpoint": ("tab:green", "o", 2),
@@ -69,12 +69,12 @@ def plot(series, out):
 
     fig, axes = plt.subplots(1, len(ERRORS), figsize=(14, 6.2))
     for ax, (column, (title, label)) in zip(axes, ERRORS.items()):
-        for integrator, (colour, marker, _) in INTEGRATORS.items():
+        for integrator, (color, marker, _) in INTEGRATORS.items():
             for scalar, style in SCALARS.items():
                 rows = [r for r in series.get((integrator, scalar), []) if 0 < r[column] < float("inf")]
                 ax.plot([r["ns_per_body_step"] * r["steps"] for r in rows], [r[column] for r in rows],
-                        style, color=colour, marker=marker, markersize=4, linewidth=1.4,
-                        markerfacecolor=colour if scalar == "double" else "white")
+                        style, color=color, marker=marker, markersize=4, linewidth=1.4,
+                        markerfacecolor=color if scalar == "double" else "white")
         ax.axhline(THRESHOLD, color="0.6", linewidth=0.8, linestyle=":")
         ax.set_xscale("log")
         ax.set_yscale("log")

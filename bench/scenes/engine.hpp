@@ -29,7 +29,7 @@ namespace bench::scenes {
 /// A body's state as an engine reports it after a step, in double whatever
 /// the engine's own scalar.
 struct body_state {
-  vec3 position;          ///< m, centre of mass
+  vec3 position;          ///< m, center of mass
   quat orientation;       ///< body to world
   vec3 linear_velocity;   ///< m/s
   vec3 angular_velocity;  ///< rad/s, world frame

@@ -8,8 +8,8 @@
 // scene's initial positions (scene_spec), which every engine starts from.
 //
 // Names and units of the values, per metric_set:
-//   pile            lowest_box_centre_y (m), boxes_below_y_0.45 (count),
-//                   highest_box_top_y (m: max centre y + 0.5),
+//   pile            lowest_box_center_y (m), boxes_below_y_0.45 (count),
+//                   highest_box_top_y (m: max center y + 0.5),
 //                   mean_column_top_y (m: mean over the 100 columns of the
 //                   highest box top in the column; a box belongs to the
 //                   column of the nearest grid (i, k)), bodies_awake,
@@ -17,24 +17,24 @@
 //   pyramid         max_abs_dx, max_abs_dy, max_abs_dz, max_displacement
 //                   (m, over all boxes), top_box_y (m), bodies_awake,
 //                   max_speed (m/s)
-//   spheres         escaped (count: centre outside |x|, |z| < 7.5 or below
-//                   y = 0), mean_height (m, of the centres), bodies_awake,
+//   spheres         escaped (count: center outside |x|, |z| < 7.5 or below
+//                   y = 0), mean_height (m, of the centers), bodies_awake,
 //                   max_speed (m/s)
-//   bounce          first_rebound_peak (m, centre y)
+//   bounce          first_rebound_peak (m, center y)
 //   incline_sliding acceleration (m/s²: down-slope speed at step 120 minus
 //                   at step 60, 1 s apart at dt = 1/60), speed_at_2s (m/s)
-//   incline_static  drift (m the centre moved by the last step, 5 s),
+//   incline_static  drift (m the center moved by the last step, 5 s),
 //                   final_speed (m/s)
 //   tower           top_horizontal_drift (m), top_height_lost (m: initial
-//                   top centre y − final)
-//   heavy_on_light  sinking_end, sinking_max (m: initial heavy centre y −
+//                   top center y − final)
+//   heavy_on_light  sinking_end, sinking_max (m: initial heavy center y −
 //                   its y, at the end and the largest over the run)
 //   cradle          last_ball_speed_ratio, first_ball_speed_ratio (final
 //                   speed over the first ball's initial speed),
 //                   kinetic_energy_ratio (final over initial)
 //
 // Column height: a settled column of ten unit boxes has its top face at
-// y = 10 and its top box's centre at 9.5 (the `pile` scene's "nominal 9.5"); the
+// y = 10 and its top box's center at 9.5 (the `pile` scene's "nominal 9.5"); the
 // two pile heights here are top faces, so their nominal value is 10.
 #pragma once
 
@@ -140,13 +140,13 @@ class metric_recorder {
     // A column with no box left in it counts as height 0 (the ground).
     std::array<double, L::side * L::side> column_top{};
     auto column = [](double coordinate) {
-      const long c = std::lround(coordinate / L::spacing + L::centre_offset);
+      const long c = std::lround(coordinate / L::spacing + L::center_offset);
       return static_cast<std::size_t>(std::clamp<long>(c, 0, L::side - 1));
     };
     for (std::size_t i : dynamic_) {
       const vec3& p = states[i].position;
       lowest = std::min(lowest, p.y);
-      below += p.y < 0.45 ? 1 : 0;  // a box resting on the ground has its centre at 0.5
+      below += p.y < 0.45 ? 1 : 0;  // a box resting on the ground has its center at 0.5
       const double top = p.y + L::half_extent;
       highest_top = std::max(highest_top, top);
       double& col = column_top[column(p.x) * L::side + column(p.z)];
@@ -154,7 +154,7 @@ class metric_recorder {
     }
     double sum = 0;
     for (double top : column_top) sum += top;
-    put("lowest_box_centre_y", lowest);
+    put("lowest_box_center_y", lowest);
     put("boxes_below_y_0.45", below);
     put("highest_box_top_y", highest_top);
     put("mean_column_top_y", sum / double(column_top.size()));
@@ -191,8 +191,8 @@ class metric_recorder {
     put_awake_and_speed(states);
   }
 
-  // The first rebound's peak: the highest centre after the ball first
-  // touches (centre below radius + 2 cm, or already moving up) and before
+  // The first rebound's peak: the highest center after the ball first
+  // touches (center below radius + 2 cm, or already moving up) and before
   // it comes back down to that height. Phases: falling, rebounding, done.
   // The ball has left the ground once it is above the touch height and
   // rising: at dt = 1/60 it arrives at 13.6 m/s, so the step that reverses

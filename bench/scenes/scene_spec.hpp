@@ -69,7 +69,7 @@ struct body_spec {
   vec3 half_extents;         ///< m, boxes only
   double radius = 0;         ///< m, spheres only
   bool is_static = false;    ///< static bodies never move and have no mass
-  vec3 position;             ///< m, centre of mass (= the shape's centre)
+  vec3 position;             ///< m, center of mass (= the shape's center)
   quat orientation;          ///< body to world
   vec3 linear_velocity;      ///< m/s at step 0
   double mass = 0;           ///< kg, dynamic bodies only; uniform density
@@ -89,13 +89,13 @@ struct scene_spec {
   metric_set metrics = metric_set::pile;
 };
 
-/// The `pile` grid: box (i, j, k) is centred at ((i − 4.5)·1.2, 1.0 + 1.2·j,
+/// The `pile` grid: box (i, j, k) is centered at ((i − 4.5)·1.2, 1.0 + 1.2·j,
 /// (k − 4.5)·1.2), i, j, k in 0..9. metrics.hpp uses the same numbers to
 /// tell which of the 100 columns a box ended in.
 struct pile_layout {
   static constexpr int side = 10;
   static constexpr double spacing = 1.2;  // m: 0.2 m gaps, so no initial overlap
-  static constexpr double centre_offset = 4.5;
+  static constexpr double center_offset = 4.5;
   static constexpr double first_y = 1.0;
   static constexpr double half_extent = 0.5;
 };
@@ -151,8 +151,8 @@ inline scene_spec make_pile(std::string_view name, bool sleeping) {
     for (int j = 0; j < L::side; ++j)
       for (int k = 0; k < L::side; ++k)
         s.bodies.push_back(make_box({h, h, h},
-                                    {(i - L::centre_offset) * L::spacing, L::first_y + L::spacing * j,
-                                     (k - L::centre_offset) * L::spacing},
+                                    {(i - L::center_offset) * L::spacing, L::first_y + L::spacing * j,
+                                     (k - L::center_offset) * L::spacing},
                                     1, m));
   return s;
 }
@@ -207,7 +207,7 @@ inline scene_spec make_spheres(std::string_view name, bool sleeping) {
   return s;
 }
 
-/// A ball dropped from centre height 10 onto the ground; the first rebound
+/// A ball dropped from center height 10 onto the ground; the first rebound
 /// peaks at 0.5 + e²·9.5 = 6.58 without losses. 240 steps (4 s) cover the
 /// fall (1.39 s), the rise (1.11 s) and the second descent to the ground.
 inline scene_spec make_bounce() {
@@ -218,7 +218,7 @@ inline scene_spec make_bounce() {
   return s;
 }
 
-/// No ground: a static slab, half extents (15, 0.5, 5), centred at the
+/// No ground: a static slab, half extents (15, 0.5, 5), centered at the
 /// origin and turned +30° about +z, so that its top face's normal is
 /// (−sin 30°, cos 30°, 0) and it descends toward −x. The box has the same
 /// turn and sits on the top face 5 m up-slope, at slab-local (5, 1, 0).
@@ -238,7 +238,7 @@ inline scene_spec make_incline(std::string_view name, double friction, int steps
   return s;
 }
 
-/// Ten unit boxes stacked exactly touching, centres y = 0.5 + k: a tall
+/// Ten unit boxes stacked exactly touching, centers y = 0.5 + k: a tall
 /// stack tests drift under many iterations' worth of accumulated error.
 inline scene_spec make_tower10() {
   const material m{0.6, 0};

@@ -26,7 +26,7 @@ PROBLEMS = {
     "projectile_drag": "projectile with linear drag  v' = g - 0.7v",
     "orbit": "circular orbit  μ = 4, r = 2",
 }
-INTEGRATORS = {  # colour, stages
+INTEGRATORS = {  # color, stages
     "euler": ("tab:red", 1),
     "symplectic_euler": ("tab:purple", 1),
     "midpoint": ("tab:green", 2),
@@ -61,16 +61,16 @@ def plot(series, out):
 
     fig, axes = plt.subplots(1, len(PROBLEMS), figsize=(17, 6), sharey=True)
     for ax, (problem, title) in zip(axes, PROBLEMS.items()):
-        for integrator, (colour, _) in INTEGRATORS.items():
+        for integrator, (color, _) in INTEGRATORS.items():
             for scalar, style in SCALARS.items():
                 rows = [r for r in series.get((problem, integrator, scalar), [])
                         if r["error"] > 0 and r["error"] < float("inf")]
                 if not rows:
                     continue
                 ax.plot([r["ns"] * r["steps"] for r in rows], [r["error"] for r in rows],
-                        style, color=colour, marker="o" if scalar == "double" else "s",
+                        style, color=color, marker="o" if scalar == "double" else "s",
                         markersize=3.5, linewidth=1.4,
-                        markerfacecolor=colour if scalar == "double" else "white")
+                        markerfacecolor=color if scalar == "double" else "white")
         for threshold in THRESHOLDS:
             ax.axhline(threshold, color="0.6", linewidth=0.8, linestyle=":")
         ax.set_xscale("log")

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "core/aligned_array.hpp"
-#include "core/assert.hpp"
+#include "core/detail/assert.hpp"
 #include "core/batch.hpp"
 #include "core/error.hpp"
 #include "core/fwd.hpp"

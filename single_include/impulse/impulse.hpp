@@ -251,8 +251,8 @@ consteval bool check_config() {
 // std::sqrt is not constexpr in C++20.
 
 
-// ---- begin impulse/core/assert.hpp ----
-// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
+// ---- begin impulse/core/detail/assert.hpp ----
+// impulse/core/detail/assert.hpp — internal assertions for preconditions the caller owns.
 //
 // IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
 // to normalize, an index in range). It is on in debug builds and compiled out
@@ -279,7 +279,7 @@ namespace impulse::detail {
   ((expression) ? static_cast<void>(0)                                               \
                 : ::impulse::detail::assertion_failed(#expression, __FILE__, __LINE__))
 #endif
-// ---- end impulse/core/assert.hpp ----
+// ---- end impulse/core/detail/assert.hpp ----
 // ---- begin impulse/math/scalar_traits.hpp ----
 // impulse/math/scalar_traits.hpp — tolerances per scalar type, in one place.
 //
@@ -1323,8 +1323,8 @@ consteval bool check_broad_phase() {
 // bookkeeping of the others costs more than the tests it saves.
 
 
-// ---- begin impulse/broadphase/pair_tracker.hpp ----
-// impulse/broadphase/pair_tracker.hpp — the overlapping pairs after an
+// ---- begin impulse/broadphase/detail/pair_tracker.hpp ----
+// impulse/broadphase/detail/pair_tracker.hpp — the overlapping pairs after an
 // update, and what changed since the one before.
 //
 // Every broad phase reports the whole current set of pairs, sorted, plus
@@ -1406,9 +1406,9 @@ class pair_tracker {
 };
 
 }  // namespace impulse::broadphase::detail
-// ---- end impulse/broadphase/pair_tracker.hpp ----
-// ---- begin impulse/broadphase/proxy_store.hpp ----
-// impulse/broadphase/proxy_store.hpp — the proxies themselves, checked.
+// ---- end impulse/broadphase/detail/pair_tracker.hpp ----
+// ---- begin impulse/broadphase/detail/proxy_store.hpp ----
+// impulse/broadphase/detail/proxy_store.hpp — the proxies themselves, checked.
 //
 // Every broad phase keeps its proxies' boxes and user data here, in dense
 // arrays under stable ids (core/slot_map.hpp), and refuses bad input at the
@@ -1473,7 +1473,7 @@ class proxy_store {
 };
 
 }  // namespace impulse::broadphase::detail
-// ---- end impulse/broadphase/proxy_store.hpp ----
+// ---- end impulse/broadphase/detail/proxy_store.hpp ----
 
 namespace impulse::broadphase {
 
@@ -2214,20 +2214,20 @@ struct dynamic_bvh {
 // ---- end impulse/broadphase/dynamic_bvh.hpp ----
 // ---- begin impulse/broadphase/octree.hpp ----
 // impulse/broadphase/octree.hpp — a loose octree: each box filed by its size
-// and its centre, kept as a sorted array of occupied cells (a linear octree).
+// and its center, kept as a sorted array of occupied cells (a linear octree).
 //
 // Ulrich, "Loose Octrees", Game Programming Gems (2000); Ericson, Real-Time
 // Collision Detection (2005) §7.3 (octrees: linear, hash-based octrees,
 // Morton keys, loose octrees). The root is a cube of edge e_0 (a power of two); a node at depth
 // d is one of the 8^d cells of edge e_d = e_0 / 2^d, and its *loose* box is
 // the cell grown by half its edge on every side (looseness k = 2: twice the
-// cell's edge). A box whose centre lies in a cell and whose largest extent
+// cell's edge). A box whose center lies in a cell and whose largest extent
 // is at most e_d lies inside that cell's loose box, so every box is filed,
 // without any search, in the cell of depth
 //
 //     d = min(max_depth, floor(log2(e_0 / largest extent)))
 //
-// that holds its centre. Small boxes sink deep, big ones stay near the
+// that holds its center. Small boxes sink deep, big ones stay near the
 // root, and a box that moves a little keeps its cell: coherent motion costs
 // one key computation and no list surgery.
 //
@@ -2271,7 +2271,7 @@ struct dynamic_bvh {
 // 2^(max_depth + 4) rounding steps of the farthest coordinate, so every cell
 // corner, and every loose box, is exact in T, 1e5 m from the origin as at
 // it. A box is filed only where the loose box computed by loose_box()
-// contains it (should rounding of its centre say otherwise, one level up);
+// contains it (should rounding of its center say otherwise, one level up);
 // the pair search enumerates cells with a margin that covers its own
 // rounding; and pruning a query or a ray by a box that contains the
 // proxy's box never loses a hit, because comparisons and the slab test are
@@ -2523,19 +2523,19 @@ class basic_octree {
   // ---- filing ------------------------------------------------------------
 
   /// The cell a box belongs in: depth from its size, position from its
-  /// centre; then, should rounding leave the box a hair outside that cell's
+  /// center; then, should rounding leave the box a hair outside that cell's
   /// loose box, the nearest ancestor whose loose box holds it.
   cell cell_for(const aabb<T>& b) const noexcept {
     const T size = std::max({b.upper.x - b.lower.x, b.upper.y - b.lower.y, b.upper.z - b.lower.z});
     int d = max_depth_;
     while (d > 0 && edge_[d] < size) --d;
-    const T centre[3] = {(b.lower.x + b.upper.x) * T(0.5), (b.lower.y + b.upper.y) * T(0.5),
+    const T center[3] = {(b.lower.x + b.upper.x) * T(0.5), (b.lower.y + b.upper.y) * T(0.5),
                          (b.lower.z + b.upper.z) * T(0.5)};
     const T corner[3] = {root_lower_.x, root_lower_.y, root_lower_.z};
     const T last = T((std::uint32_t(1) << d) - 1);
     cell c{d, {}};
     for (int a = 0; a < 3; ++a)
-      c.xyz[a] = std::uint32_t(std::clamp(std::floor((centre[a] - corner[a]) * inverse_edge_[d]), T(0), last));
+      c.xyz[a] = std::uint32_t(std::clamp(std::floor((center[a] - corner[a]) * inverse_edge_[d]), T(0), last));
     while (c.depth > 0 && !impulse::contains(loose_box(c), b)) {
       --c.depth;
       for (auto& x : c.xyz) x >>= 1;
@@ -3592,7 +3592,7 @@ struct spatial_hash {
 // The grid is chosen from the boxes when the regions are built: about one
 // region per `boxes_per_region` boxes (64 unless given: 64 to 128 were the
 // fastest on the benchmark's scenes at 10 000 and 100 000), cut along the
-// axes where the boxes' centres spread most, no cell thinner than twice the
+// axes where the boxes' centers spread most, no cell thinner than twice the
 // boxes' mean extent there. It is built afresh when the number of boxes
 // has doubled or fallen to a quarter since, so that it follows a world as
 // it grows (bodies added a few a frame) at O(n log n) amortised; boxes that
@@ -4520,14 +4520,14 @@ class basic_sweep_and_prune {
         live_.push_back(h);
       }
     }
-    // The centres' bounds and the boxes' mean extent, per axis.
+    // The centers' bounds and the boxes' mean extent, per axis.
     aabb<T> bounds{vec3<T>::splat(std::numeric_limits<T>::max()), vec3<T>::splat(std::numeric_limits<T>::lowest())};
     vec3<T> mean_extent{};
     for (const std::uint32_t h : live_) {
       const aabb<T>& box = store_.box(handles_[h].id);
-      const vec3<T> centre = (box.lower + box.upper) * T(0.5);
-      bounds.lower = min(bounds.lower, centre);
-      bounds.upper = max(bounds.upper, centre);
+      const vec3<T> center = (box.lower + box.upper) * T(0.5);
+      bounds.lower = min(bounds.lower, center);
+      bounds.upper = max(bounds.upper, center);
       mean_extent += (box.upper - box.lower) / T(live_.size());
     }
     // Cut the longest cell in two … until there are enough regions or no
@@ -5342,7 +5342,7 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 // impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
 //
 // The state is Baraff's ("Physically Based Modeling: Rigid Body Dynamics",
-// SIGGRAPH 2001 course notes): the position x of the centre of mass, the
+// SIGGRAPH 2001 course notes): the position x of the center of mass, the
 // orientation quaternion q, the linear momentum P and the angular momentum
 // L, all in world space. Velocities are derived, v = P/m and ω = I_w⁻¹·L
 // with I_w⁻¹ = R·I_body⁻¹·Rᵀ. Keeping L rather than ω is what makes free
@@ -5351,15 +5351,15 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 //
 // A body is static (never moves, infinite mass), kinematic (moves as told,
 // infinite mass: contacts do not push it) or dynamic. Loads accumulate in
-// `force` and `torque` (about the centre of mass) until the step consumes
+// `force` and `torque` (about the center of mass) until the step consumes
 // them; impulses change the momenta at once.
 
 
 // ---- begin impulse/shapes/mass_properties.hpp ----
-// impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
+// impulse/shapes/mass_properties.hpp — mass, center of mass and inertia of solids.
 //
 // mass_properties holds what a rigid body needs of its shape: the mass, the
-// centre of mass in shape space, and the inertia tensor about that centre.
+// center of mass in shape space, and the inertia tensor about that center.
 // Closed forms for the primitive solids live with each shape; this file has
 // the general polyhedron (Eberly, "Polyhedral Mass Properties (Revisited)",
 // 2002, a streamlined form of Mirtich's surface integrals, JGT 1996), the
@@ -5372,7 +5372,7 @@ namespace impulse {
 template <scalar_type T>
 struct mass_properties {
   T mass = T(0);              ///< kg
-  vec3<T> center{};           ///< centre of mass, m, in shape space
+  vec3<T> center{};           ///< center of mass, m, in shape space
   mat3<T> inertia{};          ///< kg·m², about `center`, shape-space axes
 };
 
@@ -5392,7 +5392,7 @@ mat3<T> point_inertia(T m, const vec3<T>& r) noexcept {
 
 }  // namespace detail
 
-/// The same body's inertia about a point `offset` away from its centre of
+/// The same body's inertia about a point `offset` away from its center of
 /// mass (parallel-axis theorem, in tensor form).
 template <scalar_type T>
 mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcept {
@@ -5400,14 +5400,14 @@ mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcep
 }
 
 /// The part placed in its parent's space by a rotation (as a matrix) and a
-/// translation: centre moved, inertia rotated to R·I·Rᵀ.
+/// translation: center moved, inertia rotated to R·I·Rᵀ.
 template <scalar_type T>
 mass_properties<T> transformed(const mass_properties<T>& p, const mat3<T>& rotation, const vec3<T>& translation) noexcept {
   return {p.mass, rotation * p.center + translation, rotation * p.inertia * transpose(rotation)};
 }
 
-/// Two parts as one body: masses add, the centre is the mass-weighted mean,
-/// and each part's inertia is carried to the common centre.
+/// Two parts as one body: masses add, the center is the mass-weighted mean,
+/// and each part's inertia is carried to the common center.
 template <scalar_type T>
 mass_properties<T> combine(const mass_properties<T>& a, const mass_properties<T>& b) noexcept {
   mass_properties<T> sum;
@@ -5502,15 +5502,15 @@ struct rigid_body {
   body_type type = body_type::dynamic;
 
   // ---- state (world space) ----
-  vec3<T> position{};                          ///< centre of mass, m
+  vec3<T> position{};                          ///< center of mass, m
   quat<T> orientation = quat<T>::identity();   ///< body to world, unit
   vec3<T> linear_momentum{};                   ///< P, kg·m/s
-  vec3<T> angular_momentum{};                  ///< L about the centre of mass, kg·m²/s
+  vec3<T> angular_momentum{};                  ///< L about the center of mass, kg·m²/s
 
   // ---- constants (body space) ----
   T mass = T(1);                                        ///< kg; infinite for static and kinematic
   T inverse_mass = T(1);                                ///< 1/kg; 0 for static and kinematic
-  mat3<T> inertia = mat3<T>::identity();                ///< I_body about the centre of mass, kg·m²
+  mat3<T> inertia = mat3<T>::identity();                ///< I_body about the center of mass, kg·m²
   mat3<T> inverse_inertia = mat3<T>::identity();        ///< I_body⁻¹; zero for static and kinematic
 
   // ---- kinematic bodies move at a set velocity (they have no momentum) ----
@@ -5518,11 +5518,11 @@ struct rigid_body {
   vec3<T> kinematic_angular_velocity{};  ///< rad/s, world
 
   // ---- accumulated loads, cleared by each step ----
-  vec3<T> force{};   ///< N, through the centre of mass
-  vec3<T> torque{};  ///< N·m, about the centre of mass
+  vec3<T> force{};   ///< N, through the center of mass
+  vec3<T> torque{};  ///< N·m, about the center of mass
 
   /// A dynamic body with the given mass properties (from a shape's
-  /// mass_properties_of, or the user's own) placed with its centre of mass
+  /// mass_properties_of, or the user's own) placed with its center of mass
   /// at `pose`. Refuses a non-positive or non-finite mass and an inertia
   /// that is not symmetric positive definite.
   static rigid_body dynamic(const mass_properties<T>& p, const transform<T>& pose = transform<T>::identity()) {
@@ -5555,9 +5555,9 @@ struct rigid_body {
     orientation = pose.rotation;
   }
 
-  /// Mass and body-space inertia about the centre of mass. The centre of
+  /// Mass and body-space inertia about the center of mass. The center of
   /// mass in `p` is where the shape's origin sits relative to it; the body
-  /// keeps positions of its centre of mass, so a shape whose centre is off
+  /// keeps positions of its center of mass, so a shape whose center is off
   /// its origin (a hull) is offset by the caller.
   void set_mass_properties(const mass_properties<T>& p) {
     if (!std::isfinite(p.mass)) detail::report_error(error_code::non_finite, "rigid_body: mass is not finite");
@@ -5669,7 +5669,7 @@ struct rigid_body {
     require_finite(p, "rigid_body: point is not finite");
     const vec3<T> total_force = force + f, total_torque = torque + cross(p - position, f);
     require_finite(total_force, "rigid_body: the force overflows the forces already applied this step");
-    require_finite(total_torque, "rigid_body: the force's moment about the centre of mass overflows");
+    require_finite(total_torque, "rigid_body: the force's moment about the center of mass overflows");
     force = total_force;
     torque = total_torque;
   }
@@ -5698,7 +5698,7 @@ struct rigid_body {
 
 namespace impulse {
 
-/// The position part of a body's state: where its centre of mass is and how
+/// The position part of a body's state: where its center of mass is and how
 /// it is turned. Adds and scales as an element of R³ × R⁴.
 template <scalar_type T>
 struct body_pose {
@@ -5714,7 +5714,7 @@ struct body_pose {
 };
 
 /// The momentum part: linear momentum P (kg·m/s) and angular momentum L
-/// about the centre of mass (kg·m²/s), world space. Its rate is the wrench.
+/// about the center of mass (kg·m²/s), world space. Its rate is the wrench.
 template <scalar_type T>
 struct body_momentum {
   vec3<T> linear{};
@@ -5728,7 +5728,7 @@ struct body_momentum {
   }
 };
 
-/// A force (N) through the centre of mass and a torque (N·m) about it.
+/// A force (N) through the center of mass and a torque (N·m) about it.
 template <scalar_type T>
 struct wrench {
   vec3<T> force{};
@@ -5751,7 +5751,7 @@ struct body_kinematics {
   vec3<T> linear_velocity{};
   vec3<T> angular_velocity{};  ///< world, rad/s
 
-  /// World position of a body-space point (relative to the centre of mass).
+  /// World position of a body-space point (relative to the center of mass).
   [[nodiscard]] constexpr vec3<T> point(const vec3<T>& local) const noexcept { return position + rotation * local; }
   /// Velocity of the material point at world position p: v + ω × (p − x).
   [[nodiscard]] constexpr vec3<T> velocity_at(const vec3<T>& p) const noexcept {
@@ -5848,7 +5848,7 @@ namespace impulse {
 template <scalar_type T>
 struct body_spring {
   body_id body_a{};       ///< the body at end a
-  vec3<T> point_a{};      ///< end a in body_a's space, relative to its centre of mass, m
+  vec3<T> point_a{};      ///< end a in body_a's space, relative to its center of mass, m
   body_id body_b{};       ///< the body at end b, or none: point_b is a world anchor
   vec3<T> point_b{};      ///< end b in body_b's space, or the world anchor, m
   T stiffness = T(0);     ///< k, N/m, ≥ 0
@@ -5901,8 +5901,8 @@ template <scalar_type T>
 
 }  // namespace impulse
 // ---- end impulse/dynamics/body_spring.hpp ----
-// ---- begin impulse/dynamics/constraint_parts.hpp ----
-// impulse/dynamics/constraint_parts.hpp — the pieces every joint is built
+// ---- begin impulse/dynamics/detail/constraint_parts.hpp ----
+// impulse/dynamics/detail/constraint_parts.hpp — the pieces every joint is built
 // from: a point held to a point, a rotation held to a rotation, and a single
 // row along a line or about an axis.
 //
@@ -6058,8 +6058,8 @@ struct tolerances {
   /// distances: written out, since 1e-3 squared in float is not the float
   /// nearest 1e-6.
   static constexpr T collinear_fraction_squared = T(1e-6);
-  /// Half-width of the band across a clipped patch's centre, as a fraction
-  /// of the patch's spread (its points' largest offset from the centre
+  /// Half-width of the band across a clipped patch's center, as a fraction
+  /// of the patch's spread (its points' largest offset from the center
   /// along the face's axes; relative), inside which a point counts as on
   /// the negative side when its quarter is chosen (detail/clipping.hpp), so
   /// that the two ends of a line of contact do not toss between quarters,
@@ -6077,7 +6077,7 @@ struct tolerances {
   /// a triangle is supported by the triangle's face, not by the corner that
   /// rounding puts an ulp higher, which would be an internal feature.
   static constexpr T feature_fraction = T(1e-4);
-  /// A sphere's centre or a capsule's core closer than this fraction of
+  /// A sphere's center or a capsule's core closer than this fraction of
   /// the radius (relative) to a triangle lies on it: the direction between
   /// them is rounding, and the triangle's face normal is taken instead
   /// (mesh.hpp).
@@ -6241,7 +6241,7 @@ namespace impulse {
 /// A body during one solve: its velocities and what moves them.
 template <scalar_type T>
 struct solver_body {
-  vec3<T> position{};                         ///< centre of mass, m
+  vec3<T> position{};                         ///< center of mass, m
   quat<T> orientation = quat<T>::identity();  ///< unit
   vec3<T> linear_velocity{};   ///< m/s
   vec3<T> angular_velocity{};  ///< rad/s, world
@@ -6273,7 +6273,7 @@ struct manifold_impulse {
 /// One point's normal row.
 template <scalar_type T>
 struct contact_constraint_point {
-  vec3<T> offset_a{};  ///< from A's centre of mass to the point, m
+  vec3<T> offset_a{};  ///< from A's center of mass to the point, m
   vec3<T> offset_b{};
   // The normal row's angular Jacobians, r × n, and what they do to each
   // body's spin, I⁻¹·(r × n): worked out once per step, so that an
@@ -6318,7 +6318,7 @@ struct contact_constraint {
   T restitution = T(0);
   int count = 0;
   contact_constraint_point<T> points[contact_manifold<T>::capacity];
-  vec3<T> anchor_a{};  ///< from A's centre of mass to the middle of the patch, m
+  vec3<T> anchor_a{};  ///< from A's center of mass to the middle of the patch, m
   vec3<T> anchor_b{};
   /// The inverse of the 2×2 effective mass of the tangent rows, kg: the
   /// rows share the bodies' rotation, and solved one by one they would
@@ -6328,7 +6328,7 @@ struct contact_constraint {
   T twist_radius = T(0);  ///< m: the lever of the patch's friction about its middle
   /// The relative velocity along each tangent the friction rows hold the
   /// patch at, m/s: not 0 but what cancels the bodies' curving over the
-  /// step (world/solve.hpp says why), so that a box stuck to a turning
+  /// step (world/detail/solve.hpp says why), so that a box stuck to a turning
   /// platform stays where it is on it.
   T slip_target1 = T(0), slip_target2 = T(0);
   T tangent_impulse1 = T(0), tangent_impulse2 = T(0);  ///< N·s
@@ -6577,9 +6577,9 @@ struct rotation_part {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/constraint_parts.hpp ----
-// ---- begin impulse/dynamics/contact_rows.hpp ----
-// impulse/dynamics/contact_rows.hpp — what both contact solvers do with a
+// ---- end impulse/dynamics/detail/constraint_parts.hpp ----
+// ---- begin impulse/dynamics/detail/contact_rows.hpp ----
+// impulse/dynamics/detail/contact_rows.hpp — what both contact solvers do with a
 // contact constraint's rows: work out their masses, carry impulses over,
 // bounce, and solve friction at the patch.
 //
@@ -6770,9 +6770,9 @@ void solve_friction(solver_body<T>& a, solver_body<T>& b, contact_constraint<T>&
 }
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/contact_rows.hpp ----
-// ---- begin impulse/dynamics/island.hpp ----
-// impulse/dynamics/island.hpp — islands: the groups of bodies that touch,
+// ---- end impulse/dynamics/detail/contact_rows.hpp ----
+// ---- begin impulse/dynamics/detail/island.hpp ----
+// impulse/dynamics/detail/island.hpp — islands: the groups of bodies that touch,
 // directly or through others, and so must wake and sleep together.
 //
 // Union–find with path halving and union by size (Tarjan 1975): rebuilding
@@ -6813,7 +6813,7 @@ class union_find {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/island.hpp ----
+// ---- end impulse/dynamics/detail/island.hpp ----
 // ---- begin impulse/dynamics/joint.hpp ----
 // impulse/dynamics/joint.hpp — joints between two bodies: ball-and-socket,
 // hinge, slider, fixed (weld) and distance (rigid or a spring), each made of
@@ -6956,7 +6956,7 @@ struct joint_constraint {
   std::uint32_t body_a = 0, body_b = 0;  ///< places in the solver's body array
 
   // ---- the joint, fixed at creation ----
-  vec3<T> local_anchor_a{}, local_anchor_b{};  ///< from each centre of mass, body frame, m
+  vec3<T> local_anchor_a{}, local_anchor_b{};  ///< from each center of mass, body frame, m
   vec3<T> local_axis_a{T(1), T(0), T(0)};      ///< unit, A's frame
   quat<T> reference = quat<T>::identity();      ///< B's orientation in A's frame at creation
   bool enable_limit = false, enable_motor = false;
@@ -7044,7 +7044,7 @@ void prepare_joint(std::span<const solver_body<T>> bodies, joint_constraint<T>& 
       j.axis = rotate(a.orientation, j.local_axis_a);
       tangents_of(j.axis, j.across_axis[0], j.across_axis[1]);
       // A's end of each row is where B's anchor is: the line turns with A
-      // about A's centre, so A's lever reaches B's anchor.
+      // about A's center, so A's lever reaches B's anchor.
       const vec3<T> reach = ra + j.separation;
       for (int i = 0; i < 2; ++i) {
         j.across[i].prepare_linear(a, b, reach, rb, j.across_axis[i]);
@@ -7491,7 +7491,7 @@ struct no_force_field {};
 }  // namespace detail
 
 /// A force model evaluated per body at every integrator stage:
-/// field(id, kinematics) -> wrench (force through the centre of mass and
+/// field(id, kinematics) -> wrench (force through the center of mass and
 /// torque about it). It must not change the system.
 template <class F, class T>
 concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||
@@ -7941,9 +7941,9 @@ IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_double_config);
 //    or shallower than the rest depth may sink to that depth within the
 //    step but no further (solver_settings.hpp, rest_depth, says why not to
 //    zero). The manifolds are
-//    visited colour by colour, W that share no moving body at a time in
+//    visited color by color, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
-//    colour could take is solved alone after them.
+//    color could take is solved alone after them.
 // 5. Position pass (split impulses; Catto's "Box2D: the position problem",
 //    Bullet's split impulse): the normal rows once more on separate
 //    pseudo-velocities, pushing penetration beyond the slop out at a
@@ -7963,25 +7963,25 @@ IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_double_config);
 // pseudo-velocities, by its integrator policy.
 
 
-// ---- begin impulse/dynamics/constraint_graph.hpp ----
-// impulse/dynamics/constraint_graph.hpp — contacts coloured so that no two
-// of one colour move the same body, and cut into batches of W.
+// ---- begin impulse/dynamics/detail/constraint_graph.hpp ----
+// impulse/dynamics/detail/constraint_graph.hpp — contacts colored so that no two
+// of one color move the same body, and cut into batches of W.
 //
 // Gauss–Seidel solves one row after another because each row reads the
 // velocities the last one wrote. Rows that share no moving body do not
 // read each other's writes, so they can be solved together, one per SIMD
 // lane, and give the answer the one-by-one sweep would in some order.
-// Greedy colouring of the contact graph finds such sets (Catto, "Solver2D"
+// Greedy coloring of the contact graph finds such sets (Catto, "Solver2D"
 // and Box2D v3's constraint_graph.c; Tonge, "Iterative Rigid Body
-// Solvers", GDC 2012): each contact takes the lowest colour neither of its
+// Solvers", GDC 2012): each contact takes the lowest color neither of its
 // bodies has yet. Static and kinematic bodies do not count: the solver
 // never changes their velocities, so any number of lanes may read them.
-// The colours are then solved one after another, each batch of W contacts
-// of one colour as W lanes.
+// The colors are then solved one after another, each batch of W contacts
+// of one color as W lanes.
 //
-// The order of the sweep is colour by colour rather than the contacts'
-// own order; a tower's contacts alternate between two colours, so the
-// sweep goes over every other contact and then over the rest. Colouring
+// The order of the sweep is color by color rather than the contacts'
+// own order; a tower's contacts alternate between two colors, so the
+// sweep goes over every other contact and then over the rest. Coloring
 // is a function of the contact order alone: the same contacts give the
 // same batches, and a run stays deterministic.
 
@@ -7989,45 +7989,45 @@ IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_double_config);
 
 namespace impulse::detail {
 
-/// Contacts in colour order, cut into batches that share no moving body.
+/// Contacts in color order, cut into batches that share no moving body.
 class constraint_graph {
  public:
-  /// Colours past this many (a body touching more than 64 others) are
+  /// Colors past this many (a body touching more than 64 others) are
   /// left over and solved one by one after the batches.
-  static constexpr int max_colours = 64;
+  static constexpr int max_colors = 64;
 
   /// Batches of at most `width` contacts. A body moves under impulses
   /// when its inverse mass is not zero.
   template <scalar_type T>
   void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts, int width) {
     used_.assign(bodies.size(), 0);
-    colour_of_.resize(contacts.size());
-    std::uint32_t counts[max_colours + 1] = {};
+    color_of_.resize(contacts.size());
+    std::uint32_t counts[max_colors + 1] = {};
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
       const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
       const std::uint64_t taken = (moves_a ? used_[a] : 0) | (moves_b ? used_[b] : 0);
-      const int colour = taken == ~std::uint64_t(0) ? max_colours : std::countr_zero(~taken);
-      if (colour < max_colours) {
-        const std::uint64_t bit = std::uint64_t(1) << colour;
+      const int color = taken == ~std::uint64_t(0) ? max_colors : std::countr_zero(~taken);
+      if (color < max_colors) {
+        const std::uint64_t bit = std::uint64_t(1) << color;
         if (moves_a) used_[a] |= bit;
         if (moves_b) used_[b] |= bit;
       }
-      colour_of_[i] = std::uint8_t(colour);
-      ++counts[colour];
+      color_of_[i] = std::uint8_t(color);
+      ++counts[color];
     }
-    // Counting sort by colour: within a colour the contacts keep their order.
-    std::uint32_t start[max_colours + 2] = {};
-    for (int c = 0; c <= max_colours; ++c) start[c + 1] = start[c] + counts[c];
+    // Counting sort by color: within a color the contacts keep their order.
+    std::uint32_t start[max_colors + 2] = {};
+    for (int c = 0; c <= max_colors; ++c) start[c + 1] = start[c] + counts[c];
     order_.resize(contacts.size());
-    std::uint32_t next[max_colours + 1];
-    for (int c = 0; c <= max_colours; ++c) next[c] = start[c];
-    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[colour_of_[i]]++] = std::uint32_t(i);
+    std::uint32_t next[max_colors + 1];
+    for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
+    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[color_of_[i]]++] = std::uint32_t(i);
     batch_starts_.clear();
-    for (int c = 0; c < max_colours; ++c)
+    for (int c = 0; c < max_colors; ++c)
       for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
-    batch_starts_.push_back(start[max_colours]);
-    leftover_start_ = start[max_colours];
+    batch_starts_.push_back(start[max_colors]);
+    leftover_start_ = start[max_colors];
   }
 
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
@@ -8035,23 +8035,23 @@ class constraint_graph {
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(batch_starts_[k], batch_starts_[k + 1] - batch_starts_[k]);
   }
-  /// Contacts no colour could take.
+  /// Contacts no color could take.
   [[nodiscard]] std::span<const std::uint32_t> leftover() const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(leftover_start_);
   }
 
  private:
-  std::vector<std::uint64_t> used_;      // per body: the colours its contacts have
-  std::vector<std::uint8_t> colour_of_;  // per contact
-  std::vector<std::uint32_t> order_;     // contacts by colour
+  std::vector<std::uint64_t> used_;      // per body: the colors its contacts have
+  std::vector<std::uint8_t> color_of_;  // per contact
+  std::vector<std::uint32_t> order_;     // contacts by color
   std::vector<std::uint32_t> batch_starts_;
   std::uint32_t leftover_start_ = 0;
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/constraint_graph.hpp ----
-// ---- begin impulse/dynamics/contact_batch.hpp ----
-// impulse/dynamics/contact_batch.hpp — W contacts that share no moving body,
+// ---- end impulse/dynamics/detail/constraint_graph.hpp ----
+// ---- begin impulse/dynamics/detail/contact_batch.hpp ----
+// impulse/dynamics/detail/contact_batch.hpp — W contacts that share no moving body,
 // solved together as the W lanes of SIMD batches.
 //
 // The rows are those of contact_rows.hpp (a normal row per point, friction
@@ -8139,7 +8139,7 @@ batch<T, W> length(const vec3_batch<T, W>& a) noexcept {
 namespace impulse::detail {
 
 /// Contacts per batch: the target's widest registers, at most 8 (wider
-/// batches leave more lanes empty in the small colours).
+/// batches leave more lanes empty in the small colors).
 template <scalar_type T>
 inline constexpr int contact_lanes = native_width<T> < 8 ? native_width<T> : 8;
 
@@ -8501,9 +8501,9 @@ void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
 }
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/contact_batch.hpp ----
-// ---- begin impulse/dynamics/joint_tree.hpp ----
-// impulse/dynamics/joint_tree.hpp — the joints that form trees, solved
+// ---- end impulse/dynamics/detail/contact_batch.hpp ----
+// ---- begin impulse/dynamics/detail/joint_tree.hpp ----
+// impulse/dynamics/detail/joint_tree.hpp — the joints that form trees, solved
 // exactly, in time linear in their number (Baraff, "Linear-Time Dynamics
 // using Lagrange Multipliers", SIGGRAPH 1996).
 //
@@ -8843,7 +8843,7 @@ class joint_tree {
   /// last step or substep of length `h`: its geometric stiffness, which
   /// factor adds to its bodies' inertia.
   ///
-  /// A joint that pulls with force f at a lever r (from a body's centre of
+  /// A joint that pulls with force f at a lever r (from a body's center of
   /// mass) turns with the body: rotating it by δθ changes its torque by
   /// [f]×[r]×·δθ, a stiffness the step does not see. Under a heavy load a
   /// light link swings across it as a stiff spring, at about
@@ -9290,7 +9290,7 @@ class joint_tree {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/dynamics/joint_tree.hpp ----
+// ---- end impulse/dynamics/detail/joint_tree.hpp ----
 // ---- begin impulse/dynamics/solver_settings.hpp ----
 // impulse/dynamics/solver_settings.hpp — the contact solver's numbers, in one
 // place, each with its unit and the reason for its value.
@@ -9507,8 +9507,8 @@ class basic_sequential_impulse {
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
       for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
       if (!tree_.empty()) tree_.solve_velocities(bodies, joints);
-      // Forward through the colours, then back (symmetric Gauss–Seidel):
-      // always forward, support climbed a 100-row pyramid one colour at a
+      // Forward through the colors, then back (symmetric Gauss–Seidel):
+      // always forward, support climbed a 100-row pyramid one color at a
       // time and its boxes moved 12 cm in 200 steps; alternating, 6 mm.
       for (std::size_t k = 0; k < batches_.size(); ++k) {
         batch_type& b = batches_[iteration % 2 == 0 ? k : batches_.size() - 1 - k];
@@ -9555,7 +9555,7 @@ class basic_sequential_impulse {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
   }
 
-  /// One manifold's rows, one after another: the manifolds the colouring
+  /// One manifold's rows, one after another: the manifolds the coloring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
                              const solver_settings<T>& settings) noexcept {
@@ -9987,13 +9987,13 @@ using aabbd = aabb<double>;
 // a fixed one keeps the result deterministic). Two nearly parallel
 // capsules, one lying along the other, touch along a line: they get two
 // points, at the ends of the overlap, so that one can rest on the other.
-// A sphere against a box takes the box's closest point to the centre, or,
-// for a centre inside the box, the face nearest to it. A box or a capsule
-// against a plane reports each of its corners (or cap centres) below the
+// A sphere against a box takes the box's closest point to the center, or,
+// for a center inside the box, the face nearest to it. A box or a capsule
+// against a plane reports each of its corners (or cap centers) below the
 // plane's surface plus the margin; a box keeps four of its corners
 // (reduce_to_four).
 //
-// Feature ids: a sphere has one feature; a capsule's two cap centres are
+// Feature ids: a sphere has one feature; a capsule's two cap centers are
 // 0 and 1; a box's corners are numbered by the signs of their coordinates
 // (bit 0 set: +x, bit 1: +y, bit 2: +z), and the box feature nearest a
 // sphere by three base-3 digits, one per axis (0 between the faces, 1 at −h,
@@ -10002,7 +10002,7 @@ using aabbd = aabb<double>;
 #include <initializer_list>
 
 // ---- begin impulse/shapes/box.hpp ----
-// impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
+// impulse/shapes/box.hpp — a solid rectangular box centered at the body origin.
 
 
 
@@ -10086,7 +10086,7 @@ struct capsule {
   aabb<T> local_aabb() const noexcept {
     return aabb<T>::from_center_half_extents({}, {radius, half_height + radius, radius});
   }
-  /// Exact: the box around the two transformed cap centres, grown by the radius.
+  /// Exact: the box around the two transformed cap centers, grown by the radius.
   aabb<T> world_aabb(const transform<T>& pose) const noexcept {
     const vec3<T> axis = rotate(pose.rotation, vec3<T>{T(0), half_height, T(0)});
     const vec3<T> reach = abs(axis) + vec3<T>::splat(radius);
@@ -10097,7 +10097,7 @@ struct capsule {
 /// Cylinder (mass m_c, radius r, height 2h) plus two hemispheres (together a
 /// ball of mass m_s). About the axis: m_c·r²/2 + 2/5·m_s·r². Across it: the
 /// cylinder's m_c·(r²/4 + h²/3), and each hemisphere's own 83/320·(m_s/2)·r²
-/// about its centre of mass, 3r/8 beyond the cylinder's end, carried to the
+/// about its center of mass, 3r/8 beyond the cylinder's end, carried to the
 /// middle: together m_s·(2r²/5 + h² + 3hr/4).
 template <scalar_type T>
 mass_properties<T> mass_properties_of(const capsule<T>& c, T density) {
@@ -10160,7 +10160,7 @@ struct plane {
 }  // namespace impulse
 // ---- end impulse/shapes/plane.hpp ----
 // ---- begin impulse/shapes/sphere.hpp ----
-// impulse/shapes/sphere.hpp — a solid ball centred at the body origin.
+// impulse/shapes/sphere.hpp — a solid ball centered at the body origin.
 
 
 
@@ -10262,7 +10262,7 @@ vec3<T> closest_point_on_segment(const vec3<T>& p0, const vec3<T>& p1, const vec
   return p0 + d * std::clamp(dot(x - p0, d) / a, T(0), T(1));
 }
 
-/// Adds the contact of a ball (centre a, radius ra) against a ball (centre
+/// Adds the contact of a ball (center a, radius ra) against a ball (center
 /// b, radius rb) to m, setting m's normal, if they are within `margin`.
 template <scalar_type T>
 void add_ball_contact(const vec3<T>& a, T ra, const vec3<T>& b, T rb, T margin, std::uint32_t feature,
@@ -10288,7 +10288,7 @@ world_plane<T> in_world(const plane<T>& p, const transform<T>& pose) noexcept {
   return {n, p.offset - dot(n, pose.position)};
 }
 
-/// The two cap centres of a capsule in world space, feature 0 then 1.
+/// The two cap centers of a capsule in world space, feature 0 then 1.
 template <scalar_type T>
 std::array<vec3<T>, 2> capsule_ends(const capsule<T>& c, const transform<T>& pose) noexcept {
   const vec3<T> half = apply_direction(pose, vec3<T>{T(0), c.half_height, T(0)});
@@ -10312,7 +10312,7 @@ contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, cons
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
   const detail::world_plane<T> p = detail::in_world(b, pose_b);
   const vec3<T>& c = pose_a.position;
-  const T height = dot(p.normal, c) + p.offset;  // of the centre above the surface
+  const T height = dot(p.normal, c) + p.offset;  // of the center above the surface
   contact_manifold<T> m;
   if (height - a.radius > margin) return m;
   m.normal = -p.normal;
@@ -10323,40 +10323,40 @@ contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, cons
 template <scalar_type T>
 contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const box<T>& b,
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the box's frame
+  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the box's frame
   const vec3<T>& h = b.half_extents;
   contact_manifold<T> m;
   std::uint32_t feature = 0;
-  vec3<T> nearest = centre;  // on the box's surface or inside it
+  vec3<T> nearest = center;  // on the box's surface or inside it
   bool inside = true;
   for (int axis = 2; axis >= 0; --axis) {
     feature *= 3;
-    if (centre[axis] < -h[axis]) nearest[axis] = -h[axis], feature += 1, inside = false;
-    else if (centre[axis] > h[axis]) nearest[axis] = h[axis], feature += 2, inside = false;
+    if (center[axis] < -h[axis]) nearest[axis] = -h[axis], feature += 1, inside = false;
+    else if (center[axis] > h[axis]) nearest[axis] = h[axis], feature += 2, inside = false;
   }
   if (!inside) {
-    const vec3<T> d = nearest - centre;
+    const vec3<T> d = nearest - center;
     const T distance = length(d);
     if (distance - a.radius > margin) return m;
     const vec3<T> n = normalize_or(d, vec3<T>::unit_y());
     m.normal = apply_direction(pose_b, n);
-    m.add({apply(pose_b, (centre + n * a.radius + nearest) * T(0.5)), a.radius - distance, feature});
+    m.add({apply(pose_b, (center + n * a.radius + nearest) * T(0.5)), a.radius - distance, feature});
     return m;
   }
-  // The centre is inside: out through the nearest face.
+  // The center is inside: out through the nearest face.
   int axis = 0;
   for (int k = 1; k < 3; ++k)
-    if (h[k] - std::abs(centre[k]) < h[axis] - std::abs(centre[axis])) axis = k;
-  const T side = centre[axis] < T(0) ? T(-1) : T(1);
+    if (h[k] - std::abs(center[k]) < h[axis] - std::abs(center[axis])) axis = k;
+  const T side = center[axis] < T(0) ? T(-1) : T(1);
   vec3<T> n{};
   n[axis] = -side;  // from the sphere into the box: the box lies beyond the face
-  vec3<T> on_face = centre;
+  vec3<T> on_face = center;
   on_face[axis] = side * h[axis];
-  const T depth = a.radius + (h[axis] - std::abs(centre[axis]));
+  const T depth = a.radius + (h[axis] - std::abs(center[axis]));
   feature = std::uint32_t(side < T(0) ? 1 : 2);
   for (int k = 0; k < axis; ++k) feature *= 3;
   m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + on_face) * T(0.5)), depth, feature});
+  m.add({apply(pose_b, (center + n * a.radius + on_face) * T(0.5)), depth, feature});
   return m;
 }
 
@@ -10491,8 +10491,8 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 //   the reference face (Sutherland–Hodgman), and the clipped points below
 //   the reference face plus the margin, up to eight, are the contact
 //   patch. Four are kept, one per quarter of the patch (split along the
-//   reference face's axes through the patch's centre): the farthest from
-//   the centre, so that the four span the patch, except that the deepest
+//   reference face's axes through the patch's center): the farthest from
+//   the center, so that the four span the patch, except that the deepest
 //   point of all is kept in its quarter;
 // - an edge pair: one contact, midway between the closest points of the
 //   two edges.
@@ -10555,7 +10555,7 @@ struct patch_point {
 
 /// Chooses at most four of the patch's points, one per quarter of the patch
 /// (split along the reference face's unit axes u and v through the patch's
-/// centre): the one farthest from the centre, so that the four span the
+/// center): the one farthest from the center, so that the four span the
 /// patch, except that the deepest point of all is kept in its quarter.
 /// `chosen[q]` is the index of quarter q's point, or −1; the quarter is the
 /// point's feature id. The quarter, not the clipping history: when a box
@@ -10568,22 +10568,22 @@ struct patch_point {
 template <scalar_type T>
 void choose_by_quarter(const patch_point<T>* points, int count, const vec3<T>& u, const vec3<T>& v,
                        int chosen[4]) noexcept {
-  vec3<T> centre{};
-  for (int c = 0; c < count; ++c) centre += points[c].x;
-  centre /= T(count);
+  vec3<T> center{};
+  for (int c = 0; c < count; ++c) center += points[c].x;
+  center /= T(count);
   T spread = T(0);
   for (int c = 0; c < count; ++c)
-    spread = std::max(spread, std::max(std::abs(dot(points[c].x - centre, u)), std::abs(dot(points[c].x - centre, v))));
+    spread = std::max(spread, std::max(std::abs(dot(points[c].x - center, u)), std::abs(dot(points[c].x - center, v))));
   const T dead_band = tolerances<T>::quarter_dead_band * spread;
   const auto quarter = [&](const vec3<T>& x) {
-    return int(dot(x - centre, u) > dead_band) | (int(dot(x - centre, v) > dead_band) << 1);
+    return int(dot(x - center, u) > dead_band) | (int(dot(x - center, v) > dead_band) << 1);
   };
   int deepest = 0;
   for (int q = 0; q < 4; ++q) chosen[q] = -1;
   for (int c = 0; c < count; ++c) {
     if (points[c].separation < points[deepest].separation) deepest = c;
     int& slot = chosen[quarter(points[c].x)];
-    if (slot < 0 || length_squared(points[c].x - centre) > length_squared(points[slot].x - centre)) slot = c;
+    if (slot < 0 || length_squared(points[c].x - center) > length_squared(points[slot].x - center)) slot = c;
   }
   chosen[quarter(points[deepest].x)] = deepest;
 }
@@ -10597,7 +10597,7 @@ namespace detail {
 
 template <scalar_type T>
 struct oriented_box {
-  vec3<T> centre;
+  vec3<T> center;
   vec3<T> axis[3];  ///< unit
   vec3<T> half;
 };
@@ -10621,7 +10621,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
                           {rotate(relative.rotation, vec3<T>::unit_x()), rotate(relative.rotation, vec3<T>::unit_y()),
                            rotate(relative.rotation, vec3<T>::unit_z())},
                           b.half_extents};
-  const vec3<T>& t = B.centre;
+  const vec3<T>& t = B.center;
   contact_manifold<T> m;
 
   // The separating axis test: the least penetrating (most separated) axis
@@ -10695,18 +10695,18 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   const oriented_box<T>& ref = reference_is_b ? B : A;
   const oriented_box<T>& inc = reference_is_b ? A : B;
   const int r = reference_is_b ? face_b.index : face_a.index;
-  const vec3<T> towards = inc.centre - ref.centre;
+  const vec3<T> towards = inc.center - ref.center;
   const bool ref_positive = dot(towards, ref.axis[r]) >= T(0);
   const vec3<T> n = ref_positive ? ref.axis[r] : -ref.axis[r];  // out of ref, towards inc
-  const vec3<T> face_centre = ref.centre + n * ref.half[r];
+  const vec3<T> face_center = ref.center + n * ref.half[r];
   // The incident face: the one whose normal is most opposed to n.
   int k = 0;
   for (int c = 1; c < 3; ++c)
     if (std::abs(dot(n, inc.axis[c])) > std::abs(dot(n, inc.axis[k]))) k = c;
   const bool inc_positive = dot(n, inc.axis[k]) < T(0);
-  const vec3<T> inc_centre = inc.centre + inc.axis[k] * (inc_positive ? inc.half[k] : -inc.half[k]);
+  const vec3<T> inc_center = inc.center + inc.axis[k] * (inc_positive ? inc.half[k] : -inc.half[k]);
   const vec3<T> P = inc.axis[(k + 1) % 3] * inc.half[(k + 1) % 3], Q = inc.axis[(k + 2) % 3] * inc.half[(k + 2) % 3];
-  vec3<T> polygon[8] = {inc_centre + P + Q, inc_centre - P + Q, inc_centre - P - Q, inc_centre + P - Q};
+  vec3<T> polygon[8] = {inc_center + P + Q, inc_center - P + Q, inc_center - P - Q, inc_center + P - Q};
   vec3<T> scratch[8];
   int count = 4;
   // The side planes: ±u and ±v of the reference box, through its faces.
@@ -10714,10 +10714,10 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   const struct {
     vec3<T> w;
     T limit;
-  } sides[4] = {{ref.axis[u], dot(ref.axis[u], ref.centre) + ref.half[u]},
-                {-ref.axis[u], -dot(ref.axis[u], ref.centre) + ref.half[u]},
-                {ref.axis[v], dot(ref.axis[v], ref.centre) + ref.half[v]},
-                {-ref.axis[v], -dot(ref.axis[v], ref.centre) + ref.half[v]}};
+  } sides[4] = {{ref.axis[u], dot(ref.axis[u], ref.center) + ref.half[u]},
+                {-ref.axis[u], -dot(ref.axis[u], ref.center) + ref.half[u]},
+                {ref.axis[v], dot(ref.axis[v], ref.center) + ref.half[v]},
+                {-ref.axis[v], -dot(ref.axis[v], ref.center) + ref.half[v]}};
   for (int side = 0; side < 4 && count > 0; ++side) {
     count = detail::clip(polygon, count, sides[side].w, sides[side].limit, scratch);
     std::copy(scratch, scratch + count, polygon);
@@ -10727,7 +10727,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   detail::patch_point<T> below[8];
   int found = 0;
   for (int c = 0; c < count; ++c) {
-    const T separation = dot(n, polygon[c] - face_centre);
+    const T separation = dot(n, polygon[c] - face_center);
     if (separation <= margin) below[found++] = {polygon[c], separation};
   }
   if (found == 0) return m;
@@ -10792,7 +10792,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
 // dropped, and faces that meet at an edge flatter than that are one polygon
 // (a box's eight corners give six quads, not twelve triangles). tolerance()
 // is Gregorius' 3·(max|x| + max|y| + max|z|)·ε, with ε the machine epsilon
-// of T and the coordinates measured from the centre of the points' bounding
+// of T and the coordinates measured from the center of the points' bounding
 // box, so a hull far from the origin is as good as one at it (evaluating its
 // planes at world coordinates x adds rounding of about ε·|x|). What the
 // construction guarantees, in units of tolerance():
@@ -10842,7 +10842,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
 //   along its normal, so that every plane supports the hull.
 //
 // Everything here is double, whatever the scalar of the hull, and the caller
-// (convex_hull.hpp) hands in coordinates translated to the centre of the
+// (convex_hull.hpp) hands in coordinates translated to the center of the
 // points and scaled by a power of two into [-1, 1]. For float points the
 // construction runs with the tolerance of double arithmetic and merges with
 // the float tolerance at the end (see build()).
@@ -12099,7 +12099,7 @@ class convex_hull {
     if (points.size() >= 0xffffffffu)
       detail::report_error(error_code::capacity_exceeded, "convex_hull: more points than 32-bit indices can name");
 
-    // The builder works in double on coordinates centred on the bounding box
+    // The builder works in double on coordinates centered on the bounding box
     // and scaled by a power of two (exact) into [-1, 1]: the tolerance is then
     // relative to the size of the cloud, not its distance from the origin,
     // and no product in the construction can overflow or underflow.
@@ -12393,7 +12393,7 @@ struct gjk_result {
   int iterations = 0;
 };
 
-/// A convex shape seen as a core grown by a radius: a sphere is its centre
+/// A convex shape seen as a core grown by a radius: a sphere is its center
 /// grown by its radius, a capsule its segment; any other shape is its own
 /// core, grown by nothing.
 template <scalar_type T, class Shape>
@@ -12556,7 +12556,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
   constexpr int max_iterations = 64;
   detail::simplex<R> s;
   gjk_result<T> result;
-  // Start from the centres' offset: its support point is usually close.
+  // Start from the centers' offset: its support point is usually close.
   vec3<R> v = wide(pose_a.position) - wide(pose_b.position);
   if (!(length_squared(v) > R(0))) v = vec3<R>::unit_x();
   R best = std::numeric_limits<R>::infinity();
@@ -13566,10 +13566,10 @@ class triangle_mesh {
 // (reduce_to_four), as for a box.
 //
 // A sphere against a hull, in the hull's frame: the face whose plane lies
-// farthest above the centre decides. If even that plane is below it, the
-// centre is inside the hull and the way out is through that face: the depth
-// is the radius plus how far the centre is below it. Otherwise the point of
-// the hull nearest the centre comes from GJK between the centre and the
+// farthest above the center decides. If even that plane is below it, the
+// center is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the center is below it. Otherwise the point of
+// the hull nearest the center comes from GJK between the center and the
 // hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
 // that point lies within the radius plus the margin. The feature id is that
 // face's index: it holds while the sphere rolls across one face.
@@ -13605,33 +13605,33 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 template <scalar_type T>
 contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
   std::uint32_t face = 0;
   T highest = -std::numeric_limits<T>::infinity();
   for (std::uint32_t f = 0; f < b.face_count(); ++f) {
-    const T d = b.plane(f).distance(centre);
+    const T d = b.plane(f).distance(center);
     if (d > highest) highest = d, face = f;
   }
   contact_manifold<T> m;
   if (highest - a.radius > margin) return m;  // a face's plane separates them
-  // Outside: the hull's point nearest the centre.
+  // Outside: the hull's point nearest the center.
   gjk_result<T> g;
   if (highest > T(0))
-    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{center, quat<T>::identity()}, b, transform<T>::identity())
             .result;
   if (highest <= T(0) || g.overlapping) {
     // Inside (or on the surface, where GJK finds no direction): out through
     // the nearest face.
     const vec3<T> n = b.plane(face).normal;
     m.normal = apply_direction(pose_b, -n);
-    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
+    const vec3<T> on_face = center - n * highest, deepest = center - n * a.radius;
     m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
     return m;
   }
   if (g.distance - a.radius > margin) return m;
-  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
+  const vec3<T> n = (g.on_b - center) / g.distance;  // from the sphere into the hull
   m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  m.add({apply(pose_b, (center + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
   return m;
 }
 
@@ -13758,7 +13758,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 //
 // Per shape:
 // - sphere: the quadratic in the distance along the unit direction, with
-//   the discriminant taken from the distance of the centre from the ray's
+//   the discriminant taken from the distance of the center from the ray's
 //   line rather than as b² − c, which cancels catastrophically once the
 //   origin is far from the sphere compared with its radius (Haines et al.,
 //   "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems,
@@ -13771,7 +13771,7 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 //   segment, kept where its hit lies between the caps, and the two cap
 //   balls; the first of the three (a ray through a flat end of the finite
 //   cylinder has met that end's ball before). Feature: 0 the cap at −h, 1
-//   the cap at +h (the cap centres' ids in analytic.hpp), 2 the side.
+//   the cap at +h (the cap centers' ids in analytic.hpp), 2 the side.
 // - plane: one-sided, solid below its surface. A ray from below starts
 //   inside; one from above hits if it moves down.
 // - convex hull: the ray clipped against every face plane (Cyrus and Beck
@@ -13878,8 +13878,8 @@ ray_hit<T> hit_inside(const unit_ray<T>& r, std::uint32_t feature = 0) noexcept 
 }
 
 /// The distance along the unit direction u at which a ray from o, outside
-/// the ball (centre c, radius radius), enters it; negative for none.
-/// The discriminant is radius² less the squared distance of the centre
+/// the ball (center c, radius radius), enters it; negative for none.
+/// The discriminant is radius² less the squared distance of the center
 /// from the ray's line, taken from the perpendicular itself (see the top of
 /// this file for why).
 template <scalar_type T>
@@ -14001,9 +14001,9 @@ ray_hit<T> ray_cast(const ray<T>& r, const capsule<T>& c, const transform<T>& po
   }
   // The caps: the first entry into either ball.
   for (std::uint32_t k = 0; k < 2; ++k) {
-    const vec3<T> centre{T(0), k == 0 ? -h : h, T(0)};
-    const T s = detail::ball_entry(o, d, centre, radius);
-    if (s >= T(0) && s < best) best = s, feature = k, normal = normalize_or(o + d * s - centre, -d);
+    const vec3<T> center{T(0), k == 0 ? -h : h, T(0)};
+    const T s = detail::ball_entry(o, d, center, radius);
+    if (s >= T(0) && s < best) best = s, feature = k, normal = normalize_or(o + d * s - center, -d);
   }
   if (!(best <= u.max_distance)) return {};
   return detail::hit_at(u, best, apply_direction(pose, normal), feature);
@@ -14205,10 +14205,10 @@ ray_hit<T> gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>&
   return detail::run_gjk_ray_cast(r, shape, pose, max_fraction).hit;
 }
 
-/// Where a ball of `radius` whose centre moves along the ray first touches
+/// Where a ball of `radius` whose center moves along the ray first touches
 /// the shape: the ray against the shape grown by the radius (its core
 /// grown, for GJK's rounded-shape case above), exact to the same
-/// tolerance. The hit's point is the ball's centre there, the normal the
+/// tolerance. The hit's point is the ball's center there, the normal the
 /// grown surface's. A continuous collision stage sweeps spheres this way.
 template <class Shape, scalar_type T>
 ray_hit<T> sphere_cast(const ray<T>& r, T radius, const Shape& shape, const transform<T>& pose,
@@ -14400,28 +14400,28 @@ class manifold_merger {
 
 // ---- sphere and capsule ----------------------------------------------------
 
-/// A ball (centre, radius r) against a triangle.
+/// A ball (center, radius r) against a triangle.
 template <scalar_type T>
-void collide_ball_triangle(const vec3<T>& centre, T r, const mesh_triangle<T>& tri, T margin,
+void collide_ball_triangle(const vec3<T>& center, T r, const mesh_triangle<T>& tri, T margin,
                            contact_manifold<T>& m) noexcept {
   const vec3<T>& n = tri.normal;
-  const T height = dot(n, centre - tri.v[0]);
+  const T height = dot(n, center - tri.v[0]);
   if (!(height >= T(0)) || height - r > margin) return;  // behind, or too high above the plane
-  const triangle_point<T> q = closest_point_on_triangle(centre, tri.v[0], tri.v[1], tri.v[2]);
-  const vec3<T> d = centre - q.point;
+  const triangle_point<T> q = closest_point_on_triangle(center, tri.v[0], tri.v[1], tri.v[2]);
+  const vec3<T> d = center - q.point;
   const T distance = length(d);
   if (distance - r > margin) return;
   if (q.region == triangle_region::face || !keeps_normal(q.region, tri.active) ||
       !(distance > tolerances<T>::core_offset_fraction * r)) {
     // Along the face normal: the sphere's lowest point against the plane.
     m.normal = n;
-    m.add({centre - n * ((r + height) * T(0.5)), r - height,
+    m.add({center - n * ((r + height) * T(0.5)), r - height,
            mesh_feature(tri.index, mesh_contact::closest, triangle_region::face, 0)});
     return;
   }
   const vec3<T> normal = d / distance;
   m.normal = normal;
-  m.add({(q.point + centre - normal * r) * T(0.5), r - distance, mesh_feature(tri.index, mesh_contact::closest, q.region, 0)});
+  m.add({(q.point + center - normal * r) * T(0.5), r - distance, mesh_feature(tri.index, mesh_contact::closest, q.region, 0)});
 }
 
 /// A capsule (core p0 p1, radius r) against a triangle.
@@ -15298,10 +15298,10 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
 //
 // Motion. Each shape moves as a CCD stage sees a body over one step: from
 // its pose at the start to its pose at the end (a `sweep`, after Box2D's
-// b2Sweep and the from/to transforms of Bullet's convex casts), its centre
-// of rotation (the centre of mass, given in the shape's frame) on a
+// b2Sweep and the from/to transforms of Bullet's convex casts), its center
+// of rotation (the center of mass, given in the shape's frame) on a
 // straight line at constant speed, and its orientation turning about that
-// centre at a constant angular velocity, the shortest rotation from start
+// center at a constant angular velocity, the shortest rotation from start
 // to end (so a body must turn less than half a turn per step; one that
 // turns more is seen turning the short way). Time t runs over [0, 1].
 //
@@ -15312,10 +15312,10 @@ epa_result<T> epa_penetration(const A& a, const transform<T>& pose_a, const B& b
 // held fixed, the gap between the support planes of A and B along n starts
 // at d and closes no faster than
 //     bound = n·(v_A − v_B) + |n × ω_A|·r_A + |n × ω_B|·r_B,
-// v the centres' velocities, ω the angular velocities, r each shape's
-// farthest point from its centre of rotation: the first term is the
-// centres' approach along n, the others the most any point can add by
-// turning (a point at offset ρ from its centre moves along n at
+// v the centers' velocities, ω the angular velocities, r each shape's
+// farthest point from its center of rotation: the first term is the
+// centers' approach along n, the others the most any point can add by
+// turning (a point at offset ρ from its center moves along n at
 // n·(ω × ρ) = ρ·(n × ω) ≤ r·|n × ω|; Mirtich's |ω|·r is the same bound
 // without the projection, looser when ω is not across n). The distance is never less than that gap, so the shapes stay at
 // least `target` apart until t + (d − target)/bound: advance to there and
@@ -15353,15 +15353,15 @@ template <scalar_type T>
 struct sweep {
   transform<T> start = transform<T>::identity();  ///< pose at t = 0
   transform<T> end = transform<T>::identity();    ///< pose at t = 1
-  vec3<T> local_center{};  ///< m, shape frame: the point the shape turns about (its centre of mass)
+  vec3<T> local_center{};  ///< m, shape frame: the point the shape turns about (its center of mass)
 };
 
-/// The motion of a sweep, resolved once: the centre's start and
+/// The motion of a sweep, resolved once: the center's start and
 /// displacement, the start orientation and the rotation vector over [0, 1].
 template <scalar_type T>
 struct sweep_motion {
-  vec3<T> center{};        ///< world, m: the centre of rotation at t = 0
-  vec3<T> translation{};   ///< m over the interval: the centre's velocity per unit t
+  vec3<T> center{};        ///< world, m: the center of rotation at t = 0
+  vec3<T> translation{};   ///< m over the interval: the center's velocity per unit t
   quat<T> rotation = quat<T>::identity();  ///< at t = 0
   vec3<T> angle{};         ///< rad over the interval, world: the angular velocity per unit t
   vec3<T> local_center{};
@@ -15373,7 +15373,7 @@ struct sweep_motion {
         angle(rotation_between(s.start.rotation, s.end.rotation)),
         local_center(s.local_center) {}
 
-  /// The pose at time t: the centre moved by t·translation, the
+  /// The pose at time t: the center moved by t·translation, the
   /// orientation turned by t·angle (exactly the end pose at t = 1, up to
   /// rounding).
   transform<T> at(T t) const noexcept {
@@ -15421,7 +15421,7 @@ struct toi_result {
 namespace detail {
 
 /// The farthest any point of the shape lies from `center` (shape frame):
-/// a ball's centre offset plus its radius, a capsule's farther cap, a
+/// a ball's center offset plus its radius, a capsule's farther cap, a
 /// hull's farthest vertex, and otherwise the farthest corner of the
 /// shape's local box (exact for a box).
 template <class Shape, scalar_type T>
@@ -15827,7 +15827,7 @@ struct plane_collider {
   /// μ ∈ [0, 1]: the fraction of tangential velocity removed at each contact.
   T friction = T(0.2);
 
-  /// A finite rectangle instead of a half-space: centred at `center` (on the
+  /// A finite rectangle instead of a half-space: centered at `center` (on the
   /// plane), spanning ±half_u along axis_u and ±half_v along normal × axis_u.
   bool finite = false;
   vec3<T> center{};
@@ -16803,9 +16803,9 @@ namespace impulse {
 template <scalar_type T>
 struct body_def {
   body_type type = body_type::dynamic;
-  /// Where the shape's origin is and how it is turned. (A hull whose centre
+  /// Where the shape's origin is and how it is turned. (A hull whose center
   /// of mass is off its origin keeps the origin here; the body's position
-  /// is its centre of mass.)
+  /// is its center of mass.)
   transform<T> pose = transform<T>::identity();
   vec3<T> linear_velocity{};   ///< m/s (dynamic and kinematic bodies)
   vec3<T> angular_velocity{};  ///< rad/s, world (dynamic and kinematic bodies)
@@ -16847,11 +16847,11 @@ struct world_settings {
   /// every pair every step. Jolt's body pair cache takes 1 mm and 2°; a
   /// point carried with its body may lie past the edge of the face under
   /// it by as much as it slid, 17 mm at 2° for a corner 0.5 m from the
-  /// centre, so the angle here is 0.5° (4.4 mm): a box tipping over an
+  /// center, so the angle here is 0.5° (4.4 mm): a box tipping over an
   /// edge is tested again before it has turned far.
   T contact_reuse_distance = T(0.001);  ///< m
   T contact_reuse_angle = T(0.0087);    ///< rad
-  /// With ccd on in the config, a body whose centre moves farther in a step
+  /// With ccd on in the config, a body whose center moves farther in a step
   /// than this fraction of its thinnest half-extent (a ball's radius) is
   /// swept against static and kinematic bodies. Below it the speculative
   /// contacts (solver.speculative_distance) already catch what it meets.
@@ -16887,12 +16887,12 @@ struct world_settings {
   /// carry past it is held.
   T max_coordinate = std::is_same_v<T, float> ? T(1e6) : T(1e12);
   static constexpr T coordinate_ceiling = std::is_same_v<T, float> ? T(1e8) : T(1e15);
-  /// How far a joint's anchor may be from a dynamic body's centre of mass,
+  /// How far a joint's anchor may be from a dynamic body's center of mass,
   /// in multiples of the body's smallest radius of gyration (√(I_min / m):
   /// 0.41 m for a unit cube, 6 mm for a 1 cm ball). Farther, the joint's
   /// effective mass along the lever is lost in rounding (its part 1/m is
   /// below the lever's r²/I times the scalar's epsilon) and the solve
-  /// diverges: a ball 14 cm across joined 1e7 m from its centre went to
+  /// diverges: a ball 14 cm across joined 1e7 m from its center went to
   /// NaN in its first step. 1 000 in float, 10⁶ in double; a long pendulum
   /// is a distance joint, whose anchors sit on the bodies.
   T max_joint_lever = std::is_same_v<T, float> ? T(1e3) : T(1e6);
@@ -17024,13 +17024,13 @@ template <class Config = default_config> class world;
 // impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
 // materials, joints between them, stepped through the pipeline of
 // docs/architecture.md. This file is the world's interface and its step;
-// the state it keeps is world_state.hpp, and each stage of the step is a
-// file of its own:
+// the state it keeps is detail/world_state.hpp, and each stage of the step
+// is a file of its own:
 //
-//   broad and narrow phase   contact_update.hpp
-//   islands, sleeping        islands.hpp (sleeping on)
-//   solve and write-back     solve.hpp
-//   continuous collision     continuous.hpp (ccd on)
+//   broad and narrow phase   detail/contact_update.hpp
+//   islands, sleeping        detail/islands.hpp (sleeping on)
+//   solve and write-back     detail/solve.hpp
+//   continuous collision     detail/continuous.hpp (ccd on)
 //
 // world_bodies.hpp and world_joints.hpp define the members that make and
 // destroy bodies and joints.
@@ -17041,8 +17041,8 @@ template <class Config = default_config> class world;
 // id order), so the same state stepped twice gives the same bits.
 
 
-// ---- begin impulse/world/contact_update.hpp ----
-// impulse/world/contact_update.hpp — the step's collision stages: each
+// ---- begin impulse/world/detail/contact_update.hpp ----
+// impulse/world/detail/contact_update.hpp — the step's collision stages: each
 // moving body's proxy moved in the broad phase, then the narrow phase over
 // the pairs it reports (docs/architecture.md, "The step").
 //
@@ -17055,8 +17055,8 @@ template <class Config = default_config> class world;
 // pass.
 
 
-// ---- begin impulse/world/world_state.hpp ----
-// impulse/world/world_state.hpp — what a world is: its records (bodies,
+// ---- begin impulse/world/detail/world_state.hpp ----
+// impulse/world/detail/world_state.hpp — what a world is: its records (bodies,
 // contacts, joints), its broad phase and shapes, its events and clock, as
 // plain data, with the queries every stage asks of them; and the scratch
 // one step rebuilds. The stages of the step (docs/architecture.md, "The
@@ -17069,8 +17069,8 @@ template <class Config = default_config> class world;
 // allocates nothing.
 
 
-// ---- begin impulse/world/shape_store.hpp ----
-// impulse/world/shape_store.hpp — the shapes of a world's bodies, one array
+// ---- begin impulse/world/detail/shape_store.hpp ----
+// impulse/world/detail/shape_store.hpp — the shapes of a world's bodies, one array
 // per shape type of the config's shape_list.
 //
 // A body names its shape by a handle (the type's place in the list and a
@@ -17161,9 +17161,9 @@ class shape_store<shape_list<Shapes...>, T> {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/shape_store.hpp ----
-// ---- begin impulse/world/world_traits.hpp ----
-// impulse/world/world_traits.hpp — a config's world policies, with the
+// ---- end impulse/world/detail/shape_store.hpp ----
+// ---- begin impulse/world/detail/world_traits.hpp ----
+// impulse/world/detail/world_traits.hpp — a config's world policies, with the
 // defaults for those it does not name.
 //
 // default_config (config.hpp) names only what every module uses, so that a
@@ -17180,7 +17180,7 @@ class shape_store<shape_list<Shapes...>, T> {
 // whose `type<T>` is the solver: sequential_impulse.hpp and soft_step.hpp
 // hold the two the library ships, and a user's own plugs in the same way
 // (tests/world/test_user_solver.cpp builds a plain projected Gauss–Seidel).
-// Each step the world (world/solve.hpp) makes one solver_body per body and
+// Each step the world (world/detail/solve.hpp) makes one solver_body per body and
 // one contact_constraint per touching manifold and joint_constraint per
 // joint, then calls, in order:
 //
@@ -17370,7 +17370,7 @@ consteval bool check_world_config() {
 }
 
 }  // namespace impulse::detail
-// ---- end impulse/world/world_traits.hpp ----
+// ---- end impulse/world/detail/world_traits.hpp ----
 
 namespace impulse::detail {
 
@@ -17388,9 +17388,9 @@ struct body_record {
   rigid_body<T> body;
   impulse::material<T> material;
   shape_handle shape;
-  vec3<T> center{};      ///< centre of mass in shape space
+  vec3<T> center{};      ///< center of mass in shape space
   proxy_id proxy;
-  transform<T> previous;  ///< the centre-of-mass pose at the start of the last step
+  transform<T> previous;  ///< the center-of-mass pose at the start of the last step
   T sleep_timer = T(0);   ///< s spent below the sleep speeds
   bool awake = true;
   std::uint64_t user_data = 0;
@@ -17501,9 +17501,9 @@ template <scalar_type T, class Shape>
                  "world::create_body: planes and triangle meshes can only be static or kinematic");
   }
 }
-/// Where a dynamic body of `shape` has its centre of mass, in shape space.
+/// Where a dynamic body of `shape` has its center of mass, in shape space.
 template <scalar_type T, class Shape>
-[[nodiscard]] vec3<T> centre_of_mass(const body_def<T>& def, const Shape& shape) {
+[[nodiscard]] vec3<T> center_of_mass(const body_def<T>& def, const Shape& shape) {
   if constexpr (requires { mass_properties_of(shape, T(1)); }) {
     return mass_properties_of(shape, def.material.density).center;
   } else {
@@ -17584,7 +17584,7 @@ struct world_state {
     if (is_finite(linear) && is_finite(angular) && !within_speed_limits(linear, angular))
       report_error(error_code::invalid_parameter, message, id.index);
   }
-  /// Refuses a joint anchor farther from a dynamic body's centre of mass
+  /// Refuses a joint anchor farther from a dynamic body's center of mass
   /// than world_settings::max_joint_lever radii of gyration.
   void require_lever(const rigid_body<T>& b, const vec3<T>& anchor, body_id id) const {
     if (b.type != body_type::dynamic) return;
@@ -17690,7 +17690,7 @@ struct step_scratch {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/world_state.hpp ----
+// ---- end impulse/world/detail/world_state.hpp ----
 
 namespace impulse::detail {
 
@@ -17900,9 +17900,9 @@ struct contact_update {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/contact_update.hpp ----
-// ---- begin impulse/world/continuous.hpp ----
-// impulse/world/continuous.hpp — the step's continuous collision (with
+// ---- end impulse/world/detail/contact_update.hpp ----
+// ---- begin impulse/world/detail/continuous.hpp ----
+// impulse/world/detail/continuous.hpp — the step's continuous collision (with
 // `ccd` in the config; off, none of it is compiled): after the bodies
 // have moved, each bullet, and each body that crossed more than
 // ccd_motion_fraction of its thinnest half-extent, is swept from where it
@@ -18008,7 +18008,7 @@ struct continuous_collision {
     const T gap = state.settings.ccd_gap;
     if constexpr (std::is_same_v<M, sphere<T>>) {
       if (other_path.start == other_path.end) {
-        // The ball's centre against the body grown by its radius.
+        // The ball's center against the body grown by its radius.
         const vec3<T> from = path.start.position, to = path.end.position;
         const T distance = length(to - from);
         const narrowphase::ray_hit<T> hit =
@@ -18066,9 +18066,9 @@ struct continuous_collision {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/continuous.hpp ----
-// ---- begin impulse/world/debug_drawing.hpp ----
-// impulse/world/debug_drawing.hpp — a world drawn through a debug_drawer
+// ---- end impulse/world/detail/continuous.hpp ----
+// ---- begin impulse/world/detail/debug_drawing.hpp ----
+// impulse/world/detail/debug_drawing.hpp — a world drawn through a debug_drawer
 // (debug_draw.hpp): bodies' boxes, contact points, normals, forces and
 // velocities, as world::draw's flags ask.
 
@@ -18076,22 +18076,22 @@ struct continuous_collision {
 namespace impulse::detail {
 
 template <scalar_type T, class D>
-void draw_box(D& d, const aabb<T>& box, const debug_color& colour) {
+void draw_box(D& d, const aabb<T>& box, const debug_color& color) {
   const vec3<T>& l = box.lower;
   const vec3<T>& u = box.upper;
   const vec3<T> c[8] = {{l.x, l.y, l.z}, {u.x, l.y, l.z}, {u.x, u.y, l.z}, {l.x, u.y, l.z},
                         {l.x, l.y, u.z}, {u.x, l.y, u.z}, {u.x, u.y, u.z}, {l.x, u.y, u.z}};
   for (int i = 0; i < 4; ++i) {
-    d.line(c[i], c[(i + 1) % 4], colour);
-    d.line(c[i + 4], c[(i + 1) % 4 + 4], colour);
-    d.line(c[i], c[i + 4], colour);
+    d.line(c[i], c[(i + 1) % 4], color);
+    d.line(c[i + 4], c[(i + 1) % 4 + 4], color);
+    d.line(c[i], c[i + 4], color);
   }
 }
 
 /// Grey static bodies, blue kinematic ones, green awake and dark green
 /// sleeping dynamic ones.
 template <scalar_type T>
-[[nodiscard]] debug_color colour_of(const body_record<T>& r) noexcept {
+[[nodiscard]] debug_color color_of(const body_record<T>& r) noexcept {
   if (r.body.type == body_type::static_body) return {0.5f, 0.5f, 0.5f};
   if (r.body.type == body_type::kinematic) return {0.5f, 0.5f, 1};
   return r.awake ? debug_color{0.3f, 1, 0.3f} : debug_color{0.2f, 0.4f, 0.2f};
@@ -18101,7 +18101,7 @@ template <class Config, class D>
 void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& flags) {
   using T = typename Config::scalar;
   if (flags.aabbs)
-    for (const body_record<T>& r : state.bodies.values()) draw_box(d, state.bounds_of(r), colour_of(r));
+    for (const body_record<T>& r : state.bodies.values()) draw_box(d, state.bounds_of(r), color_of(r));
   for (const contact_record<T>& c : state.contacts) {
     if (!c.touching) continue;
     for (int m = 0; m < c.manifold_count; ++m) {
@@ -18124,9 +18124,9 @@ void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& 
 }
 
 }  // namespace impulse::detail
-// ---- end impulse/world/debug_drawing.hpp ----
-// ---- begin impulse/world/islands.hpp ----
-// impulse/world/islands.hpp — the step's islands and sleeping (with
+// ---- end impulse/world/detail/debug_drawing.hpp ----
+// ---- begin impulse/world/detail/islands.hpp ----
+// impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config): union–find over touching contacts and
 // joints before the solve, waking an island with any body awake; after the
 // bodies have moved, an island whose every body has been slow for
@@ -18225,9 +18225,9 @@ struct island_update {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/islands.hpp ----
-// ---- begin impulse/world/solve.hpp ----
-// impulse/world/solve.hpp — the step's solve: the awake bodies and their
+// ---- end impulse/world/detail/islands.hpp ----
+// ---- begin impulse/world/detail/solve.hpp ----
+// impulse/world/detail/solve.hpp — the step's solve: the awake bodies and their
 // touching contacts and joints handed to the config's solver
 // (sequential_impulse, soft_step), which applies this step's forces, solves
 // the contacts and the joints (joint.hpp; trees of joints exactly,
@@ -18336,7 +18336,7 @@ struct body_solve {
         // The slip at the middle of the patch chooses the tangents.
         const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
-        // The positions move each centre in a straight line while each body
+        // The positions move each center in a straight line while each body
         // turns exactly, so two points that move together at the velocity
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept
@@ -18590,7 +18590,7 @@ struct body_solve {
 };
 
 }  // namespace impulse::detail
-// ---- end impulse/world/solve.hpp ----
+// ---- end impulse/world/detail/solve.hpp ----
 
 namespace impulse {
 
@@ -18666,7 +18666,7 @@ class world {
     if constexpr (requires { shape.validate(); }) shape.validate();
     def.material.validate();
     const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
-    const vec3<T> center = def.type == body_type::dynamic ? detail::centre_of_mass(def, shape) : vec3<T>{};
+    const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
     body_record record = prepare_body(def, body, center);  // checks the velocities
     if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
       const aabb<T> box = shape.world_aabb(def.pose);
@@ -18688,7 +18688,7 @@ class world {
   [[nodiscard]] std::size_t body_count() const noexcept { return state_.bodies.size(); }
   /// Every live body, in storage order.
   [[nodiscard]] std::span<const body_id> body_ids() const noexcept { return state_.bodies.ids(); }
-  /// A body's state (position of its centre of mass, orientation, momenta,
+  /// A body's state (position of its center of mass, orientation, momenta,
   /// mass properties).
   [[nodiscard]] const rigid_body<T>& body(body_id id) const {
     require(id, "world::body: no such body");
@@ -18712,9 +18712,9 @@ class world {
     const transform<T> now = r.body.pose();
     quat<T> q1 = now.rotation;
     if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
-    const transform<T> centre{lerp(r.previous.position, now.position, alpha),
+    const transform<T> center{lerp(r.previous.position, now.position, alpha),
                               normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
-    return {centre.position - rotate(centre.rotation, r.center), centre.rotation};
+    return {center.position - rotate(center.rotation, r.center), center.rotation};
   }
   /// Calls f(shape) with the body's shape (one of the config's shape
   /// list, in the body's shape frame) and returns what f returns.
@@ -18762,7 +18762,7 @@ class world {
   /// platform calls this every step. Refused: a body that is not
   /// kinematic, a non-finite or non-unit pose, dt not positive.
   void set_target_pose(body_id id, const transform<T>& target, T dt);
-  /// A force through the centre of mass for the next step, N.
+  /// A force through the center of mass for the next step, N.
   void apply_force(body_id id, const vec3<T>& force) {
     body_record& r = dynamic_record(id, "world::apply_force: no such body");
     r.body.apply_force(force);
@@ -18999,7 +18999,7 @@ class world {
   }
 
   /// create_body's part that does not depend on the shape: the record of a
-  /// body made from `def`, its centre of mass at `center` in shape space;
+  /// body made from `def`, its center of mass at `center` in shape space;
   /// refuses non-finite or impossible velocities.
   body_record prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const;
   /// Adds the record made by prepare_body, with its shape, and its proxy.

@@ -7,7 +7,7 @@
 //
 // The optional io headers that need only the standard library: io/gltf.hpp
 // (runs recorded as .glb for the viewer), io/particle_recording.hpp (.ipr),
-// io/shape_mesh.hpp and io/snapshot.hpp (PNG pictures). Includes the core
+// io/shape_mesh.hpp and io/picture.hpp (PNG pictures). Includes the core
 // single header impulse.hpp, which must sit beside this file. Kept out of
 // impulse.hpp so that a program that only steps a world does not parse them
 // (<string>, <charconv>, the file writers).
@@ -133,9 +133,9 @@ shape_mesh mesh_of(const box<T>& b, int = 0) {
       // u × v = n: the corners below run counter-clockwise about n.
       u[(axis + 1) % 3] = 1;
       v[(axis + 2) % 3] = sign;
-      const vec3<float> centre = n * h[axis];
+      const vec3<float> center = n * h[axis];
       const vec3<float> du = u * h[(axis + 1) % 3], dv = v * h[(axis + 2) % 3];
-      m.add_polygon({centre - du - dv, centre + du - dv, centre + du + dv, centre - du + dv}, n);
+      m.add_polygon({center - du - dv, center + du - dv, center + du + dv, center - du + dv}, n);
     }
   return m;
 }
@@ -152,19 +152,19 @@ shape_mesh mesh_of(const convex_hull<T>& hull, int = 0) {
   return m;
 }
 
-/// How far a plane's square reaches from its centre, m.
+/// How far a plane's square reaches from its center, m.
 inline constexpr float plane_half_size = 100;
 
 template <scalar_type T>
 shape_mesh mesh_of(const plane<T>& p, int = 0) {
   shape_mesh m;
   const vec3<float> n = detail::to_float(p.normal);
-  const vec3<float> centre = n * -float(p.offset);
+  const vec3<float> center = n * -float(p.offset);
   // Any two directions across n with u × v = n.
   const vec3<float> helper = std::abs(n.x) < 0.57f ? vec3<float>{1, 0, 0} : vec3<float>{0, 1, 0};
   const vec3<float> u = normalize(cross(helper, n)) * plane_half_size;
   const vec3<float> v = cross(n, u);
-  m.add_polygon({centre - u - v, centre + u - v, centre + u + v, centre - u + v}, n);
+  m.add_polygon({center - u - v, center + u - v, center + u + v, center - u + v}, n);
   return m;
 }
 
@@ -471,11 +471,11 @@ class gltf_recorder {
   /// One per body_type, in its order: static, kinematic, dynamic.
   static std::string materials() {
     const char* names[] = {"static", "kinematic", "dynamic"};
-    const float colours[3][3] = {{0.55f, 0.56f, 0.6f}, {0.3f, 0.55f, 0.9f}, {0.92f, 0.55f, 0.25f}};
+    const float colors[3][3] = {{0.55f, 0.56f, 0.6f}, {0.3f, 0.55f, 0.9f}, {0.92f, 0.55f, 0.25f}};
     std::string out;
     for (int k = 0; k < 3; ++k) {
       if (k > 0) out += ',';
-      const float rgba[4] = {colours[k][0], colours[k][1], colours[k][2], 1};
+      const float rgba[4] = {colors[k][0], colors[k][1], colors[k][2], 1};
       out += std::string("{\"name\":\"") + names[k] + "\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":";
       detail::append_numbers(out, rgba, 4);
       out += ",\"metallicFactor\":0,\"roughnessFactor\":0.8}}";
@@ -497,20 +497,20 @@ class gltf_recorder {
 // impulse/io/particle_recording.hpp — a particle run recorded frame by frame
 // in a compact binary format (.ipr), which viewer/ plays:
 //
-//   impulse::io::particle_recorder recording(impulse::io::colour_by::age);
+//   impulse::io::particle_recorder recording(impulse::io::color_by::age);
 //   for (...) { plume.step(dt); recording.record(plume); }
 //   recording.save("out/plume.ipr");
 //
 // The format, all little-endian (docs/recording.md):
 //
 //   header, 48 bytes:  "IMPULSEP"; u32 version = 1; u32 flags (bit 0: frames
-//                      carry colours); u32 frame count; f32 frame interval, s;
+//                      carry colors); u32 frame count; f32 frame interval, s;
 //                      f32 bounds min[3], max[3] over every recorded position
 //   each frame:        f32 time, s; u32 count; count × 3 f32 positions;
-//                      with colours, count × 3 u8 RGB, then zero bytes to the
+//                      with colors, count × 3 u8 RGB, then zero bytes to the
 //                      next multiple of 4
 //
-// 12 bytes a particle a frame, 15 with colours: a 2 000-particle plume at
+// 12 bytes a particle a frame, 15 with colors: a 2 000-particle plume at
 // 30 frames a second for 10 s is 8.9 MB. Positions are the particles' own,
 // not resampled: a frame has as many particles as were alive.
 
@@ -518,15 +518,15 @@ class gltf_recorder {
 
 namespace impulse::io {
 
-/// How a recording colours its particles.
-enum class colour_by : std::uint8_t {
-  none,   ///< no colours stored: the viewer draws every particle alike
+/// How a recording colors its particles.
+enum class color_by : std::uint8_t {
+  none,   ///< no colors stored: the viewer draws every particle alike
   age,    ///< age over lifetime: white-hot when born, through orange, to dark red (systems with lifetimes)
   speed,  ///< |v| over the recorder's full_speed: blue when still, through green, to red
 };
 
-/// The colour ramp of `f` in [0, 1] for `mode` (clamped).
-inline std::array<std::uint8_t, 3> ramp(colour_by mode, double f) {
+/// The color ramp of `f` in [0, 1] for `mode` (clamped).
+inline std::array<std::uint8_t, 3> ramp(color_by mode, double f) {
   f = std::clamp(std::isfinite(f) ? f : 1.0, 0.0, 1.0);
   const auto mix = [f](const std::array<double, 3>* stops, int n) {
     const double x = f * (n - 1);
@@ -538,7 +538,7 @@ inline std::array<std::uint8_t, 3> ramp(colour_by mode, double f) {
   };
   static const std::array<double, 3> fire[] = {{255, 250, 220}, {255, 180, 60}, {220, 80, 20}, {90, 20, 10}};
   static const std::array<double, 3> cold_to_hot[] = {{40, 80, 220}, {40, 200, 200}, {120, 220, 60}, {230, 60, 30}};
-  return mode == colour_by::age ? mix(fire, 4) : mix(cold_to_hot, 4);
+  return mode == color_by::age ? mix(fire, 4) : mix(cold_to_hot, 4);
 }
 
 /// A recording read back (for tests and tools).
@@ -546,10 +546,10 @@ struct particle_frames {
   struct frame {
     float time = 0;
     std::vector<vec3<float>> positions;
-    std::vector<std::array<std::uint8_t, 3>> colours;  ///< empty without colours
+    std::vector<std::array<std::uint8_t, 3>> colors;  ///< empty without colors
   };
   float interval = 0;
-  bool coloured = false;
+  bool colored = false;
   vec3<float> lower{}, upper{};
   std::vector<frame> frames;
 };
@@ -557,7 +557,7 @@ struct particle_frames {
 class particle_recorder {
  public:
   /// `full_speed` (m/s) is the top of the speed ramp.
-  explicit particle_recorder(colour_by mode = colour_by::none, double full_speed = 10) noexcept
+  explicit particle_recorder(color_by mode = color_by::none, double full_speed = 10) noexcept
       : mode_(mode), full_speed_(full_speed > 0 ? full_speed : 1) {}
 
   /// Appends the system's particles now as a frame at its time.
@@ -575,10 +575,10 @@ class particle_recorder {
       lower_ = {std::min(lower_.x, p.x), std::min(lower_.y, p.y), std::min(lower_.z, p.z)};
       upper_ = {std::max(upper_.x, p.x), std::max(upper_.y, p.y), std::max(upper_.z, p.z)};
     }
-    if (mode_ != colour_by::none) {
+    if (mode_ != color_by::none) {
       for (std::size_t i = 0; i < n; ++i) {
         double f = 0;
-        if (mode_ == colour_by::speed) {
+        if (mode_ == color_by::speed) {
           f = double(length(v[i])) / full_speed_;
         } else if constexpr (requires { system.ages(); }) {
           const double life = double(system.lifetimes()[i]);
@@ -606,7 +606,7 @@ class particle_recorder {
       at += sizeof value;
     };
     put_to(std::uint32_t(1));
-    put_to(std::uint32_t(mode_ != colour_by::none ? 1 : 0));
+    put_to(std::uint32_t(mode_ != color_by::none ? 1 : 0));
     put_to(std::uint32_t(frames_));
     put_to(interval_);
     for (const float c : {lower_.x, lower_.y, lower_.z, upper_.x, upper_.y, upper_.z}) put_to(c);
@@ -636,7 +636,7 @@ class particle_recorder {
     bytes_.insert(bytes_.end(), b, b + sizeof value);
   }
 
-  colour_by mode_;
+  color_by mode_;
   double full_speed_;
   std::vector<std::uint8_t> bytes_;  ///< the frames
   std::size_t frames_ = 0;
@@ -668,7 +668,7 @@ class particle_recorder {
   get(version), get(flags), get(count), get(r.interval);
   get(r.lower.x), get(r.lower.y), get(r.lower.z), get(r.upper.x), get(r.upper.y), get(r.upper.z);
   if (version != 1) return std::nullopt;
-  r.coloured = (flags & 1) != 0;
+  r.colored = (flags & 1) != 0;
   for (std::uint32_t f = 0; f < count && ok; ++f) {
     particle_frames::frame frame;
     std::uint32_t n = 0;
@@ -676,10 +676,10 @@ class particle_recorder {
     if (!ok || std::uint64_t(n) * 12 > bytes.size() - at) return std::nullopt;
     frame.positions.resize(n);
     for (vec3<float>& p : frame.positions) get(p.x), get(p.y), get(p.z);
-    if (r.coloured) {
+    if (r.colored) {
       if (std::uint64_t(n) * 3 > bytes.size() - at) return std::nullopt;
-      frame.colours.resize(n);
-      for (auto& c : frame.colours) std::memcpy(c.data(), bytes.data() + at, 3), at += 3;
+      frame.colors.resize(n);
+      for (auto& c : frame.colors) std::memcpy(c.data(), bytes.data() + at, 3), at += 3;
       at = (at + 3) / 4 * 4;
     }
     r.frames.push_back(std::move(frame));
@@ -690,15 +690,15 @@ class particle_recorder {
 
 }  // namespace impulse::io
 // ---- end impulse/io/particle_recording.hpp ----
-// ---- begin impulse/io/snapshot.hpp ----
-// impulse/io/snapshot.hpp — a picture of a world, drawn on the CPU with no
+// ---- begin impulse/io/picture.hpp ----
+// impulse/io/picture.hpp — a picture of a world, drawn on the CPU with no
 // graphics library: every body's shape as triangles (io/shape_mesh.hpp),
 // seen through a pinhole camera, hidden surfaces removed by a depth buffer,
 // each face shaded by its angle to one light (Lambert), and written as a
 // PNG. Enough for an example run headless to leave a picture behind.
 //
 //   impulse::io::camera<float> eye{.position = {9, 6, 10}, .target = {0, 1, 0}};
-//   impulse::io::save_png(impulse::io::snapshot(world, eye), "out/run.png");
+//   impulse::io::save_png(impulse::io::render(world, eye), "out/run.png");
 //
 // The PNG is written with stored (uncompressed) deflate blocks (RFC 1950,
 // 1951; PNG specification, 2003): a valid file any reader opens, at the size
@@ -731,7 +731,7 @@ struct image {
 };
 
 /// The background at row y of h: a pale sky, lighter towards the horizon.
-inline std::array<std::uint8_t, 3> sky_colour(int y, int h) {
+inline std::array<std::uint8_t, 3> sky_color(int y, int h) {
   const double f = h > 1 ? double(y) / double(h - 1) : 0.0;
   return {std::uint8_t(150 + 80 * f), std::uint8_t(180 + 60 * f), std::uint8_t(225 + 25 * f)};
 }
@@ -748,15 +748,15 @@ struct raster {
     picture.height = h;
     picture.rgb.resize(std::size_t(w) * std::size_t(h) * 3);
     for (int y = 0; y < h; ++y) {
-      const auto c = sky_colour(y, h);
+      const auto c = sky_color(y, h);
       for (int x = 0; x < w; ++x)
         std::copy(c.begin(), c.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * w + x));
     }
   }
 
   /// Fills a triangle given in pixels (x right, y down) with its view depth,
-  /// pixel centres in, by edge functions; nearer pixels win.
-  void fill(const std::array<std::array<double, 3>, 3>& p, const std::array<std::uint8_t, 3>& colour) {
+  /// pixel centers in, by edge functions; nearer pixels win.
+  void fill(const std::array<std::array<double, 3>, 3>& p, const std::array<std::uint8_t, 3>& color) {
     const double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
     if (!(std::abs(area) > 1e-12)) return;
     // The bounds are clamped to the raster while still doubles: a corner cut
@@ -784,7 +784,7 @@ struct raster {
         float& stored = depth[std::size_t(y) * std::size_t(width) + std::size_t(x)];
         if (!(z < stored)) continue;
         stored = z;
-        std::copy(colour.begin(), colour.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * width + x));
+        std::copy(color.begin(), color.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * width + x));
       }
   }
 };
@@ -822,7 +822,7 @@ inline void append_chunk(std::vector<std::uint8_t>& out, const char* type, const
 /// ones orange, kinematic ones blue, as in the glTF recording; the light
 /// comes from over the camera's left shoulder.
 template <class World>
-[[nodiscard]] image snapshot(const World& w, const camera<typename World::scalar>& eye) {
+[[nodiscard]] image render(const World& w, const camera<typename World::scalar>& eye) {
   using T = typename World::scalar;
   detail::raster r(std::max(1, eye.width), std::max(1, eye.height));
   // The camera's frame: forward f, right s, up u (a right-handed view).
@@ -858,7 +858,7 @@ template <class World>
       if (!(length_squared(area) > 1e-24)) continue;  // no area: nothing to see (a pole's sliver)
       const vec3<double> normal = area / length(area);
       const double shade = 0.35 + 0.65 * std::abs(dot(normal, light));  // two-sided, as a mesh has no inside
-      const std::array<std::uint8_t, 3> colour{std::uint8_t(base[0] * shade), std::uint8_t(base[1] * shade),
+      const std::array<std::uint8_t, 3> color{std::uint8_t(base[0] * shade), std::uint8_t(base[1] * shade),
                                                std::uint8_t(base[2] * shade)};
       // Cut at the near plane (Sutherland–Hodgman against depth = near):
       // a floor that runs under the camera is drawn up to it.
@@ -873,7 +873,7 @@ template <class World>
         return std::array<double, 3>{0.5 * r.width + focal * v.x / v.z, 0.5 * r.height - focal * v.y / v.z, v.z};
       };
       for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-        r.fill({screen(polygon[0]), screen(polygon[k]), screen(polygon[k + 1])}, colour);
+        r.fill({screen(polygon[0]), screen(polygon[k]), screen(polygon[k + 1])}, color);
     }
   }
   return std::move(r.picture);
@@ -923,4 +923,4 @@ inline bool save_png(const image& picture, const std::string& path) {
 }
 
 }  // namespace impulse::io
-// ---- end impulse/io/snapshot.hpp ----
+// ---- end impulse/io/picture.hpp ----

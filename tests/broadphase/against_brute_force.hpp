@@ -84,7 +84,7 @@ class moving_boxes {
         break;
       case scene_kind::clustered: {
         // Sum of three uniforms: a rounded bump of about one cube-root of
-        // the count around one of eight centres.
+        // the count around one of eight centers.
         const vec3<T> spread = random_vec(T(-1), T(1)) + random_vec(T(-1), T(1)) + random_vec(T(-1), T(1));
         b.center = clusters_[random_.next() % 8] + spread * (T(0.1) * extent_);
         b.half = random_vec(T(0.1), T(0.6));
@@ -96,7 +96,7 @@ class moving_boxes {
         b.half = u < T(0.02) ? random_vec(T(5), T(10)) : u < T(0.5) ? random_vec(T(0.005), T(0.01)) : random_vec(T(0.1), T(0.6));
         break;
       case scene_kind::one_spot:
-        // One centre; half the boxes the same size, the rest from points up.
+        // One center; half the boxes the same size, the rest from points up.
         b.center = vec3<T>{T(1), T(2), T(3)};
         b.half = u < T(0.5) ? vec3<T>::splat(T(0.5)) : random_vec(T(0), T(0.5));
         break;

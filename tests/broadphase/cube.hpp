@@ -1,4 +1,4 @@
-// The box the broad-phase tests build most: a cube by its centre and half
+// The box the broad-phase tests build most: a cube by its center and half
 // extent.
 #pragma once
 

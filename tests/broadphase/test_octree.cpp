@@ -75,8 +75,8 @@ TEST_CASE_TEMPLATE("the octree stays exact at its extreme depth caps", T, float,
 }
 
 TEST_CASE_TEMPLATE("a box is filed at the depth its size implies", T, float, double) {
-  // A root-sized box fixes the root; then boxes of edge e0 / 2^k, centred
-  // on the root's centre, are filed at depth k (every size here is a power
+  // A root-sized box fixes the root; then boxes of edge e0 / 2^k, centered
+  // on the root's center, are filed at depth k (every size here is a power
   // of two times e0, so there is no rounding to allow for), down to
   // max_depth and no further; a box a quarter larger than e0 / 2^k goes
   // one level up.
@@ -125,7 +125,7 @@ TEST_CASE_TEMPLATE("random boxes are filed at the deepest depth whose cell edge 
                    float, double) {
   // The rule d = min(max_depth, floor(log2(e0 / extent))), checked with
   // exact powers of two. A box may go one level up only where rounding its
-  // centre puts it a hair outside the loose box, which takes a centre
+  // center puts it a hair outside the loose box, which takes a center
   // within rounding of a cell face and an extent within rounding of the
   // cell edge: the random boxes here never do, so no tolerance is allowed.
   basic_octree<T> bp;
@@ -239,9 +239,9 @@ TEST_CASE_TEMPLATE("moving within its node changes nothing and moving across the
   const aabb<T> root = bp.root_box();
 
   // The root's edge is a power of two and its corner a multiple of a
-  // sixteenth of it, so these lattice centres (multiples of 4) sit on the
+  // sixteenth of it, so these lattice centers (multiples of 4) sit on the
   // lower corners of cells of edge 1 and 2: drifting by up to 0.1 m in +x
-  // keeps the centre in its cell and the size in its depth.
+  // keeps the center in its cell and the size in its depth.
   const proxy_id mover = ids[43];  // at (4, 4, 4)
   const int depth = bp.depth_of(mover);
   const aabb<T> start = bp.box(mover);
@@ -260,7 +260,7 @@ TEST_CASE_TEMPLATE("moving within its node changes nothing and moving across the
   for (int step = 0; step < 20; ++step) {
     const T u = T(20) * random.template uniform<T>(), v = T(20) * random.template uniform<T>();
     // (Half 0.45, not 0.5: an edge of exactly 1 m computed from a rounded
-    // centre can come out a hair over 1 and go up a level, rightly.)
+    // center can come out a hair over 1 and go up a level, rightly.)
     const aabb<T> moved = cube<T>(u, v, T(20) - u, T(0.45));
     bp.move(mover, moved);
     reference.move(mover, moved);

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "impulse/broadphase/pair_tracker.hpp"
+#include "impulse/broadphase/detail/pair_tracker.hpp"
 #include "impulse/core/random.hpp"
 
 using namespace impulse;

@@ -37,9 +37,9 @@ struct hanging_cube {
   }
 };
 
-// At rest the spring is vertical and stretched by m·g/k, and the centre of
+// At rest the spring is vertical and stretched by m·g/k, and the center of
 // mass hangs straight below the corner: the corner's body vector (½, ½, ½)
-// points up, the centre √¾ below the corner.
+// points up, the center √¾ below the corner.
 template <class T, class I>
 void check_cube_settles(int seconds) {
   hanging_cube<T, I> h;
@@ -62,7 +62,7 @@ void check_cube_settles(int seconds) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("a cube hung from a spring at its corner settles with its centre below the corner", T, float,
+TEST_CASE_TEMPLATE("a cube hung from a spring at its corner settles with its center below the corner", T, float,
                    double) {
   // Explicit Euler feeds energy into every oscillation (the factor
   // 1 + ω²h² per step), which nearly cancels the drag on the swing: its
@@ -74,7 +74,7 @@ TEST_CASE_TEMPLATE("a cube hung from a spring at its corner settles with its cen
 }
 
 TEST_CASE_TEMPLATE("the hanging cube turns as it swings", T, float, double) {
-  // The spring pulls at a corner, off the line through the centre, so the
+  // The spring pulls at a corner, off the line through the center, so the
   // cube picks up angular momentum; without a spring at a body point it
   // could not.
   hanging_cube<T, rk4> h;
@@ -87,7 +87,7 @@ namespace {
 // A rod (box 0.1 × 1 × 0.1, mass 1) hung by its top end on a stiff
 // zero-length spring: a physical pendulum about the anchor. Small-angle
 // period 2π·√((I + m·d²)/(m·g·d)), with d the distance from the pivot to
-// the centre (0.5 m) and I = m·(0.5² + 0.05²)/3 about the swing axis.
+// the center (0.5 m) and I = m·(0.5² + 0.05²)/3 about the swing axis.
 // Corrections: amplitude θ₀²/16 = 1.6e-4 at θ₀ = 0.05; the spring's stretch
 // m·g/k = 1e-4 m moves the pivot by 2e-4 of d.
 template <class T>
@@ -95,14 +95,14 @@ double pendulum_period() {
   body_system<T, rk4> system;
   const double d = 0.5, theta0 = 0.05;
   const quat<T> tilt = quat<T>::from_axis_angle({0, 0, 1}, T(theta0));
-  const vec3<T> centre = rotate(tilt, vec3<T>{0, T(-d), 0});
+  const vec3<T> center = rotate(tilt, vec3<T>{0, T(-d), 0});
   rigid_body<T> rod = rigid_body<T>::dynamic(mass_properties_of(box<T>{{T(0.05), T(d), T(0.05)}}, T(100)),
-                                             {centre, tilt});
+                                             {center, tilt});
   const body_id id = system.add_body(rod);
   system.add_spring(body_spring<T>::to_anchor(id, {0, T(d), 0}, {}, T(1e5), T(0)));
   // Period from successive upward zero crossings of x (interpolated).
   const double dt = 1.0 / 960;
-  double previous = double(centre.x), first = -1, last = -1;
+  double previous = double(center.x), first = -1, last = -1;
   int periods = -1;
   for (int i = 1; i <= 5 * 960; ++i) {
     system.step(T(dt));
@@ -130,7 +130,7 @@ TEST_CASE_TEMPLATE("a rod hung on a stiff spring swings with the physical pendul
 
 namespace {
 
-// Two bodies joined by an undamped spring between off-centre points, no
+// Two bodies joined by an undamped spring between off-center points, no
 // gravity, thrown spinning. The force pair is equal and opposite, so total
 // linear momentum is a linear invariant of the equations, and every
 // Runge–Kutta method keeps linear invariants exactly: only rounding may

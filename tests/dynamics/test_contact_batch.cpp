@@ -1,4 +1,4 @@
-// The batched contact solver: the colouring never puts two contacts that
+// The batched contact solver: the coloring never puts two contacts that
 // move the same body in one batch, and W contacts solved in lanes give what
 // the one-by-one rows of contact_rows.hpp give.
 #include <doctest/doctest.h>
@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "impulse/core/random.hpp"
-#include "impulse/dynamics/constraint_graph.hpp"
-#include "impulse/dynamics/contact_batch.hpp"
-#include "impulse/dynamics/contact_rows.hpp"
+#include "impulse/dynamics/detail/constraint_graph.hpp"
+#include "impulse/dynamics/detail/contact_batch.hpp"
+#include "impulse/dynamics/detail/contact_rows.hpp"
 
 namespace {
 
@@ -78,9 +78,9 @@ TEST_CASE("contacts of one batch never share a moving body") {
   }
 }
 
-TEST_CASE("contacts on a static body share its colour and a body in more than 64 contacts leaves some over") {
+TEST_CASE("contacts on a static body share its color and a body in more than 64 contacts leaves some over") {
   using T = float;
-  // 100 boxes on the ground (body 0, static): one colour, batches of 8.
+  // 100 boxes on the ground (body 0, static): one color, batches of 8.
   std::vector<solver_body<T>> bodies(101);
   for (std::size_t i = 1; i < bodies.size(); ++i) bodies[i].inverse_mass = T(1);
   std::vector<contact_constraint<T>> contacts;
@@ -91,7 +91,7 @@ TEST_CASE("contacts on a static body share its colour and a body in more than 64
   check_batches<T>(graph, bodies, contacts, 8);
 
   // Body 1 made dynamic-on-dynamic with all the others: 99 contacts on
-  // one moving body, 64 of which take a colour.
+  // one moving body, 64 of which take a color.
   contacts.clear();
   for (std::uint32_t i = 2; i <= 100; ++i) contacts.push_back(contact_between<T>(1, i));
   graph.build(std::span<const solver_body<T>>(bodies), std::span<const contact_constraint<T>>(contacts), 8);

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "impulse/core/random.hpp"
-#include "impulse/dynamics/joint_tree.hpp"
+#include "impulse/dynamics/detail/joint_tree.hpp"
 
 namespace {
 

@@ -60,7 +60,7 @@ TEST_CASE_TEMPLATE("an impulse at a point changes momentum by the impulse and an
   const vec3<T> r = at - b.position;
   const vec3<T> expected = j * b.inverse_mass + cross(b.inverse_inertia_world() * cross(r, j), r);
   CHECK(max_component(abs((b.velocity_at(at) - before) - expected)) <= 64 * eps<T>());
-  // A force at a point accumulates its moment about the centre of mass.
+  // A force at a point accumulates its moment about the center of mass.
   b.apply_force_at({0, 0, 10}, b.position + vec3<T>{1, 0, 0});
   CHECK(b.torque == vec3<T>{0, -10, 0});
   b.clear_loads();

@@ -16,7 +16,7 @@
 #include "../error_code_of.hpp"
 #include "../particles/particle_test.hpp"
 #include "impulse/core/aligned_array.hpp"
-#include "impulse/io/snapshot.hpp"
+#include "impulse/io/picture.hpp"
 
 namespace {
 
@@ -158,10 +158,10 @@ TEST_CASE("the snapshot raster clamps a triangle's pixel bounds before convertin
   // pixels off screen; converting those to int was undefined behaviour (and
   // at -O3 left the screen undrawn). The triangle covers every pixel.
   impulse::io::detail::raster r(8, 6);
-  const std::array<std::uint8_t, 3> colour{1, 2, 3};
-  r.fill({{{-1e13, -1e13, 1}, {1e13, -1e13, 1}, {0, 1e13, 1}}}, colour);
+  const std::array<std::uint8_t, 3> color{1, 2, 3};
+  r.fill({{{-1e13, -1e13, 1}, {1e13, -1e13, 1}, {0, 1e13, 1}}}, color);
   for (int y = 0; y < 6; ++y)
-    for (int x = 0; x < 8; ++x) CHECK(r.picture.at(x, y) == colour);
+    for (int x = 0; x < 8; ++x) CHECK(r.picture.at(x, y) == color);
 }
 
 TEST_CASE("an aligned_array whose byte size would wrap refuses rather than allocate a small block") {

@@ -222,7 +222,7 @@ TEST_CASE("forces, torques and impulses whose sums overflow are refused, and the
   const std::uint64_t before = state_hash(w);
   CHECK(error_code_of([&] { w.apply_force(b, {3e38f, 0, 0}); }) == error_code::non_finite);
   CHECK(error_code_of([&] { w.apply_force_at(b, {3e38f, 0, 0}, {0, 1, 0}); }) == error_code::non_finite);
-  // A finite force whose moment about the centre overflows.
+  // A finite force whose moment about the center overflows.
   CHECK(error_code_of([&] { w.apply_force_at(b, {0, 3e30f, 0}, {3e30f, 1, 0}); }) == error_code::non_finite);
   w.apply_torque(b, {0, 0, 3e38f});
   const std::uint64_t with_torque = state_hash(w);

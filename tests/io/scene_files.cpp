@@ -42,7 +42,7 @@ std::string refusal(const std::string& text) {
 
 TEST_CASE_TEMPLATE("a ball described in a scene file rebounds to 6.58 within 0.25 percent", T, float, double) {
   // The contact solver's bounce scene (tests/world/test_contact_solver.cpp) as
-  // a file: radius 0.5 from centre height 10, restitution 0.8; it falls 9.5 m
+  // a file: radius 0.5 from center height 10, restitution 0.8; it falls 9.5 m
   // to touch and rises 0.8² of that.
   const io::scene<T> scene = io::parse_scene<T>(R"({
     "impulse_scene": 1,
@@ -70,16 +70,16 @@ TEST_CASE("copies repeated along a path with a turn lie on the circle of radius 
   const io::scene<double> scene = io::read_scene<double>(scenes_dir() + "/dominoes.json");
   const double d = 0.45, theta = 2.7 * std::numbers::pi / 180, radius = d / (2 * std::sin(theta / 2));
   // The first domino faces +z at the origin; a turn about +y swings +z
-  // towards +x, so the arc's centre is on its +x side, level with it.
+  // towards +x, so the arc's center is on its +x side, level with it.
   const std::size_t first = *scene.find_body("domino[0]");
   const vec3<double> start = scene.bodies[first].def.pose.position;
-  // Copy 0 steps d along +z before the first turn, so the centre lies
+  // Copy 0 steps d along +z before the first turn, so the center lies
   // R·cos(θ/2) to the side of that chord's midpoint, d/2 = R·sin(θ/2) ahead.
-  const vec3<double> centre = start + vec3<double>{radius * std::cos(theta / 2), 0, radius * std::sin(theta / 2)};
+  const vec3<double> center = start + vec3<double>{radius * std::cos(theta / 2), 0, radius * std::sin(theta / 2)};
   for (int k = 0; k < 100; ++k) {
     const std::size_t i = *scene.find_body("domino[" + std::to_string(k) + "]");
     const transform<double>& pose = scene.bodies[i].def.pose;
-    CHECK(std::abs(length(pose.position - centre) - radius) < 1e-9);
+    CHECK(std::abs(length(pose.position - center) - radius) < 1e-9);
     CHECK(std::abs(pose.position.y - 0.5) < 1e-12);
     // Copy k has turned k·θ about y.
     const vec3<double> facing = rotate(pose.rotation, vec3<double>{0, 0, 1});

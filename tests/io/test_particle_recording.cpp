@@ -1,6 +1,6 @@
 // Particle recordings (io/particle_recording.hpp): a run read back is the
 // run, frame by frame and bit for bit; the file's size is its documented
-// layout; colours follow age and speed along their ramps; a file cut short
+// layout; colors follow age and speed along their ramps; a file cut short
 // or of another kind is refused.
 #include <doctest/doctest.h>
 
@@ -28,11 +28,11 @@ TEST_CASE("a particle run read back from its recording is the run frame by frame
     particle_frames += fountain.size();
   }
   const std::vector<std::uint8_t> file = recording.ipr();
-  CHECK(file.size() == 48 + 60 * 8 + 12 * particle_frames);  // the layout, no colours
+  CHECK(file.size() == 48 + 60 * 8 + 12 * particle_frames);  // the layout, no colors
 
   const auto back = io::read_particle_recording(file);
   REQUIRE(back);
-  CHECK(!back->coloured);
+  CHECK(!back->colored);
   CHECK(back->interval == doctest::Approx(1.0f / 60));
   REQUIRE(back->frames.size() == 60);
   CHECK(seen[59].size() > 200);  // about rate × lifetime alive: births and deaths are in the run
@@ -54,32 +54,32 @@ TEST_CASE("a particle run read back from its recording is the run frame by frame
   CHECK(!io::read_particle_recording(other));
 }
 
-TEST_CASE("particle colours follow age over lifetime and speed along their ramps") {
+TEST_CASE("particle colors follow age over lifetime and speed along their ramps") {
   particle_system<default_config, drag> still(8, drag<float>{.coefficient = 0});
   still.add({0, 0, 0}, {0, 0, 0}, 1, 2);     // at rest, lives 2 s
   still.add({1, 0, 0}, {10, 0, 0}, 1, 2);    // at full speed
   still.add({2, 0, 0}, {5, 0, 0}, 1, 1000);  // half speed, long-lived
   still.step(1);                             // ages 1 s: half of 2 s
 
-  io::particle_recorder by_age(io::colour_by::age), by_speed(io::colour_by::speed, 10);
+  io::particle_recorder by_age(io::color_by::age), by_speed(io::color_by::speed, 10);
   by_age.record(still);
   by_speed.record(still);
   const auto age = io::read_particle_recording(by_age.ipr());
   const auto speed = io::read_particle_recording(by_speed.ipr());
   REQUIRE(age);
   REQUIRE(speed);
-  CHECK(age->coloured);
-  CHECK(by_age.ipr().size() == 48 + 8 + 3 * 12 + 12);  // 9 colour bytes padded to 12
-  const auto& a = age->frames[0].colours;
-  CHECK(a[0] == io::ramp(io::colour_by::age, 0.5));
-  CHECK(a[2] == io::ramp(io::colour_by::age, 0.001));
-  const auto& s = speed->frames[0].colours;
-  CHECK(s[0] == io::ramp(io::colour_by::speed, 0));
-  CHECK(s[1] == io::ramp(io::colour_by::speed, 1));
-  CHECK(s[2] == io::ramp(io::colour_by::speed, 0.5));
+  CHECK(age->colored);
+  CHECK(by_age.ipr().size() == 48 + 8 + 3 * 12 + 12);  // 9 color bytes padded to 12
+  const auto& a = age->frames[0].colors;
+  CHECK(a[0] == io::ramp(io::color_by::age, 0.5));
+  CHECK(a[2] == io::ramp(io::color_by::age, 0.001));
+  const auto& s = speed->frames[0].colors;
+  CHECK(s[0] == io::ramp(io::color_by::speed, 0));
+  CHECK(s[1] == io::ramp(io::color_by::speed, 1));
+  CHECK(s[2] == io::ramp(io::color_by::speed, 0.5));
   // The ramps' ends: white-hot to dark red by age, blue to red by speed.
-  CHECK(io::ramp(io::colour_by::age, 0) == std::array<std::uint8_t, 3>{255, 250, 220});
-  CHECK(io::ramp(io::colour_by::age, 2) == std::array<std::uint8_t, 3>{90, 20, 10});
-  CHECK(io::ramp(io::colour_by::speed, 0)[2] > 200);
-  CHECK(io::ramp(io::colour_by::speed, 1)[0] > 200);
+  CHECK(io::ramp(io::color_by::age, 0) == std::array<std::uint8_t, 3>{255, 250, 220});
+  CHECK(io::ramp(io::color_by::age, 2) == std::array<std::uint8_t, 3>{90, 20, 10});
+  CHECK(io::ramp(io::color_by::speed, 0)[2] > 200);
+  CHECK(io::ramp(io::color_by::speed, 1)[0] > 200);
 }

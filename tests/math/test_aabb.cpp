@@ -149,7 +149,7 @@ TEST_CASE_TEMPLATE("a 1 by 2 by 3 box has surface area 22 and volume 6", T, floa
 TEST_CASE_TEMPLATE("a box rotated 45 degrees about z has world half extents of the diagonal", T, float, double) {
   // A world half extent sums two products of a rounded cos 45° and h, and the
   // expected value is rounded too: four roundings of a number near 2, where
-  // an ulp is 2 epsilon. The centre lies near 32, where an ulp is 32 epsilon.
+  // an ulp is 2 epsilon. The center lies near 32, where an ulp is 32 epsilon.
   const T half_extent_rounding = 4 * 2 * epsilon<T>;
   const T center_rounding = 2 * 32 * epsilon<T>;
   const vec3<T> h{1, 2, 3};

@@ -70,7 +70,7 @@ struct lcg {
     return {in<T>(lo, hi), in<T>(lo, hi), in<T>(lo, hi)};
   }
 
-  /// A direction: a point of the unit ball away from the centre, normalised.
+  /// A direction: a point of the unit ball away from the center, normalised.
   template <class T>
   vec3<T> unit_vector() {
     for (;;) {

@@ -128,13 +128,13 @@ TEST_CASE_TEMPLATE("sphere against a box: face, edge, corner, inside, and ids th
   CHECK(m.points[0].depth == doctest::Approx(0.1).epsilon(tolerance<T> * 100));
   CHECK(m.points[0].feature == 2u + 3u * 2u + 9u * 2u);
 
-  // Centre inside, 0.1 below face +x: out through it, as deep as r + 0.1.
+  // Center inside, 0.1 below face +x: out through it, as deep as r + 0.1.
   m = collide(sphere<T>{T(0.5)}, ball_at({T(0.9), T(0.3), T(-1)}), b, pose);
   REQUIRE(m.count == 1);
   CHECK(near(m.normal, world_dir({-1, 0, 0})));
   CHECK(m.points[0].depth == doctest::Approx(0.6).epsilon(tolerance<T> * 100));
   CHECK(m.points[0].feature == 2u);
-  // Centre inside nearest face −z.
+  // Center inside nearest face −z.
   m = collide(sphere<T>{T(0.5)}, ball_at({T(0), T(0), T(-2.8)}), b, pose);
   CHECK(near(m.normal, world_dir({0, 0, 1})));
   CHECK(m.points[0].feature == 9u * 1u);
@@ -199,7 +199,7 @@ TEST_CASE_TEMPLATE("capsules: lying on a plane, crossing, lying along each other
   const quat<T> along_x = quat<T>::from_axis_angle(vec3<T>::unit_z(), T(1.5707963267948966));
   const quat<T> along_z = quat<T>::from_axis_angle(vec3<T>::unit_x(), T(1.5707963267948966));
 
-  // Lying on the ground, 1 cm deep: both cap centres.
+  // Lying on the ground, 1 cm deep: both cap centers.
   auto m = collide(c, transform<T>{{0, T(0.24), 0}, along_x}, ground, transform<T>::identity());
   REQUIRE(m.count == 2);
   for (const auto& p : m.contacts()) {

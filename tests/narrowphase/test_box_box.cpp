@@ -131,7 +131,7 @@ TEST_CASE_TEMPLATE("size ratio 1000:1 and far from the origin", T, float, double
 
 TEST_CASE_TEMPLATE("random box pairs: no missing contact, no NaN, points on both boxes", T, float, double) {
   // 10 000 pairs of random boxes, sizes 0.05 to 2, at random poses close
-  // enough to overlap about half the time. Whenever a corner or the centre
+  // enough to overlap about half the time. Whenever a corner or the center
   // of one lies inside the other, there must be a contact; every contact
   // must have A's surface point (position + n·depth/2) in A and B's
   // (position − n·depth/2) in B, to rounding.

@@ -101,7 +101,7 @@ TEST_CASE_TEMPLATE("a capsule upright on a box, apart within the margin, and on 
 }
 
 TEST_CASE_TEMPLATE("a capsule's core sunk into a box leaves by the least penetrating face", T, float, double) {
-  // Upright, centred 0.4 from the box's +x face (half extent 1), the core
+  // Upright, centered 0.4 from the box's +x face (half extent 1), the core
   // 0.6 long, entirely inside: the way out is +x, 0.4 + 0.25 deep.
   const box<T> cube{vec3<T>::splat(T(1))};
   const capsule<T> rod{T(0.25), T(0.3)};

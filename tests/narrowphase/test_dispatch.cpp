@@ -81,7 +81,7 @@ TEST_CASE_TEMPLATE("every listed pair reaches its own test", T, float, double) {
   // Each ordered pair through the table and directly: the same manifolds,
   // to the bit. At these poses every pair touches but the static ones and
   // a shape at pa under the floor at pb: the mesh is one-sided, and the
-  // shape's centre is behind it.
+  // shape's center is behind it.
   const transform<T> pa = at<T>({}, quat<T>::from_axis_angle(vec3<T>::unit_z(), T(0.3)));
   const transform<T> pb = at<T>({T(0.2), T(0.45), T(-0.1)}, quat<T>::from_axis_angle(vec3<T>::unit_x(), T(0.5)));
   const T margin = T(0.01);

@@ -58,7 +58,7 @@ TEST_CASE_TEMPLATE("epa: boxes and spheres overlapping by known depths", T, floa
   CHECK(r.depth == doctest::Approx(0.1).epsilon(1e-5));
   CHECK(length(r.normal - vec3<T>::unit_x()) <= T(1e-5));
   CHECK(length(r.on_a - r.on_b - r.normal * r.depth) <= T(1e-5));
-  // Deep: centres 0.3 apart along y: 0.7 to push out.
+  // Deep: centers 0.3 apart along y: 0.7 to push out.
   r = epa_penetration(cube, at<T>({}), cube, at<T>({0, T(0.3), 0}));
   CHECK(r.depth == doctest::Approx(0.7).epsilon(1e-5));
   CHECK(length(r.normal - vec3<T>::unit_y()) <= T(1e-5));
@@ -66,7 +66,7 @@ TEST_CASE_TEMPLATE("epa: boxes and spheres overlapping by known depths", T, floa
   r = epa_penetration(cube, at<T>({}), cube, at<T>({}));
   CHECK(r.depth == doctest::Approx(1.0).epsilon(1e-5));
   CHECK(is_finite(r.normal));
-  // Spheres 0.8 apart, radius 0.5: 0.2 deep along the centres' line. Their
+  // Spheres 0.8 apart, radius 0.5: 0.2 deep along the centers' line. Their
   // cores are points: the answer is the gap between them, exactly.
   const vec3<T> d = normalize(vec3<T>{2, -1, 2});
   r = epa_penetration(sphere<T>{T(0.5)}, at<T>({}), sphere<T>{T(0.5)}, at<T>(d * T(0.8)));
@@ -107,7 +107,7 @@ TEST_CASE_TEMPLATE("epa on random overlapping pairs agrees with the separating a
       worst_box = std::max(worst_box, std::abs(r.depth - expected));
       most_iterations = std::max(most_iterations, r.iterations);
     }
-    // A sphere against a box, from the analytic test (its centre kept off
+    // A sphere against a box, from the analytic test (its center kept off
     // the box's surface, where the closed form is exact either way).
     const sphere<T> s{random.uniform<T>(T(0.1), T(1))};
     const transform<T> ps = place(T(0.8));
@@ -141,7 +141,7 @@ struct curved_ball {
 
 TEST_CASE_TEMPLATE("epa on curved support functions ends within its fixed polytope", T, float, double) {
   // Two balls known only by their support functions, radii 1 and 0.5,
-  // centres 0.7 apart along x: depth 1.5 − 0.7 = 0.8 exactly (the case on
+  // centers 0.7 apart along x: depth 1.5 − 0.7 = 0.8 exactly (the case on
   // which libccd 2.1 answers 0.725, tests/peers). Then 200 random such
   // pairs: EPA never exceeds its 128 iterations or its polytope's fixed
   // room, and lands within the faceting of the ball it has built: measured

@@ -1,6 +1,6 @@
 // The cases that break narrow phases, for every polyhedral pair test (box–
 // box, hull–hull, box–hull, capsule–box, capsule–hull): edges a hair off
-// parallel, faces exactly touching, one shape centred inside the other.
+// parallel, faces exactly touching, one shape centered inside the other.
 // Each must give a finite contact with the right depth and normal, never
 // NaN and never nothing.
 #include <doctest/doctest.h>
@@ -95,11 +95,11 @@ TEST_CASE_TEMPLATE("faces exactly touching: points at depth 0", T, float, double
   }
 }
 
-TEST_CASE_TEMPLATE("one shape centred inside the other: out along a face, the full depth", T, float, double) {
-  // A box of half extents (0.3, 0.2, 0.4) centred in a unit cube (and
+TEST_CASE_TEMPLATE("one shape centered inside the other: out along a face, the full depth", T, float, double) {
+  // A box of half extents (0.3, 0.2, 0.4) centered in a unit cube (and
   // turned 0.1 rad about x): the least way out is along y, where the two
   // overlap by 0.5 + 0.2·cos 0.1 + 0.4·sin 0.1 (the turned box's reach);
-  // a capsule centred upright inside the cube: out sideways, 0.5 + radius.
+  // a capsule centered upright inside the cube: out sideways, 0.5 + radius.
   const polyhedra<T> pair{{vec3<T>::splat(T(0.5))}, {{T(0.3), T(0.2), T(0.4)}}};
   const T angle = T(0.1);
   const transform<T> pb = at<T>({}, quat<T>::from_axis_angle(vec3<T>::unit_x(), angle));

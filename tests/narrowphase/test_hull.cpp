@@ -87,7 +87,7 @@ TEST_CASE_TEMPLATE("a sphere against a cube hull gives the box's answers", T, fl
     worst_depth = std::max(worst_depth, std::abs(with_box.points[0].depth - with_hull.points[0].depth));
     worst_normal = std::max(worst_normal, length(with_box.normal - with_hull.normal));
   }
-  MESSAGE("compared " << compared << " (centre inside: " << inside << "), worst depth " << worst_depth << ", normal " << worst_normal);
+  MESSAGE("compared " << compared << " (center inside: " << inside << "), worst depth " << worst_depth << ", normal " << worst_normal);
   CHECK(compared > 1500);
   CHECK(inside > 100);
   CHECK(worst_depth <= tolerance<T> * 10);

@@ -259,7 +259,7 @@ TEST_CASE_TEMPLATE("a capsule lying or standing on a flat grid gets the plane's 
     T x = g.uniform<T>(-3, 3), z = g.uniform<T>(-3, 3);
     if (q % 5 == 0) x = std::round(x), z = std::round(z);
     const vec3<T> axis = rotate(turn, vec3<T>{0, rod.half_height, 0});
-    const T lowest_core = std::abs(axis.y);  // the lower cap centre's drop below the middle
+    const T lowest_core = std::abs(axis.y);  // the lower cap center's drop below the middle
     const transform<T> pose = at<T>({x, lowest_core + rod.radius - T(0.01), z}, turn);
     const auto found = touch(mesh, transform<T>::identity(), rod, pose);
     const contact_manifold<T> expected = collide(ground, transform<T>::identity(), rod, pose);
@@ -267,7 +267,7 @@ TEST_CASE_TEMPLATE("a capsule lying or standing on a flat grid gets the plane's 
     CHECK(length(found[0].normal - vec3<T>::unit_y()) <= normal_tolerance<T>);
     CHECK(std::abs(test::deepest(found[0]) - test::deepest(expected)) <= tolerance<T> * 10);
     // Every point lies midway between the capsule and the plane, no deeper
-    // than the plane's deepest, and the plane's points (the cap centres
+    // than the plane's deepest, and the plane's points (the cap centers
     // within reach) are among the mesh's.
     for (const auto& p : found[0].contacts()) {
       CHECK(std::abs(p.position.y + p.depth * T(0.5)) <= tolerance<T> * 10);  // midway: the plane is y = 0
@@ -325,7 +325,7 @@ TEST_CASE_TEMPLATE("a hull on a flat grid gets the plane's normal and depth", T,
   for (int q = 0; q < 300; ++q) {
     const quat<T> turn = quat<T>::from_axis_angle(vec3<T>::unit_y(), g.uniform<T>(-3, 3));
     T x = g.uniform<T>(-3, 3), z = g.uniform<T>(-3, 3);
-    if (q % 3 == 0) x = std::round(x), z = std::round(z);  // the centre over a vertex
+    if (q % 3 == 0) x = std::round(x), z = std::round(z);  // the center over a vertex
     const transform<T> pose = at<T>({x, T(0.3) - T(0.02), z}, turn);
     const auto found = touch(mesh, transform<T>::identity(), prism, pose);
     const contact_manifold<T> expected = collide(prism, pose, ground, transform<T>::identity()).flipped();
@@ -345,7 +345,7 @@ TEST_CASE_TEMPLATE("a box sliding across a grid in small steps never catches on 
   const quat<T> turns[3] = {quat<T>::identity(), quat<T>::from_axis_angle(vec3<T>::unit_y(), T(0.5235988)),
                             quat<T>::from_axis_angle(vec3<T>::unit_z(), T(0.0349066))};
   for (const quat<T>& turn : turns) {
-    // The box's reach below its centre: the y extent of the rotated box.
+    // The box's reach below its center: the y extent of the rotated box.
     const T reach = transform_aabb(crate.local_aabb(), at<T>({}, turn)).upper.y;
     int steps = 0;
     for (int i = 0; i <= 700; ++i) {
@@ -396,7 +396,7 @@ TEST_CASE_TEMPLATE("a box and a sphere against a mesh cube's edge get the edge's
   CHECK(length(found[0].normal - vec3<T>::unit_y()) <= normal_tolerance<T>);
   CHECK(test::deepest(found[0]) == doctest::Approx(0.01).epsilon(tolerance<T> * 1000));
   // A sphere over the ridge, within its edge's Voronoi region (12.5° off
-  // vertical, less than the slopes' 20°): the normal through the centre.
+  // vertical, less than the slopes' 20°): the normal through the center.
   const vec3<T> c{T(0.1), T(0.45), 0};
   found = touch(ridge, transform<T>::identity(), ball, at<T>(c));
   REQUIRE(found.size() == 1);
@@ -481,7 +481,7 @@ TEST_CASE_TEMPLATE("a shape with a non-finite pose touches nothing and writes no
     CHECK(touch(mesh, transform<T>::identity(), capsule<T>{}, pose).empty());
     CHECK(touch(mesh, transform<T>::identity(), box<T>{}, pose).empty());
     CHECK(touch(mesh, transform<T>::identity(), hull, pose).empty());
-    // A sphere has no orientation to spoil: only its centre matters.
+    // A sphere has no orientation to spoil: only its center matters.
     for (const auto& m : touch(mesh, transform<T>::identity(), sphere<T>{}, pose)) {
       CHECK(is_finite(m.normal));
       for (const auto& p : m.contacts()) CHECK(std::isfinite(p.depth));
@@ -491,7 +491,7 @@ TEST_CASE_TEMPLATE("a shape with a non-finite pose touches nothing and writes no
   CHECK(touch(mesh, at<T>({nan, 0, 0}), box<T>{}, at<T>({0, T(0.4), 0})).empty());
   // Far apart and behind: nothing.
   CHECK(touch(mesh, transform<T>::identity(), box<T>{}, at<T>({0, T(0.6), 0})).empty());
-  CHECK(touch(mesh, transform<T>::identity(), box<T>{}, at<T>({0, T(-0.1), 0})).empty());  // centre behind: let through
+  CHECK(touch(mesh, transform<T>::identity(), box<T>{}, at<T>({0, T(-0.1), 0})).empty());  // center behind: let through
   // Within the margin: a contact of negative depth.
   const auto near = touch(mesh, transform<T>::identity(), box<T>{}, at<T>({0, T(0.55), 0}), T(0.1));
   REQUIRE(near.size() == 1);

@@ -285,7 +285,7 @@ TEST_CASE_TEMPLATE("ray cast: a capsule's side and caps exactly", T, float, doub
   CHECK(length(h.normal - vec3<T>{T(0.6), T(-0.8), 0}) <= tolerance<T> * 4);
   // Slanting down onto the top cap: the line y = x + 0.7 meets the
   // cylinder x = 0.5 at y = 1.2, above the core's end, and passes 0.3/√2
-  // from the cap's centre (0, 1): the cap's ball decides, checked against
+  // from the cap's center (0, 1): the cap's ball decides, checked against
   // a sphere there.
   const ray<T> slant{{2, T(2.7), 5}, {-4, -4, 0}};
   h = ray_cast(slant, c, pose);
@@ -428,7 +428,7 @@ TEST_CASE_TEMPLATE("ray casts far from the origin and against tiny and huge shap
   // At 1e4 m a float's spacing is 1 mm: positions hold to about that.
   const T far_tolerance = sizeof(T) == 4 ? T(2e-3) : T(1e-10);
   const auto head_on = [&](const auto& shape, T reach) {
-    // From 3 m along the turned x axis, straight at the centre.
+    // From 3 m along the turned x axis, straight at the center.
     const vec3<T> axis = rotate(turn, vec3<T>::unit_x());
     const auto h = ray_cast(ray<T>{far + axis * T(3), axis * T(-6)}, shape, at<T>(far, turn));
     REQUIRE(h.hit);

@@ -92,10 +92,10 @@ TEST_CASE_TEMPLATE("toi: a bullet at 500 m/s is stopped in front of a 1 cm wall"
   const auto r = time_of_impact(bullet, moving<T>({}, {step, 0, 0}), wall, still<T>({4, 0, 0}));
   REQUIRE(r.state == toi_state::hit);
   const T front = T(4) - T(0.005);  // the wall's near face
-  const T centre = step * r.t;      // the bullet's centre at the time found
-  CHECK(centre + T(0.05) <= front);  // in front of the wall, not through it
+  const T center = step * r.t;      // the bullet's center at the time found
+  CHECK(center + T(0.05) <= front);  // in front of the wall, not through it
   // Exactly the target short of the face (head on: exact in one step).
-  CHECK(std::abs(front - (centre + T(0.05)) - o.target) <= tolerance<T> * 10);
+  CHECK(std::abs(front - (center + T(0.05)) - o.target) <= tolerance<T> * 10);
   CHECK(r.iterations <= 2);
   CHECK(length(r.normal - vec3<T>::unit_x()) <= tolerance<T>);
 }
@@ -185,7 +185,7 @@ TEST_CASE_TEMPLATE("toi: out of iterations the answer is the last safe time", T,
   CHECK(r.distance >= o.target);
 }
 
-TEST_CASE_TEMPLATE("toi: a sweep's pose is its start at 0 and its end at 1 and turns about its centre", T, float, double) {
+TEST_CASE_TEMPLATE("toi: a sweep's pose is its start at 0 and its end at 1 and turns about its center", T, float, double) {
   const quat<T> q0 = quat<T>::from_axis_angle(normalize(vec3<T>{1, 2, 3}), T(0.4));
   const quat<T> q1 = quat<T>::from_axis_angle(normalize(vec3<T>{-1, 0, 2}), T(1.9));
   const sweep<T> s{at<T>({1, 2, 3}, q0), at<T>({4, 0, -1}, q1), {T(0.2), T(-0.1), T(0.3)}};
@@ -193,7 +193,7 @@ TEST_CASE_TEMPLATE("toi: a sweep's pose is its start at 0 and its end at 1 and t
   CHECK(length(m.at(0).position - s.start.position) <= tolerance<T>);
   CHECK(length(m.at(1).position - s.end.position) <= tolerance<T> * 10);
   CHECK(angle_between(m.at(1).rotation, q1) <= tolerance<T> * 10);
-  // The centre (not the shape's origin) moves on a straight line.
+  // The center (not the shape's origin) moves on a straight line.
   const vec3<T> c0 = apply(s.start, s.local_center), c1 = apply(s.end, s.local_center);
   CHECK(length(apply(m.at(T(0.3)), s.local_center) - lerp(c0, c1, T(0.3))) <= tolerance<T> * 10);
 }

@@ -20,7 +20,7 @@
 // (FCL's copy of libccd was fixed for this in 2018; Debian ships the
 // original). A sphere 0.5 m inside a unit sphere along x (exact depth 0.8)
 // gets 0.725 from ccdGJKPenetration; its MPR gets 0.8 there, but MPR's
-// depth is along the line between the centres, not the least. libccd 2.1
+// depth is along the line between the centers, not the least. libccd 2.1
 // also has no distance query: ccd_shapes.hpp gets one from its EPA on B
 // grown by a ball, which inherits the fold on a curved surface.
 //
@@ -127,8 +127,8 @@ void compare(shape_kind ka, shape_kind kb, std::uint32_t seed, tally& depth, tal
     CHECK(relative_error(o.value, exact) <= exact_agreement);
     tally& t = e.overlapping ? depth : gap;
     // For a separated pair, B grown by more than the distance between the
-    // centres (which bounds the distance between the shapes: each holds
-    // its centre) overlaps A.
+    // centers (which bounds the distance between the shapes: each holds
+    // its center) overlaps A.
     const double peer = e.overlapping ? ccd_depth(ccd, ca, cb)
                                       : ccd_distance(ccd, ca, cb, distance(p.a.pose.position, p.b.pose.position) + 0.01);
     CAPTURE(peer);

@@ -1,5 +1,5 @@
 // tests/peers/ccd_shapes.hpp — the shapes of convex_pairs.hpp as libccd
-// sees them: an object with a support function and a centre, in double
+// sees them: an object with a support function and a center, in double
 // (Debian's libccd 2.1 is built with CCD_DOUBLE).
 //
 // The support functions are written here from the shape's definition and

@@ -276,7 +276,7 @@ inline exact_answer exact(const pair_spec& pair) {
 }
 
 /// n pairs of kinds ka and kb: B placed at a random offset from A (A's
-/// centre somewhere in a 10 m cube about the origin, `far` m out along x),
+/// center somewhere in a 10 m cube about the origin, `far` m out along x),
 /// random rotations; half of them overlapping by the exact answer, half
 /// apart, each pair with its exact answer. Pairs within 1e-6 m of touching
 /// are drawn again: there the question "overlapping?" is rounding.

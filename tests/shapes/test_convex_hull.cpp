@@ -40,7 +40,7 @@ vec3<double> to_double(const vec3<float>& v) { return {v.x, v.y, v.z}; }
 vec3<double> to_double(const vec3<double>& v) { return v; }
 
 /// The tolerance from_points derives for these points: Gregorius'
-/// 3·(max|x| + max|y| + max|z|)·ε, coordinates from the bounding box centre.
+/// 3·(max|x| + max|y| + max|z|)·ε, coordinates from the bounding box center.
 template <class T>
 double expected_tolerance(const std::vector<vec3<T>>& points) {
   vec3<double> lo = to_double(points[0]), hi = lo;
@@ -260,7 +260,7 @@ TEST_CASE_TEMPLATE("the eight corners of a box give six quads", T, float, double
   const std::vector<vec3<T>> corners = box_corners<T>(center, half);
   const convex_hull<T> hull = build(corners);
   check_box_hull(hull, corners, corners);
-  // Each plane passes through its face: offset = -(n·centre + half extent).
+  // Each plane passes through its face: offset = -(n·center + half extent).
   for (std::size_t f = 0; f < hull.face_count(); ++f) {
     const vec3<double> n = to_double(hull.plane(f).normal);
     const double expected = -(dot(n, center) + dot(abs(n), half));
@@ -477,7 +477,7 @@ TEST_CASE_TEMPLATE("a subdivided icosahedron on the sphere gives one triangle pe
 TEST_CASE_TEMPLATE("a cloud far from the origin has the hull of the same cloud at the origin", T, float, double) {
   // The same points (the offset subtracts exactly: both are within a factor
   // two of each other) give the same hull moved by the offset: the hull is
-  // built relative to the centre of the points, not the origin.
+  // built relative to the center of the points, not the origin.
   const double offset = 1e4;
   lcg random;
   std::vector<vec3<T>> far, near;

@@ -123,7 +123,7 @@ TEST_CASE_TEMPLATE("a finer tessellated sphere converges to the sphere's mass pr
   CHECK(previous < 1e-3);  // 20 480 facets
 }
 
-TEST_CASE_TEMPLATE("a polyhedron far from the origin has the same inertia about its centre of mass", T, float, double) {
+TEST_CASE_TEMPLATE("a polyhedron far from the origin has the same inertia about its center of mass", T, float, double) {
   std::vector<vec3<T>> v;
   std::vector<std::uint32_t> t;
   sphere_mesh(2, T(1), v, t);

@@ -68,7 +68,7 @@ TEST_CASE("a ball of radius 5 cm at 500 m/s never passes a 1 cm wall or a mesh w
       CAPTURE(degrees);
       CAPTURE(kind == wall_kind::mesh);
       const float angle = degrees * std::numbers::pi_v<float> / 180;
-      // Its centre stays a radius short of the near face (4.95): the sweep
+      // Its center stays a radius short of the near face (4.95): the sweep
       // stops it 5 mm short, the next step's contact lets it touch.
       CHECK(furthest_ball<ccd_config>(angle, kind) < 4.95f + 0.001f);
       // Without the sweep it is through in the first step.

@@ -26,7 +26,7 @@ struct awake_world_of<double> {
 template <class T>
 using awake_world = typename awake_world_of<T>::type;
 
-/// `bounce`: the first peak of a ball of radius 0.5 dropped from centre
+/// `bounce`: the first peak of a ball of radius 0.5 dropped from center
 /// height 10 with restitution 0.8 on the standard ground.
 template <class T>
 T first_rebound_peak() {
@@ -187,9 +187,9 @@ TEST_CASE("a 100 kg box resting on a 1 kg box stands for 10 s without sinking or
   CHECK(w.body(light).position.y > 0.49f);
 }
 
-TEST_CASE("a slab carrying 100 boxes holds them all though it has more contacts than the solver has colours") {
+TEST_CASE("a slab carrying 100 boxes holds them all though it has more contacts than the solver has colors") {
   // The slab is in 100 contacts with the boxes (and one with the ground);
-  // the colouring gives 64 of them a colour and leaves the rest to be
+  // the coloring gives 64 of them a color and leaves the rest to be
   // solved one by one after the batches (constraint_graph.hpp). Both
   // paths must hold their boxes alike.
   world<test::awake_config> w;

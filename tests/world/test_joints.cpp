@@ -173,7 +173,7 @@ TEST_CASE_TEMPLATE("a hinge motor too weak for its load applies its whole torque
   // The bar hangs straight down; the motor, asked for 2 rad/s with at
   // most 2 N·m, is never reached, so it pushes with a constant 2 N·m: the
   // bar swings up to where that torque's work equals the rise of its
-  // centre, τ·θ = m·g·(L/2)·(1 − cos θ), θ = 0.8688 rad, and back.
+  // center, τ·θ = m·g·(L/2)·(1 − cos θ), θ = 0.8688 rad, and back.
   World w;
   const body_id pivot = add_pivot(w, {0, 10, 0});
   body_def<T> d;
@@ -239,7 +239,7 @@ TEST_CASE_TEMPLATE("a body on a vertical slider falls at g along it and does not
   using T = typename World::scalar;
   World w;
   const body_id pivot = add_pivot(w, {0, 10, 0});
-  // The slider's anchor is off the body's centre, and the body is spun:
+  // The slider's anchor is off the body's center, and the body is spun:
   // the slider keeps it from turning and from leaving the line.
   const body_id block = ::test::add_cube(w, {0.3, 10, 0});
   const joint_id slider = w.create_joint(joint_def<T>::slider(pivot, block, {0, 10, 0}, {0, 1, 0}));
@@ -300,14 +300,14 @@ TEST_CASE_TEMPLATE("a welded cantilever holds its pose and a distance spring osc
   spring.spring_hertz = 2;
   w.create_joint(spring);
   double before = double(w.body(ball).position.y), last = 0, first = 0;
-  const double centre = 9 - 9.81 / std::pow(2 * std::numbers::pi * 2, 2);
+  const double center = 9 - 9.81 / std::pow(2 * std::numbers::pi * 2, 2);
   int crossings = 0;
   T sag = 0, turn = 0;
   for (int i = 0; i < 240; ++i) {
     w.step(::test::step_dt<T>);
-    const double y = double(w.body(ball).position.y) - centre;
-    if ((before - centre < 0) != (y < 0)) {
-      const double t = double(w.time()) - double(::test::step_dt<T>) * y / (y - (before - centre));
+    const double y = double(w.body(ball).position.y) - center;
+    if ((before - center < 0) != (y < 0)) {
+      const double t = double(w.time()) - double(::test::step_dt<T>) * y / (y - (before - center));
       if (crossings++ == 0) first = t;
       last = t;
     }

@@ -19,7 +19,7 @@ struct platform_scene {
   body_id platform, rider;
 
   /// A 8 × 0.5 × 8 m kinematic slab with its top at y = 0.25, and a cube
-  /// resting on it 2 m from its centre, both of the given friction.
+  /// resting on it 2 m from its center, both of the given friction.
   explicit platform_scene(float friction) {
     body_def<float> d;
     d.type = body_type::kinematic;
@@ -72,7 +72,7 @@ TEST_CASE("a platform moved by a target pose each step follows its path exactly 
   // 1.2 m/s² and 0.62 rad/s², within what μ = 0.6 holds); the rider keeps
   // its place on it.
   platform_scene s(0.6f);
-  const vec3<float> offset = s.w.body(s.rider).position;  // from the platform's centre
+  const vec3<float> offset = s.w.body(s.rider).position;  // from the platform's center
   const float dt = ::test::step_dt<float>;
   transform<float> pose{};
   float worst = 0;

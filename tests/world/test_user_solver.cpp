@@ -113,7 +113,7 @@ TEST_CASE_TEMPLATE("a user's own Gauss-Seidel solver, plugged in through the con
   ::test::add_ground(w);
   const body_id box = ::test::add_cube(w, {0, 2, 0});
   ::test::run(w, 180);  // 3 s: it lands at 0.55 s
-  // Its centre rests half its size above the ground, less what the
+  // Its center rests half its size above the ground, less what the
   // Baumgarte term leaves in: 5 mm of slop, and under it the depth a step
   // of gravity (g·dt² = 2.7 mm) pushes in before the push-out answers.
   const T y = w.body(box).position.y;
@@ -136,7 +136,7 @@ TEST_CASE_TEMPLATE("a user's own solver holds a box on a 30 degree incline where
     slope.pose.rotation = quat<T>::from_axis_angle({0, 0, 1}, angle);
     slope.material.friction = mu;
     w.create_body(slope, box<T>::make({20, 1, 20}));
-    // A cube resting on the slope's top face (1 m above its centre plane).
+    // A cube resting on the slope's top face (1 m above its center plane).
     const vec3<T> up = rotate(slope.pose.rotation, vec3<T>{0, 1, 0});
     const body_id cube = ::test::add_cube(w, up * T(1.5), T(1), mu, slope.pose.rotation);
     ::test::run(w, 60);

@@ -196,7 +196,7 @@ TEST_CASE("a pair that moved within the reuse limits keeps its manifold carried 
   const float near = world_settings<float>{}.contact_reuse_distance;
   // Within the limits (0.5 mm, 0.4°): the corners' depths as a fresh test
   // finds them, and each point within half its corner's slide of it (a
-  // corner 0.52 m from the centre slides 3.6 mm at 0.4°, the shift
+  // corner 0.52 m from the center slides 3.6 mm at 0.4°, the shift
   // 0.5 mm).
   const seen reused = manifold_after(near, {0.0004f, -0.0002f, 0.0002f}, 0.007f);
   const seen fresh = manifold_after(0, {0.0004f, -0.0002f, 0.0002f}, 0.007f);
@@ -356,7 +356,7 @@ TEST_CASE("debug drawing shows each body's box, each contact point and normal, a
 }
 
 TEST_CASE("every shape rests where it should: a hull, a capsule and a sphere on a mesh floor and on a plane") {
-  // A unit-cube hull whose points are all off-centre (its centre of mass
+  // A unit-cube hull whose points are all off-center (its center of mass
   // is at (2, 2, 2) in its own frame), a capsule lying down and a ball,
   // dropped on a two-triangle mesh and on a plane: each comes to rest with
   // its lowest point at the floor, within the slop.
@@ -377,7 +377,7 @@ TEST_CASE("every shape rests where it should: a hull, a capsule and a sphere on 
     d.mass = 1;
     d.pose.position = {-2, -1, -2};  // the hull's points then span y = 0.5 .. 1.5
     const body_id hull = w.create_body(d, convex_hull<float>::from_points(points));
-    CHECK(w.body(hull).position.y == doctest::Approx(1.0f));  // the centre of mass, not the origin
+    CHECK(w.body(hull).position.y == doctest::Approx(1.0f));  // the center of mass, not the origin
     d.pose = {{3, 1, 0}, quat<float>::from_axis_angle({0, 0, 1}, 1.5707963f)};
     const body_id capsule_body = w.create_body(d, capsule<float>::make(0.25f, 0.5f));
     d.pose = {{-3, 1, 0}, quat<float>::identity()};
@@ -404,7 +404,7 @@ TEST_CASE("a kinematic body moves at its velocity and is not pushed by what it h
   ::test::run(w, 60);
   CHECK(w.body(pusher).position.x == doctest::Approx(1.0f).epsilon(1e-5));
   CHECK(w.body(pusher).linear_velocity().x == 1.0f);
-  // Pushed ahead of it: its face reached x = 1.5, the ball's centre 0.5 beyond.
+  // Pushed ahead of it: its face reached x = 1.5, the ball's center 0.5 beyond.
   CHECK(w.body(ball).position.x >= 2.0f - w.settings().solver.linear_slop);
   CHECK(w.body(ball).linear_velocity().x == doctest::Approx(1.0f).epsilon(1e-3));
 }

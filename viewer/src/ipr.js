@@ -5,8 +5,8 @@ import * as THREE from 'three';
 const HEADER_BYTES = 48;
 
 /// The frames of an .ipr file: {flags, interval, boundsMin, boundsMax,
-/// frames: [{time, count, positions: Float32Array, colours: Uint8Array|null}]}.
-/// Positions and colours are views into `buffer`, not copies.
+/// frames: [{time, count, positions: Float32Array, colors: Uint8Array|null}]}.
+/// Positions and colors are views into `buffer`, not copies.
 export function parseIpr(buffer) {
   const view = new DataView(buffer);
   const fail = (why) => {
@@ -23,7 +23,7 @@ export function parseIpr(buffer) {
   const f32 = (offset) => view.getFloat32(offset, true);
   const boundsMin = [f32(24), f32(28), f32(32)];
   const boundsMax = [f32(36), f32(40), f32(44)];
-  const coloured = (flags & 1) !== 0;
+  const colored = (flags & 1) !== 0;
 
   const frames = [];
   let at = HEADER_BYTES;
@@ -32,16 +32,16 @@ export function parseIpr(buffer) {
     const time = view.getFloat32(at, true);
     const count = view.getUint32(at + 4, true);
     at += 8;
-    const colourBytes = coloured ? 3 * count + ((4 - ((3 * count) % 4)) % 4) : 0;
-    if (at + 12 * count + colourBytes > buffer.byteLength) fail(`frame ${i} is cut off`);
-    // Every frame starts on a 4-byte boundary (the colours are padded), so
+    const colorBytes = colored ? 3 * count + ((4 - ((3 * count) % 4)) % 4) : 0;
+    if (at + 12 * count + colorBytes > buffer.byteLength) fail(`frame ${i} is cut off`);
+    // Every frame starts on a 4-byte boundary (the colors are padded), so
     // the positions can be read in place as floats: little-endian, as every
     // machine a browser runs on is.
     const positions = new Float32Array(buffer, at, 3 * count);
     at += 12 * count;
-    const colours = coloured ? new Uint8Array(buffer, at, 3 * count) : null;
-    at += colourBytes;
-    frames.push({ time, count, positions, colours });
+    const colors = colored ? new Uint8Array(buffer, at, 3 * count) : null;
+    at += colorBytes;
+    frames.push({ time, count, positions, colors });
   }
   return { flags, interval, boundsMin, boundsMax, frames };
 }
@@ -51,17 +51,17 @@ export function loadIpr(buffer) {
   const recording = parseIpr(buffer);
   const { frames } = recording;
   const most = Math.max(1, ...frames.map((f) => f.count));
-  const coloured = frames.length > 0 && frames[0].colours !== null;
+  const colored = frames.length > 0 && frames[0].colors !== null;
 
   // One buffer of the largest frame's size, refilled at each frame shown; a
   // draw range says how much of it the frame uses.
   const geometry = new THREE.BufferGeometry();
   const position = new THREE.BufferAttribute(new Float32Array(3 * most), 3).setUsage(THREE.DynamicDrawUsage);
   geometry.setAttribute('position', position);
-  let colour = null;
-  if (coloured) {
-    colour = new THREE.BufferAttribute(new Uint8Array(3 * most), 3, true).setUsage(THREE.DynamicDrawUsage);
-    geometry.setAttribute('color', colour);
+  let color = null;
+  if (colored) {
+    color = new THREE.BufferAttribute(new Uint8Array(3 * most), 3, true).setUsage(THREE.DynamicDrawUsage);
+    geometry.setAttribute('color', color);
   }
 
   // Particles carry no radius: size them from the spacing they would have
@@ -71,8 +71,8 @@ export function loadIpr(buffer) {
   const diagonal = Math.max(max.clone().sub(min).length(), 1e-3);
   const material = new THREE.PointsMaterial({
     size: (0.6 * diagonal) / Math.cbrt(most),
-    color: coloured ? 0xffffff : 0x2f6fb0,
-    vertexColors: coloured,
+    color: colored ? 0xffffff : 0x2f6fb0,
+    vertexColors: colored,
     map: discTexture(),
     alphaTest: 0.5, // round points, and no sorting needed
   });
@@ -107,9 +107,9 @@ export function loadIpr(buffer) {
     const frame = frames[i];
     position.array.set(frame.positions);
     position.needsUpdate = true;
-    if (colour) {
-      colour.array.set(frame.colours);
-      colour.needsUpdate = true;
+    if (color) {
+      color.array.set(frame.colors);
+      color.needsUpdate = true;
     }
     geometry.setDrawRange(0, frame.count);
     box.setFromArray(frame.positions);
@@ -131,7 +131,7 @@ export function loadIpr(buffer) {
       frames: frames.length,
       particles: frames.length > 0 ? frames[0].count : 0,
       maxParticles: most,
-      coloured,
+      colored,
       interval: recording.interval,
       hasContacts: false,
     },

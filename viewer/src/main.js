@@ -82,7 +82,7 @@ function frameView(box) {
   const above = back.clone().cross(right);
   const tanV = Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2);
   const tanH = tanV * camera.aspect;
-  // A corner c (from the centre) is in view from distance d along `back`
+  // A corner c (from the center) is in view from distance d along `back`
   // when |c·right| <= (d - c·back) tanH, and the same upwards.
   let distance = 1e-3;
   for (let k = 0; k < 8; ++k) {

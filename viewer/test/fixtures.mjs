@@ -100,8 +100,8 @@ export function makeGlb({ from = [-1, 0, 0], to = [1, 0, 0], seconds = 2, contac
 
 /// An .ipr of `frames` frames `interval` s apart, `count` particles each in
 /// a cube of half size 0.5 around (-1, 0, 0) that moves by `step` each
-/// frame along x; colours per particle when `colours` (red to blue along x).
-export function makeIpr({ count = 200, frames = 2, interval = 0.5, step = 2, colours = true } = {}) {
+/// frame along x; colors per particle when `colors` (red to blue along x).
+export function makeIpr({ count = 200, frames = 2, interval = 0.5, step = 2, colors = true } = {}) {
   let seed = 12345;
   const random = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32) - 0.5;
   const base = Array.from({ length: count }, () => [random() - 1, random(), random()]);
@@ -110,7 +110,7 @@ export function makeIpr({ count = 200, frames = 2, interval = 0.5, step = 2, col
   const header = Buffer.alloc(48);
   header.write('IMPULSEP', 0, 'ascii');
   header.writeUInt32LE(1, 8);
-  header.writeUInt32LE(colours ? 1 : 0, 12);
+  header.writeUInt32LE(colors ? 1 : 0, 12);
   header.writeUInt32LE(frames, 16);
   header.writeFloatLE(interval, 20);
   const bounds = [-1.5, -0.5, -0.5, -0.5 + step * (frames - 1), 0.5, 0.5];
@@ -127,7 +127,7 @@ export function makeIpr({ count = 200, frames = 2, interval = 0.5, step = 2, col
       xyz.writeFloatLE(z, 12 * i + 8);
     });
     parts.push(head, xyz);
-    if (colours) {
+    if (colors) {
       const rgb = Buffer.alloc(3 * count + ((4 - ((3 * count) % 4)) % 4));
       base.forEach(([x], i) => {
         const k = x + 1.5; // 0 .. 1 across the cube

@@ -4,7 +4,7 @@
 //   npm test --prefix viewer        (needs: apt-get install chromium)
 //
 // Each frame is read from the WebGL canvas itself and compared with the
-// background colour; the pictures are also written to viewer/test/out/ to
+// background color; the pictures are also written to viewer/test/out/ to
 // look at when a check fails.
 import assert from 'node:assert/strict';
 import { mkdir, mkdtemp, rm, writeFile } from 'node:fs/promises';
@@ -29,7 +29,7 @@ before(async () => {
   fixtures = await mkdtemp(join(tmpdir(), 'impulse-viewer-fixtures-'));
   await writeFile(join(fixtures, 'box.glb'), makeGlb());
   await writeFile(join(fixtures, 'contacts.glb'), makeGlb({ contacts: true }));
-  // 201 particles: 603 colour bytes, so each frame's padding is exercised.
+  // 201 particles: 603 color bytes, so each frame's padding is exercised.
   await writeFile(join(fixtures, 'particles.ipr'), makeIpr({ count: 201, frames: 3, interval: 0.5, step: 1 }));
   await writeFile(join(fixtures, 'neither.bin'), Buffer.from('this is not a recording'));
   await mkdir(outDir, { recursive: true });
@@ -139,7 +139,7 @@ test('a .glb: the box is drawn, the corners are background, info and contacts to
   const image = await grab('box-start');
   assertCornersEmpty(image, ['top left', 'top right', 'bottom left']);
   const [x, y] = await viewer(() => window.viewer.toScreen([-1, 0, 0]));
-  assert.ok(!isBackground(pixel(image, x, y)), `the box's centre (${x | 0}, ${y | 0}) should be drawn`);
+  assert.ok(!isBackground(pixel(image, x, y)), `the box's center (${x | 0}, ${y | 0}) should be drawn`);
   const drawn = survey(image, isDrawn);
   assert.ok(drawn.count > 500, `the box should cover a good part of the picture, covers ${drawn.count} px`);
   console.log(`# checked: glb info, background corners, box at (${x | 0}, ${y | 0}), ${drawn.count} px drawn`);
@@ -192,13 +192,13 @@ test('a .glb with contacts: the toggle is enabled and draws each frame\'s points
   console.log(`# checked: contacts toggle, ${first.count} px at frame 0, ${last.count} px at frame 1`);
 });
 
-test('an .ipr: particles drawn in their colours, info counts, frames advance', async () => {
+test('an .ipr: particles drawn in their colors, info counts, frames advance', async () => {
   await openViewer(page, `${url}?file=/fixtures/particles.ipr`);
   const info = await viewer(() => window.viewer.info);
   assert.equal(info.kind, 'ipr');
   assert.equal(info.frames, 3);
   assert.equal(info.particles, 201);
-  assert.equal(info.coloured, true);
+  assert.equal(info.colored, true);
   assert.ok(Math.abs(info.duration - 1) < 1e-6, 'duration from first to last frame, 1 s');
   assert.equal(await viewer(() => document.getElementById('contacts').disabled), true);
 
@@ -209,8 +209,8 @@ test('an .ipr: particles drawn in their colours, info counts, frames advance', a
   const reddish = survey(image, ([r, , b]) => r > b + 80);
   const bluish = survey(image, ([r, , b]) => b > r + 80);
   assert.ok(start.count > 300, `particles drawn (${start.count} px)`);
-  assert.ok(reddish.count > 20 && bluish.count > 20, 'per-particle colours, red at -x and blue at +x');
-  assert.ok(reddish.x < bluish.x, 'red on the left, blue on the right, as coloured along x');
+  assert.ok(reddish.count > 20 && bluish.count > 20, 'per-particle colors, red at -x and blue at +x');
+  assert.ok(reddish.x < bluish.x, 'red on the left, blue on the right, as colored along x');
 
   await setSlider(1);
   const end = survey(await grab('particles-end'), isVivid);
@@ -223,7 +223,7 @@ test('an .ipr: particles drawn in their colours, info counts, frames advance', a
   const boxed = survey(await grab('particles-aabb'), isBoxGreen);
   await page.uncheck('#boxes');
   assert.ok(boxed.count > 100, `one AABB around the particles (${boxed.count} px)`);
-  console.log(`# checked: ipr info, colours, frame 2 moved the cloud by ${moved.map((v) => v | 0)} px, AABB`);
+  console.log(`# checked: ipr info, colors, frame 2 moved the cloud by ${moved.map((v) => v | 0)} px, AABB`);
 });
 
 // Recordings written by impulse itself, named (relative to the repository)

@@ -11,9 +11,9 @@
 
 #include "../core/policy.hpp"
 #include "../math/aabb.hpp"
-#include "pair_tracker.hpp"
+#include "detail/pair_tracker.hpp"
 #include "proxy.hpp"
-#include "proxy_store.hpp"
+#include "detail/proxy_store.hpp"
 
 namespace impulse::broadphase {
 

@@ -41,9 +41,9 @@
 #include "../math/aabb.hpp"
 #include "../math/vec3.hpp"
 #include "detail/dynamic_tree.hpp"
-#include "pair_tracker.hpp"
+#include "detail/pair_tracker.hpp"
 #include "proxy.hpp"
-#include "proxy_store.hpp"
+#include "detail/proxy_store.hpp"
 
 namespace impulse::broadphase {
 

@@ -1,18 +1,18 @@
 // impulse/broadphase/octree.hpp — a loose octree: each box filed by its size
-// and its centre, kept as a sorted array of occupied cells (a linear octree).
+// and its center, kept as a sorted array of occupied cells (a linear octree).
 //
 // Ulrich, "Loose Octrees", Game Programming Gems (2000); Ericson, Real-Time
 // Collision Detection (2005) §7.3 (octrees: linear, hash-based octrees,
 // Morton keys, loose octrees). The root is a cube of edge e_0 (a power of two); a node at depth
 // d is one of the 8^d cells of edge e_d = e_0 / 2^d, and its *loose* box is
 // the cell grown by half its edge on every side (looseness k = 2: twice the
-// cell's edge). A box whose centre lies in a cell and whose largest extent
+// cell's edge). A box whose center lies in a cell and whose largest extent
 // is at most e_d lies inside that cell's loose box, so every box is filed,
 // without any search, in the cell of depth
 //
 //     d = min(max_depth, floor(log2(e_0 / largest extent)))
 //
-// that holds its centre. Small boxes sink deep, big ones stay near the
+// that holds its center. Small boxes sink deep, big ones stay near the
 // root, and a box that moves a little keeps its cell: coherent motion costs
 // one key computation and no list surgery.
 //
@@ -56,7 +56,7 @@
 // 2^(max_depth + 4) rounding steps of the farthest coordinate, so every cell
 // corner, and every loose box, is exact in T, 1e5 m from the origin as at
 // it. A box is filed only where the loose box computed by loose_box()
-// contains it (should rounding of its centre say otherwise, one level up);
+// contains it (should rounding of its center say otherwise, one level up);
 // the pair search enumerates cells with a margin that covers its own
 // rounding; and pruning a query or a ray by a box that contains the
 // proxy's box never loses a hit, because comparisons and the slab test are
@@ -81,9 +81,9 @@
 #include "../core/error.hpp"
 #include "../core/policy.hpp"
 #include "../math/aabb.hpp"
-#include "pair_tracker.hpp"
+#include "detail/pair_tracker.hpp"
 #include "proxy.hpp"
-#include "proxy_store.hpp"
+#include "detail/proxy_store.hpp"
 
 namespace impulse::broadphase {
 
@@ -322,19 +322,19 @@ class basic_octree {
   // ---- filing ------------------------------------------------------------
 
   /// The cell a box belongs in: depth from its size, position from its
-  /// centre; then, should rounding leave the box a hair outside that cell's
+  /// center; then, should rounding leave the box a hair outside that cell's
   /// loose box, the nearest ancestor whose loose box holds it.
   cell cell_for(const aabb<T>& b) const noexcept {
     const T size = std::max({b.upper.x - b.lower.x, b.upper.y - b.lower.y, b.upper.z - b.lower.z});
     int d = max_depth_;
     while (d > 0 && edge_[d] < size) --d;
-    const T centre[3] = {(b.lower.x + b.upper.x) * T(0.5), (b.lower.y + b.upper.y) * T(0.5),
+    const T center[3] = {(b.lower.x + b.upper.x) * T(0.5), (b.lower.y + b.upper.y) * T(0.5),
                          (b.lower.z + b.upper.z) * T(0.5)};
     const T corner[3] = {root_lower_.x, root_lower_.y, root_lower_.z};
     const T last = T((std::uint32_t(1) << d) - 1);
     cell c{d, {}};
     for (int a = 0; a < 3; ++a)
-      c.xyz[a] = std::uint32_t(std::clamp(std::floor((centre[a] - corner[a]) * inverse_edge_[d]), T(0), last));
+      c.xyz[a] = std::uint32_t(std::clamp(std::floor((center[a] - corner[a]) * inverse_edge_[d]), T(0), last));
     while (c.depth > 0 && !impulse::contains(loose_box(c), b)) {
       --c.depth;
       for (auto& x : c.xyz) x >>= 1;

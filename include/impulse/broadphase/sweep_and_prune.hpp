@@ -20,7 +20,7 @@
 // The grid is chosen from the boxes when the regions are built: about one
 // region per `boxes_per_region` boxes (64 unless given: 64 to 128 were the
 // fastest on the benchmark's scenes at 10 000 and 100 000), cut along the
-// axes where the boxes' centres spread most, no cell thinner than twice the
+// axes where the boxes' centers spread most, no cell thinner than twice the
 // boxes' mean extent there. It is built afresh when the number of boxes
 // has doubled or fallen to a quarter since, so that it follows a world as
 // it grows (bodies added a few a frame) at O(n log n) amortised; boxes that
@@ -57,9 +57,9 @@
 #include "../core/policy.hpp"
 #include "../math/aabb.hpp"
 #include "detail/sap_region.hpp"
-#include "pair_tracker.hpp"
+#include "detail/pair_tracker.hpp"
 #include "proxy.hpp"
-#include "proxy_store.hpp"
+#include "detail/proxy_store.hpp"
 
 namespace impulse::broadphase {
 
@@ -378,14 +378,14 @@ class basic_sweep_and_prune {
         live_.push_back(h);
       }
     }
-    // The centres' bounds and the boxes' mean extent, per axis.
+    // The centers' bounds and the boxes' mean extent, per axis.
     aabb<T> bounds{vec3<T>::splat(std::numeric_limits<T>::max()), vec3<T>::splat(std::numeric_limits<T>::lowest())};
     vec3<T> mean_extent{};
     for (const std::uint32_t h : live_) {
       const aabb<T>& box = store_.box(handles_[h].id);
-      const vec3<T> centre = (box.lower + box.upper) * T(0.5);
-      bounds.lower = min(bounds.lower, centre);
-      bounds.upper = max(bounds.upper, centre);
+      const vec3<T> center = (box.lower + box.upper) * T(0.5);
+      bounds.lower = min(bounds.lower, center);
+      bounds.upper = max(bounds.upper, center);
       mean_extent += (box.upper - box.lower) / T(live_.size());
     }
     // Cut the longest cell in two … until there are enough regions or no

@@ -23,7 +23,7 @@
 
 namespace impulse {
 
-/// The position part of a body's state: where its centre of mass is and how
+/// The position part of a body's state: where its center of mass is and how
 /// it is turned. Adds and scales as an element of R³ × R⁴.
 template <scalar_type T>
 struct body_pose {
@@ -39,7 +39,7 @@ struct body_pose {
 };
 
 /// The momentum part: linear momentum P (kg·m/s) and angular momentum L
-/// about the centre of mass (kg·m²/s), world space. Its rate is the wrench.
+/// about the center of mass (kg·m²/s), world space. Its rate is the wrench.
 template <scalar_type T>
 struct body_momentum {
   vec3<T> linear{};
@@ -53,7 +53,7 @@ struct body_momentum {
   }
 };
 
-/// A force (N) through the centre of mass and a torque (N·m) about it.
+/// A force (N) through the center of mass and a torque (N·m) about it.
 template <scalar_type T>
 struct wrench {
   vec3<T> force{};
@@ -76,7 +76,7 @@ struct body_kinematics {
   vec3<T> linear_velocity{};
   vec3<T> angular_velocity{};  ///< world, rad/s
 
-  /// World position of a body-space point (relative to the centre of mass).
+  /// World position of a body-space point (relative to the center of mass).
   [[nodiscard]] constexpr vec3<T> point(const vec3<T>& local) const noexcept { return position + rotation * local; }
   /// Velocity of the material point at world position p: v + ω × (p − x).
   [[nodiscard]] constexpr vec3<T> velocity_at(const vec3<T>& p) const noexcept {

@@ -19,7 +19,7 @@ namespace impulse {
 template <scalar_type T>
 struct body_spring {
   body_id body_a{};       ///< the body at end a
-  vec3<T> point_a{};      ///< end a in body_a's space, relative to its centre of mass, m
+  vec3<T> point_a{};      ///< end a in body_a's space, relative to its center of mass, m
   body_id body_b{};       ///< the body at end b, or none: point_b is a world anchor
   vec3<T> point_b{};      ///< end b in body_b's space, or the world anchor, m
   T stiffness = T(0);     ///< k, N/m, ≥ 0

@@ -31,7 +31,7 @@ namespace impulse {
 /// A body during one solve: its velocities and what moves them.
 template <scalar_type T>
 struct solver_body {
-  vec3<T> position{};                         ///< centre of mass, m
+  vec3<T> position{};                         ///< center of mass, m
   quat<T> orientation = quat<T>::identity();  ///< unit
   vec3<T> linear_velocity{};   ///< m/s
   vec3<T> angular_velocity{};  ///< rad/s, world
@@ -63,7 +63,7 @@ struct manifold_impulse {
 /// One point's normal row.
 template <scalar_type T>
 struct contact_constraint_point {
-  vec3<T> offset_a{};  ///< from A's centre of mass to the point, m
+  vec3<T> offset_a{};  ///< from A's center of mass to the point, m
   vec3<T> offset_b{};
   // The normal row's angular Jacobians, r × n, and what they do to each
   // body's spin, I⁻¹·(r × n): worked out once per step, so that an
@@ -108,7 +108,7 @@ struct contact_constraint {
   T restitution = T(0);
   int count = 0;
   contact_constraint_point<T> points[contact_manifold<T>::capacity];
-  vec3<T> anchor_a{};  ///< from A's centre of mass to the middle of the patch, m
+  vec3<T> anchor_a{};  ///< from A's center of mass to the middle of the patch, m
   vec3<T> anchor_b{};
   /// The inverse of the 2×2 effective mass of the tangent rows, kg: the
   /// rows share the bodies' rotation, and solved one by one they would
@@ -118,7 +118,7 @@ struct contact_constraint {
   T twist_radius = T(0);  ///< m: the lever of the patch's friction about its middle
   /// The relative velocity along each tangent the friction rows hold the
   /// patch at, m/s: not 0 but what cancels the bodies' curving over the
-  /// step (world/solve.hpp says why), so that a box stuck to a turning
+  /// step (world/detail/solve.hpp says why), so that a box stuck to a turning
   /// platform stays where it is on it.
   T slip_target1 = T(0), slip_target2 = T(0);
   T tangent_impulse1 = T(0), tangent_impulse2 = T(0);  ///< N·s

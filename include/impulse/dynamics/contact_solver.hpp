@@ -6,7 +6,7 @@
 // whose `type<T>` is the solver: sequential_impulse.hpp and soft_step.hpp
 // hold the two the library ships, and a user's own plugs in the same way
 // (tests/world/test_user_solver.cpp builds a plain projected Gauss–Seidel).
-// Each step the world (world/solve.hpp) makes one solver_body per body and
+// Each step the world (world/detail/solve.hpp) makes one solver_body per body and
 // one contact_constraint per touching manifold and joint_constraint per
 // joint, then calls, in order:
 //

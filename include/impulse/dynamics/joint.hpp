@@ -36,7 +36,7 @@
 #include "../core/policy.hpp"
 #include "../math/quat.hpp"
 #include "../math/vec3.hpp"
-#include "constraint_parts.hpp"
+#include "detail/constraint_parts.hpp"
 #include "contact_constraint.hpp"
 #include "fwd.hpp"
 #include "softness.hpp"
@@ -152,7 +152,7 @@ struct joint_constraint {
   std::uint32_t body_a = 0, body_b = 0;  ///< places in the solver's body array
 
   // ---- the joint, fixed at creation ----
-  vec3<T> local_anchor_a{}, local_anchor_b{};  ///< from each centre of mass, body frame, m
+  vec3<T> local_anchor_a{}, local_anchor_b{};  ///< from each center of mass, body frame, m
   vec3<T> local_axis_a{T(1), T(0), T(0)};      ///< unit, A's frame
   quat<T> reference = quat<T>::identity();      ///< B's orientation in A's frame at creation
   bool enable_limit = false, enable_motor = false;
@@ -240,7 +240,7 @@ void prepare_joint(std::span<const solver_body<T>> bodies, joint_constraint<T>& 
       j.axis = rotate(a.orientation, j.local_axis_a);
       tangents_of(j.axis, j.across_axis[0], j.across_axis[1]);
       // A's end of each row is where B's anchor is: the line turns with A
-      // about A's centre, so A's lever reaches B's anchor.
+      // about A's center, so A's lever reaches B's anchor.
       const vec3<T> reach = ra + j.separation;
       for (int i = 0; i < 2; ++i) {
         j.across[i].prepare_linear(a, b, reach, rb, j.across_axis[i]);

@@ -1,7 +1,7 @@
 // impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
 //
 // The state is Baraff's ("Physically Based Modeling: Rigid Body Dynamics",
-// SIGGRAPH 2001 course notes): the position x of the centre of mass, the
+// SIGGRAPH 2001 course notes): the position x of the center of mass, the
 // orientation quaternion q, the linear momentum P and the angular momentum
 // L, all in world space. Velocities are derived, v = P/m and ω = I_w⁻¹·L
 // with I_w⁻¹ = R·I_body⁻¹·Rᵀ. Keeping L rather than ω is what makes free
@@ -10,7 +10,7 @@
 //
 // A body is static (never moves, infinite mass), kinematic (moves as told,
 // infinite mass: contacts do not push it) or dynamic. Loads accumulate in
-// `force` and `torque` (about the centre of mass) until the step consumes
+// `force` and `torque` (about the center of mass) until the step consumes
 // them; impulses change the momenta at once.
 #pragma once
 
@@ -35,15 +35,15 @@ struct rigid_body {
   body_type type = body_type::dynamic;
 
   // ---- state (world space) ----
-  vec3<T> position{};                          ///< centre of mass, m
+  vec3<T> position{};                          ///< center of mass, m
   quat<T> orientation = quat<T>::identity();   ///< body to world, unit
   vec3<T> linear_momentum{};                   ///< P, kg·m/s
-  vec3<T> angular_momentum{};                  ///< L about the centre of mass, kg·m²/s
+  vec3<T> angular_momentum{};                  ///< L about the center of mass, kg·m²/s
 
   // ---- constants (body space) ----
   T mass = T(1);                                        ///< kg; infinite for static and kinematic
   T inverse_mass = T(1);                                ///< 1/kg; 0 for static and kinematic
-  mat3<T> inertia = mat3<T>::identity();                ///< I_body about the centre of mass, kg·m²
+  mat3<T> inertia = mat3<T>::identity();                ///< I_body about the center of mass, kg·m²
   mat3<T> inverse_inertia = mat3<T>::identity();        ///< I_body⁻¹; zero for static and kinematic
 
   // ---- kinematic bodies move at a set velocity (they have no momentum) ----
@@ -51,11 +51,11 @@ struct rigid_body {
   vec3<T> kinematic_angular_velocity{};  ///< rad/s, world
 
   // ---- accumulated loads, cleared by each step ----
-  vec3<T> force{};   ///< N, through the centre of mass
-  vec3<T> torque{};  ///< N·m, about the centre of mass
+  vec3<T> force{};   ///< N, through the center of mass
+  vec3<T> torque{};  ///< N·m, about the center of mass
 
   /// A dynamic body with the given mass properties (from a shape's
-  /// mass_properties_of, or the user's own) placed with its centre of mass
+  /// mass_properties_of, or the user's own) placed with its center of mass
   /// at `pose`. Refuses a non-positive or non-finite mass and an inertia
   /// that is not symmetric positive definite.
   static rigid_body dynamic(const mass_properties<T>& p, const transform<T>& pose = transform<T>::identity()) {
@@ -88,9 +88,9 @@ struct rigid_body {
     orientation = pose.rotation;
   }
 
-  /// Mass and body-space inertia about the centre of mass. The centre of
+  /// Mass and body-space inertia about the center of mass. The center of
   /// mass in `p` is where the shape's origin sits relative to it; the body
-  /// keeps positions of its centre of mass, so a shape whose centre is off
+  /// keeps positions of its center of mass, so a shape whose center is off
   /// its origin (a hull) is offset by the caller.
   void set_mass_properties(const mass_properties<T>& p) {
     if (!std::isfinite(p.mass)) detail::report_error(error_code::non_finite, "rigid_body: mass is not finite");
@@ -202,7 +202,7 @@ struct rigid_body {
     require_finite(p, "rigid_body: point is not finite");
     const vec3<T> total_force = force + f, total_torque = torque + cross(p - position, f);
     require_finite(total_force, "rigid_body: the force overflows the forces already applied this step");
-    require_finite(total_torque, "rigid_body: the force's moment about the centre of mass overflows");
+    require_finite(total_torque, "rigid_body: the force's moment about the center of mass overflows");
     force = total_force;
     torque = total_torque;
   }

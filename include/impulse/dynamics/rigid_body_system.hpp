@@ -54,7 +54,7 @@ struct no_force_field {};
 }  // namespace detail
 
 /// A force model evaluated per body at every integrator stage:
-/// field(id, kinematics) -> wrench (force through the centre of mass and
+/// field(id, kinematics) -> wrench (force through the center of mass and
 /// torque about it). It must not change the system.
 template <class F, class T>
 concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||

@@ -22,9 +22,9 @@
 //    or shallower than the rest depth may sink to that depth within the
 //    step but no further (solver_settings.hpp, rest_depth, says why not to
 //    zero). The manifolds are
-//    visited colour by colour, W that share no moving body at a time in
+//    visited color by color, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
-//    colour could take is solved alone after them.
+//    color could take is solved alone after them.
 // 5. Position pass (split impulses; Catto's "Box2D: the position problem",
 //    Bullet's split impulse): the normal rows once more on separate
 //    pseudo-velocities, pushing penetration beyond the slop out at a
@@ -49,12 +49,12 @@
 #include <vector>
 
 #include "../core/policy.hpp"
-#include "constraint_graph.hpp"
-#include "contact_batch.hpp"
+#include "detail/constraint_graph.hpp"
+#include "detail/contact_batch.hpp"
 #include "contact_constraint.hpp"
-#include "contact_rows.hpp"
+#include "detail/contact_rows.hpp"
 #include "joint.hpp"
-#include "joint_tree.hpp"
+#include "detail/joint_tree.hpp"
 #include "solver_settings.hpp"
 
 namespace impulse {
@@ -120,8 +120,8 @@ class basic_sequential_impulse {
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
       for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
       if (!tree_.empty()) tree_.solve_velocities(bodies, joints);
-      // Forward through the colours, then back (symmetric Gauss–Seidel):
-      // always forward, support climbed a 100-row pyramid one colour at a
+      // Forward through the colors, then back (symmetric Gauss–Seidel):
+      // always forward, support climbed a 100-row pyramid one color at a
       // time and its boxes moved 12 cm in 200 steps; alternating, 6 mm.
       for (std::size_t k = 0; k < batches_.size(); ++k) {
         batch_type& b = batches_[iteration % 2 == 0 ? k : batches_.size() - 1 - k];
@@ -168,7 +168,7 @@ class basic_sequential_impulse {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
   }
 
-  /// One manifold's rows, one after another: the manifolds the colouring
+  /// One manifold's rows, one after another: the manifolds the coloring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
                              const solver_settings<T>& settings) noexcept {

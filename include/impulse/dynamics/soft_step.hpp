@@ -29,9 +29,9 @@
 #include "../core/policy.hpp"
 #include "../math/quat.hpp"
 #include "contact_constraint.hpp"
-#include "contact_rows.hpp"
+#include "detail/contact_rows.hpp"
 #include "joint.hpp"
-#include "joint_tree.hpp"
+#include "detail/joint_tree.hpp"
 #include "softness.hpp"
 #include "solver_settings.hpp"
 

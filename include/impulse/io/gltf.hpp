@@ -320,11 +320,11 @@ class gltf_recorder {
   /// One per body_type, in its order: static, kinematic, dynamic.
   static std::string materials() {
     const char* names[] = {"static", "kinematic", "dynamic"};
-    const float colours[3][3] = {{0.55f, 0.56f, 0.6f}, {0.3f, 0.55f, 0.9f}, {0.92f, 0.55f, 0.25f}};
+    const float colors[3][3] = {{0.55f, 0.56f, 0.6f}, {0.3f, 0.55f, 0.9f}, {0.92f, 0.55f, 0.25f}};
     std::string out;
     for (int k = 0; k < 3; ++k) {
       if (k > 0) out += ',';
-      const float rgba[4] = {colours[k][0], colours[k][1], colours[k][2], 1};
+      const float rgba[4] = {colors[k][0], colors[k][1], colors[k][2], 1};
       out += std::string("{\"name\":\"") + names[k] + "\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":";
       detail::append_numbers(out, rgba, 4);
       out += ",\"metallicFactor\":0,\"roughnessFactor\":0.8}}";

@@ -1,20 +1,20 @@
 // impulse/io/particle_recording.hpp — a particle run recorded frame by frame
 // in a compact binary format (.ipr), which viewer/ plays:
 //
-//   impulse::io::particle_recorder recording(impulse::io::colour_by::age);
+//   impulse::io::particle_recorder recording(impulse::io::color_by::age);
 //   for (...) { plume.step(dt); recording.record(plume); }
 //   recording.save("out/plume.ipr");
 //
 // The format, all little-endian (docs/recording.md):
 //
 //   header, 48 bytes:  "IMPULSEP"; u32 version = 1; u32 flags (bit 0: frames
-//                      carry colours); u32 frame count; f32 frame interval, s;
+//                      carry colors); u32 frame count; f32 frame interval, s;
 //                      f32 bounds min[3], max[3] over every recorded position
 //   each frame:        f32 time, s; u32 count; count × 3 f32 positions;
-//                      with colours, count × 3 u8 RGB, then zero bytes to the
+//                      with colors, count × 3 u8 RGB, then zero bytes to the
 //                      next multiple of 4
 //
-// 12 bytes a particle a frame, 15 with colours: a 2 000-particle plume at
+// 12 bytes a particle a frame, 15 with colors: a 2 000-particle plume at
 // 30 frames a second for 10 s is 8.9 MB. Positions are the particles' own,
 // not resampled: a frame has as many particles as were alive.
 #pragma once
@@ -35,15 +35,15 @@
 
 namespace impulse::io {
 
-/// How a recording colours its particles.
-enum class colour_by : std::uint8_t {
-  none,   ///< no colours stored: the viewer draws every particle alike
+/// How a recording colors its particles.
+enum class color_by : std::uint8_t {
+  none,   ///< no colors stored: the viewer draws every particle alike
   age,    ///< age over lifetime: white-hot when born, through orange, to dark red (systems with lifetimes)
   speed,  ///< |v| over the recorder's full_speed: blue when still, through green, to red
 };
 
-/// The colour ramp of `f` in [0, 1] for `mode` (clamped).
-inline std::array<std::uint8_t, 3> ramp(colour_by mode, double f) {
+/// The color ramp of `f` in [0, 1] for `mode` (clamped).
+inline std::array<std::uint8_t, 3> ramp(color_by mode, double f) {
   f = std::clamp(std::isfinite(f) ? f : 1.0, 0.0, 1.0);
   const auto mix = [f](const std::array<double, 3>* stops, int n) {
     const double x = f * (n - 1);
@@ -55,7 +55,7 @@ inline std::array<std::uint8_t, 3> ramp(colour_by mode, double f) {
   };
   static const std::array<double, 3> fire[] = {{255, 250, 220}, {255, 180, 60}, {220, 80, 20}, {90, 20, 10}};
   static const std::array<double, 3> cold_to_hot[] = {{40, 80, 220}, {40, 200, 200}, {120, 220, 60}, {230, 60, 30}};
-  return mode == colour_by::age ? mix(fire, 4) : mix(cold_to_hot, 4);
+  return mode == color_by::age ? mix(fire, 4) : mix(cold_to_hot, 4);
 }
 
 /// A recording read back (for tests and tools).
@@ -63,10 +63,10 @@ struct particle_frames {
   struct frame {
     float time = 0;
     std::vector<vec3<float>> positions;
-    std::vector<std::array<std::uint8_t, 3>> colours;  ///< empty without colours
+    std::vector<std::array<std::uint8_t, 3>> colors;  ///< empty without colors
   };
   float interval = 0;
-  bool coloured = false;
+  bool colored = false;
   vec3<float> lower{}, upper{};
   std::vector<frame> frames;
 };
@@ -74,7 +74,7 @@ struct particle_frames {
 class particle_recorder {
  public:
   /// `full_speed` (m/s) is the top of the speed ramp.
-  explicit particle_recorder(colour_by mode = colour_by::none, double full_speed = 10) noexcept
+  explicit particle_recorder(color_by mode = color_by::none, double full_speed = 10) noexcept
       : mode_(mode), full_speed_(full_speed > 0 ? full_speed : 1) {}
 
   /// Appends the system's particles now as a frame at its time.
@@ -92,10 +92,10 @@ class particle_recorder {
       lower_ = {std::min(lower_.x, p.x), std::min(lower_.y, p.y), std::min(lower_.z, p.z)};
       upper_ = {std::max(upper_.x, p.x), std::max(upper_.y, p.y), std::max(upper_.z, p.z)};
     }
-    if (mode_ != colour_by::none) {
+    if (mode_ != color_by::none) {
       for (std::size_t i = 0; i < n; ++i) {
         double f = 0;
-        if (mode_ == colour_by::speed) {
+        if (mode_ == color_by::speed) {
           f = double(length(v[i])) / full_speed_;
         } else if constexpr (requires { system.ages(); }) {
           const double life = double(system.lifetimes()[i]);
@@ -123,7 +123,7 @@ class particle_recorder {
       at += sizeof value;
     };
     put_to(std::uint32_t(1));
-    put_to(std::uint32_t(mode_ != colour_by::none ? 1 : 0));
+    put_to(std::uint32_t(mode_ != color_by::none ? 1 : 0));
     put_to(std::uint32_t(frames_));
     put_to(interval_);
     for (const float c : {lower_.x, lower_.y, lower_.z, upper_.x, upper_.y, upper_.z}) put_to(c);
@@ -153,7 +153,7 @@ class particle_recorder {
     bytes_.insert(bytes_.end(), b, b + sizeof value);
   }
 
-  colour_by mode_;
+  color_by mode_;
   double full_speed_;
   std::vector<std::uint8_t> bytes_;  ///< the frames
   std::size_t frames_ = 0;
@@ -185,7 +185,7 @@ class particle_recorder {
   get(version), get(flags), get(count), get(r.interval);
   get(r.lower.x), get(r.lower.y), get(r.lower.z), get(r.upper.x), get(r.upper.y), get(r.upper.z);
   if (version != 1) return std::nullopt;
-  r.coloured = (flags & 1) != 0;
+  r.colored = (flags & 1) != 0;
   for (std::uint32_t f = 0; f < count && ok; ++f) {
     particle_frames::frame frame;
     std::uint32_t n = 0;
@@ -193,10 +193,10 @@ class particle_recorder {
     if (!ok || std::uint64_t(n) * 12 > bytes.size() - at) return std::nullopt;
     frame.positions.resize(n);
     for (vec3<float>& p : frame.positions) get(p.x), get(p.y), get(p.z);
-    if (r.coloured) {
+    if (r.colored) {
       if (std::uint64_t(n) * 3 > bytes.size() - at) return std::nullopt;
-      frame.colours.resize(n);
-      for (auto& c : frame.colours) std::memcpy(c.data(), bytes.data() + at, 3), at += 3;
+      frame.colors.resize(n);
+      for (auto& c : frame.colors) std::memcpy(c.data(), bytes.data() + at, 3), at += 3;
       at = (at + 3) / 4 * 4;
     }
     r.frames.push_back(std::move(frame));

@@ -107,9 +107,9 @@ shape_mesh mesh_of(const box<T>& b, int = 0) {
       // u × v = n: the corners below run counter-clockwise about n.
       u[(axis + 1) % 3] = 1;
       v[(axis + 2) % 3] = sign;
-      const vec3<float> centre = n * h[axis];
+      const vec3<float> center = n * h[axis];
       const vec3<float> du = u * h[(axis + 1) % 3], dv = v * h[(axis + 2) % 3];
-      m.add_polygon({centre - du - dv, centre + du - dv, centre + du + dv, centre - du + dv}, n);
+      m.add_polygon({center - du - dv, center + du - dv, center + du + dv, center - du + dv}, n);
     }
   return m;
 }
@@ -126,19 +126,19 @@ shape_mesh mesh_of(const convex_hull<T>& hull, int = 0) {
   return m;
 }
 
-/// How far a plane's square reaches from its centre, m.
+/// How far a plane's square reaches from its center, m.
 inline constexpr float plane_half_size = 100;
 
 template <scalar_type T>
 shape_mesh mesh_of(const plane<T>& p, int = 0) {
   shape_mesh m;
   const vec3<float> n = detail::to_float(p.normal);
-  const vec3<float> centre = n * -float(p.offset);
+  const vec3<float> center = n * -float(p.offset);
   // Any two directions across n with u × v = n.
   const vec3<float> helper = std::abs(n.x) < 0.57f ? vec3<float>{1, 0, 0} : vec3<float>{0, 1, 0};
   const vec3<float> u = normalize(cross(helper, n)) * plane_half_size;
   const vec3<float> v = cross(n, u);
-  m.add_polygon({centre - u - v, centre + u - v, centre + u + v, centre - u + v}, n);
+  m.add_polygon({center - u - v, center + u - v, center + u + v, center - u + v}, n);
   return m;
 }
 

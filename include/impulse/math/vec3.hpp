@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../core/assert.hpp"
+#include "../core/detail/assert.hpp"
 #include "scalar_traits.hpp"
 
 namespace impulse {

@@ -16,13 +16,13 @@
 // a fixed one keeps the result deterministic). Two nearly parallel
 // capsules, one lying along the other, touch along a line: they get two
 // points, at the ends of the overlap, so that one can rest on the other.
-// A sphere against a box takes the box's closest point to the centre, or,
-// for a centre inside the box, the face nearest to it. A box or a capsule
-// against a plane reports each of its corners (or cap centres) below the
+// A sphere against a box takes the box's closest point to the center, or,
+// for a center inside the box, the face nearest to it. A box or a capsule
+// against a plane reports each of its corners (or cap centers) below the
 // plane's surface plus the margin; a box keeps four of its corners
 // (reduce_to_four).
 //
-// Feature ids: a sphere has one feature; a capsule's two cap centres are
+// Feature ids: a sphere has one feature; a capsule's two cap centers are
 // 0 and 1; a box's corners are numbered by the signs of their coordinates
 // (bit 0 set: +x, bit 1: +y, bit 2: +z), and the box feature nearest a
 // sphere by three base-3 digits, one per axis (0 between the faces, 1 at −h,
@@ -100,7 +100,7 @@ vec3<T> closest_point_on_segment(const vec3<T>& p0, const vec3<T>& p1, const vec
   return p0 + d * std::clamp(dot(x - p0, d) / a, T(0), T(1));
 }
 
-/// Adds the contact of a ball (centre a, radius ra) against a ball (centre
+/// Adds the contact of a ball (center a, radius ra) against a ball (center
 /// b, radius rb) to m, setting m's normal, if they are within `margin`.
 template <scalar_type T>
 void add_ball_contact(const vec3<T>& a, T ra, const vec3<T>& b, T rb, T margin, std::uint32_t feature,
@@ -126,7 +126,7 @@ world_plane<T> in_world(const plane<T>& p, const transform<T>& pose) noexcept {
   return {n, p.offset - dot(n, pose.position)};
 }
 
-/// The two cap centres of a capsule in world space, feature 0 then 1.
+/// The two cap centers of a capsule in world space, feature 0 then 1.
 template <scalar_type T>
 std::array<vec3<T>, 2> capsule_ends(const capsule<T>& c, const transform<T>& pose) noexcept {
   const vec3<T> half = apply_direction(pose, vec3<T>{T(0), c.half_height, T(0)});
@@ -150,7 +150,7 @@ contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, cons
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
   const detail::world_plane<T> p = detail::in_world(b, pose_b);
   const vec3<T>& c = pose_a.position;
-  const T height = dot(p.normal, c) + p.offset;  // of the centre above the surface
+  const T height = dot(p.normal, c) + p.offset;  // of the center above the surface
   contact_manifold<T> m;
   if (height - a.radius > margin) return m;
   m.normal = -p.normal;
@@ -161,40 +161,40 @@ contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, cons
 template <scalar_type T>
 contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const box<T>& b,
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the box's frame
+  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the box's frame
   const vec3<T>& h = b.half_extents;
   contact_manifold<T> m;
   std::uint32_t feature = 0;
-  vec3<T> nearest = centre;  // on the box's surface or inside it
+  vec3<T> nearest = center;  // on the box's surface or inside it
   bool inside = true;
   for (int axis = 2; axis >= 0; --axis) {
     feature *= 3;
-    if (centre[axis] < -h[axis]) nearest[axis] = -h[axis], feature += 1, inside = false;
-    else if (centre[axis] > h[axis]) nearest[axis] = h[axis], feature += 2, inside = false;
+    if (center[axis] < -h[axis]) nearest[axis] = -h[axis], feature += 1, inside = false;
+    else if (center[axis] > h[axis]) nearest[axis] = h[axis], feature += 2, inside = false;
   }
   if (!inside) {
-    const vec3<T> d = nearest - centre;
+    const vec3<T> d = nearest - center;
     const T distance = length(d);
     if (distance - a.radius > margin) return m;
     const vec3<T> n = normalize_or(d, vec3<T>::unit_y());
     m.normal = apply_direction(pose_b, n);
-    m.add({apply(pose_b, (centre + n * a.radius + nearest) * T(0.5)), a.radius - distance, feature});
+    m.add({apply(pose_b, (center + n * a.radius + nearest) * T(0.5)), a.radius - distance, feature});
     return m;
   }
-  // The centre is inside: out through the nearest face.
+  // The center is inside: out through the nearest face.
   int axis = 0;
   for (int k = 1; k < 3; ++k)
-    if (h[k] - std::abs(centre[k]) < h[axis] - std::abs(centre[axis])) axis = k;
-  const T side = centre[axis] < T(0) ? T(-1) : T(1);
+    if (h[k] - std::abs(center[k]) < h[axis] - std::abs(center[axis])) axis = k;
+  const T side = center[axis] < T(0) ? T(-1) : T(1);
   vec3<T> n{};
   n[axis] = -side;  // from the sphere into the box: the box lies beyond the face
-  vec3<T> on_face = centre;
+  vec3<T> on_face = center;
   on_face[axis] = side * h[axis];
-  const T depth = a.radius + (h[axis] - std::abs(centre[axis]));
+  const T depth = a.radius + (h[axis] - std::abs(center[axis]));
   feature = std::uint32_t(side < T(0) ? 1 : 2);
   for (int k = 0; k < axis; ++k) feature *= 3;
   m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + on_face) * T(0.5)), depth, feature});
+  m.add({apply(pose_b, (center + n * a.radius + on_face) * T(0.5)), depth, feature});
   return m;
 }
 

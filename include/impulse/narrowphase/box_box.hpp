@@ -14,8 +14,8 @@
 //   the reference face (Sutherland–Hodgman), and the clipped points below
 //   the reference face plus the margin, up to eight, are the contact
 //   patch. Four are kept, one per quarter of the patch (split along the
-//   reference face's axes through the patch's centre): the farthest from
-//   the centre, so that the four span the patch, except that the deepest
+//   reference face's axes through the patch's center): the farthest from
+//   the center, so that the four span the patch, except that the deepest
 //   point of all is kept in its quarter;
 // - an edge pair: one contact, midway between the closest points of the
 //   two edges.
@@ -61,7 +61,7 @@ namespace detail {
 
 template <scalar_type T>
 struct oriented_box {
-  vec3<T> centre;
+  vec3<T> center;
   vec3<T> axis[3];  ///< unit
   vec3<T> half;
 };
@@ -85,7 +85,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
                           {rotate(relative.rotation, vec3<T>::unit_x()), rotate(relative.rotation, vec3<T>::unit_y()),
                            rotate(relative.rotation, vec3<T>::unit_z())},
                           b.half_extents};
-  const vec3<T>& t = B.centre;
+  const vec3<T>& t = B.center;
   contact_manifold<T> m;
 
   // The separating axis test: the least penetrating (most separated) axis
@@ -159,18 +159,18 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   const oriented_box<T>& ref = reference_is_b ? B : A;
   const oriented_box<T>& inc = reference_is_b ? A : B;
   const int r = reference_is_b ? face_b.index : face_a.index;
-  const vec3<T> towards = inc.centre - ref.centre;
+  const vec3<T> towards = inc.center - ref.center;
   const bool ref_positive = dot(towards, ref.axis[r]) >= T(0);
   const vec3<T> n = ref_positive ? ref.axis[r] : -ref.axis[r];  // out of ref, towards inc
-  const vec3<T> face_centre = ref.centre + n * ref.half[r];
+  const vec3<T> face_center = ref.center + n * ref.half[r];
   // The incident face: the one whose normal is most opposed to n.
   int k = 0;
   for (int c = 1; c < 3; ++c)
     if (std::abs(dot(n, inc.axis[c])) > std::abs(dot(n, inc.axis[k]))) k = c;
   const bool inc_positive = dot(n, inc.axis[k]) < T(0);
-  const vec3<T> inc_centre = inc.centre + inc.axis[k] * (inc_positive ? inc.half[k] : -inc.half[k]);
+  const vec3<T> inc_center = inc.center + inc.axis[k] * (inc_positive ? inc.half[k] : -inc.half[k]);
   const vec3<T> P = inc.axis[(k + 1) % 3] * inc.half[(k + 1) % 3], Q = inc.axis[(k + 2) % 3] * inc.half[(k + 2) % 3];
-  vec3<T> polygon[8] = {inc_centre + P + Q, inc_centre - P + Q, inc_centre - P - Q, inc_centre + P - Q};
+  vec3<T> polygon[8] = {inc_center + P + Q, inc_center - P + Q, inc_center - P - Q, inc_center + P - Q};
   vec3<T> scratch[8];
   int count = 4;
   // The side planes: ±u and ±v of the reference box, through its faces.
@@ -178,10 +178,10 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   const struct {
     vec3<T> w;
     T limit;
-  } sides[4] = {{ref.axis[u], dot(ref.axis[u], ref.centre) + ref.half[u]},
-                {-ref.axis[u], -dot(ref.axis[u], ref.centre) + ref.half[u]},
-                {ref.axis[v], dot(ref.axis[v], ref.centre) + ref.half[v]},
-                {-ref.axis[v], -dot(ref.axis[v], ref.centre) + ref.half[v]}};
+  } sides[4] = {{ref.axis[u], dot(ref.axis[u], ref.center) + ref.half[u]},
+                {-ref.axis[u], -dot(ref.axis[u], ref.center) + ref.half[u]},
+                {ref.axis[v], dot(ref.axis[v], ref.center) + ref.half[v]},
+                {-ref.axis[v], -dot(ref.axis[v], ref.center) + ref.half[v]}};
   for (int side = 0; side < 4 && count > 0; ++side) {
     count = detail::clip(polygon, count, sides[side].w, sides[side].limit, scratch);
     std::copy(scratch, scratch + count, polygon);
@@ -191,7 +191,7 @@ contact_manifold<T> collide(const box<T>& a, const transform<T>& pose_a, const b
   detail::patch_point<T> below[8];
   int found = 0;
   for (int c = 0; c < count; ++c) {
-    const T separation = dot(n, polygon[c] - face_centre);
+    const T separation = dot(n, polygon[c] - face_center);
     if (separation <= margin) below[found++] = {polygon[c], separation};
   }
   if (found == 0) return m;

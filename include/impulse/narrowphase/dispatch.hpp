@@ -28,7 +28,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "../core/assert.hpp"
+#include "../core/detail/assert.hpp"
 #include "../core/policy.hpp"
 #include "../math/transform.hpp"
 #include "../shapes/plane.hpp"

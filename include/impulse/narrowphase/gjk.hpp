@@ -61,7 +61,7 @@ struct gjk_result {
   int iterations = 0;
 };
 
-/// A convex shape seen as a core grown by a radius: a sphere is its centre
+/// A convex shape seen as a core grown by a radius: a sphere is its center
 /// grown by its radius, a capsule its segment; any other shape is its own
 /// core, grown by nothing.
 template <scalar_type T, class Shape>
@@ -224,7 +224,7 @@ gjk_state<T> run_gjk(const A& a, const transform<T>& pose_a, const B& b, const t
   constexpr int max_iterations = 64;
   detail::simplex<R> s;
   gjk_result<T> result;
-  // Start from the centres' offset: its support point is usually close.
+  // Start from the centers' offset: its support point is usually close.
   vec3<R> v = wide(pose_a.position) - wide(pose_b.position);
   if (!(length_squared(v) > R(0))) v = vec3<R>::unit_x();
   R best = std::numeric_limits<R>::infinity();

@@ -5,10 +5,10 @@
 // (reduce_to_four), as for a box.
 //
 // A sphere against a hull, in the hull's frame: the face whose plane lies
-// farthest above the centre decides. If even that plane is below it, the
-// centre is inside the hull and the way out is through that face: the depth
-// is the radius plus how far the centre is below it. Otherwise the point of
-// the hull nearest the centre comes from GJK between the centre and the
+// farthest above the center decides. If even that plane is below it, the
+// center is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the center is below it. Otherwise the point of
+// the hull nearest the center comes from GJK between the center and the
 // hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
 // that point lies within the radius plus the margin. The feature id is that
 // face's index: it holds while the sphere rolls across one face.
@@ -56,33 +56,33 @@ contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const
 template <scalar_type T>
 contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
                             const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> centre = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
   std::uint32_t face = 0;
   T highest = -std::numeric_limits<T>::infinity();
   for (std::uint32_t f = 0; f < b.face_count(); ++f) {
-    const T d = b.plane(f).distance(centre);
+    const T d = b.plane(f).distance(center);
     if (d > highest) highest = d, face = f;
   }
   contact_manifold<T> m;
   if (highest - a.radius > margin) return m;  // a face's plane separates them
-  // Outside: the hull's point nearest the centre.
+  // Outside: the hull's point nearest the center.
   gjk_result<T> g;
   if (highest > T(0))
-    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{centre, quat<T>::identity()}, b, transform<T>::identity())
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{center, quat<T>::identity()}, b, transform<T>::identity())
             .result;
   if (highest <= T(0) || g.overlapping) {
     // Inside (or on the surface, where GJK finds no direction): out through
     // the nearest face.
     const vec3<T> n = b.plane(face).normal;
     m.normal = apply_direction(pose_b, -n);
-    const vec3<T> on_face = centre - n * highest, deepest = centre - n * a.radius;
+    const vec3<T> on_face = center - n * highest, deepest = center - n * a.radius;
     m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
     return m;
   }
   if (g.distance - a.radius > margin) return m;
-  const vec3<T> n = (g.on_b - centre) / g.distance;  // from the sphere into the hull
+  const vec3<T> n = (g.on_b - center) / g.distance;  // from the sphere into the hull
   m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (centre + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  m.add({apply(pose_b, (center + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
   return m;
 }
 

@@ -285,28 +285,28 @@ class manifold_merger {
 
 // ---- sphere and capsule ----------------------------------------------------
 
-/// A ball (centre, radius r) against a triangle.
+/// A ball (center, radius r) against a triangle.
 template <scalar_type T>
-void collide_ball_triangle(const vec3<T>& centre, T r, const mesh_triangle<T>& tri, T margin,
+void collide_ball_triangle(const vec3<T>& center, T r, const mesh_triangle<T>& tri, T margin,
                            contact_manifold<T>& m) noexcept {
   const vec3<T>& n = tri.normal;
-  const T height = dot(n, centre - tri.v[0]);
+  const T height = dot(n, center - tri.v[0]);
   if (!(height >= T(0)) || height - r > margin) return;  // behind, or too high above the plane
-  const triangle_point<T> q = closest_point_on_triangle(centre, tri.v[0], tri.v[1], tri.v[2]);
-  const vec3<T> d = centre - q.point;
+  const triangle_point<T> q = closest_point_on_triangle(center, tri.v[0], tri.v[1], tri.v[2]);
+  const vec3<T> d = center - q.point;
   const T distance = length(d);
   if (distance - r > margin) return;
   if (q.region == triangle_region::face || !keeps_normal(q.region, tri.active) ||
       !(distance > tolerances<T>::core_offset_fraction * r)) {
     // Along the face normal: the sphere's lowest point against the plane.
     m.normal = n;
-    m.add({centre - n * ((r + height) * T(0.5)), r - height,
+    m.add({center - n * ((r + height) * T(0.5)), r - height,
            mesh_feature(tri.index, mesh_contact::closest, triangle_region::face, 0)});
     return;
   }
   const vec3<T> normal = d / distance;
   m.normal = normal;
-  m.add({(q.point + centre - normal * r) * T(0.5), r - distance, mesh_feature(tri.index, mesh_contact::closest, q.region, 0)});
+  m.add({(q.point + center - normal * r) * T(0.5), r - distance, mesh_feature(tri.index, mesh_contact::closest, q.region, 0)});
 }
 
 /// A capsule (core p0 p1, radius r) against a triangle.

@@ -25,7 +25,7 @@
 //
 // Per shape:
 // - sphere: the quadratic in the distance along the unit direction, with
-//   the discriminant taken from the distance of the centre from the ray's
+//   the discriminant taken from the distance of the center from the ray's
 //   line rather than as b² − c, which cancels catastrophically once the
 //   origin is far from the sphere compared with its radius (Haines et al.,
 //   "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems,
@@ -38,7 +38,7 @@
 //   segment, kept where its hit lies between the caps, and the two cap
 //   balls; the first of the three (a ray through a flat end of the finite
 //   cylinder has met that end's ball before). Feature: 0 the cap at −h, 1
-//   the cap at +h (the cap centres' ids in analytic.hpp), 2 the side.
+//   the cap at +h (the cap centers' ids in analytic.hpp), 2 the side.
 // - plane: one-sided, solid below its surface. A ray from below starts
 //   inside; one from above hits if it moves down.
 // - convex hull: the ray clipped against every face plane (Cyrus and Beck
@@ -160,8 +160,8 @@ ray_hit<T> hit_inside(const unit_ray<T>& r, std::uint32_t feature = 0) noexcept 
 }
 
 /// The distance along the unit direction u at which a ray from o, outside
-/// the ball (centre c, radius radius), enters it; negative for none.
-/// The discriminant is radius² less the squared distance of the centre
+/// the ball (center c, radius radius), enters it; negative for none.
+/// The discriminant is radius² less the squared distance of the center
 /// from the ray's line, taken from the perpendicular itself (see the top of
 /// this file for why).
 template <scalar_type T>
@@ -283,9 +283,9 @@ ray_hit<T> ray_cast(const ray<T>& r, const capsule<T>& c, const transform<T>& po
   }
   // The caps: the first entry into either ball.
   for (std::uint32_t k = 0; k < 2; ++k) {
-    const vec3<T> centre{T(0), k == 0 ? -h : h, T(0)};
-    const T s = detail::ball_entry(o, d, centre, radius);
-    if (s >= T(0) && s < best) best = s, feature = k, normal = normalize_or(o + d * s - centre, -d);
+    const vec3<T> center{T(0), k == 0 ? -h : h, T(0)};
+    const T s = detail::ball_entry(o, d, center, radius);
+    if (s >= T(0) && s < best) best = s, feature = k, normal = normalize_or(o + d * s - center, -d);
   }
   if (!(best <= u.max_distance)) return {};
   return detail::hit_at(u, best, apply_direction(pose, normal), feature);
@@ -487,10 +487,10 @@ ray_hit<T> gjk_ray_cast(const ray<T>& r, const Shape& shape, const transform<T>&
   return detail::run_gjk_ray_cast(r, shape, pose, max_fraction).hit;
 }
 
-/// Where a ball of `radius` whose centre moves along the ray first touches
+/// Where a ball of `radius` whose center moves along the ray first touches
 /// the shape: the ray against the shape grown by the radius (its core
 /// grown, for GJK's rounded-shape case above), exact to the same
-/// tolerance. The hit's point is the ball's centre there, the normal the
+/// tolerance. The hit's point is the ball's center there, the normal the
 /// grown surface's. A continuous collision stage sweeps spheres this way.
 template <class Shape, scalar_type T>
 ray_hit<T> sphere_cast(const ray<T>& r, T radius, const Shape& shape, const transform<T>& pose,

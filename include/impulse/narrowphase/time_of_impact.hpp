@@ -4,10 +4,10 @@
 //
 // Motion. Each shape moves as a CCD stage sees a body over one step: from
 // its pose at the start to its pose at the end (a `sweep`, after Box2D's
-// b2Sweep and the from/to transforms of Bullet's convex casts), its centre
-// of rotation (the centre of mass, given in the shape's frame) on a
+// b2Sweep and the from/to transforms of Bullet's convex casts), its center
+// of rotation (the center of mass, given in the shape's frame) on a
 // straight line at constant speed, and its orientation turning about that
-// centre at a constant angular velocity, the shortest rotation from start
+// center at a constant angular velocity, the shortest rotation from start
 // to end (so a body must turn less than half a turn per step; one that
 // turns more is seen turning the short way). Time t runs over [0, 1].
 //
@@ -18,10 +18,10 @@
 // held fixed, the gap between the support planes of A and B along n starts
 // at d and closes no faster than
 //     bound = n·(v_A − v_B) + |n × ω_A|·r_A + |n × ω_B|·r_B,
-// v the centres' velocities, ω the angular velocities, r each shape's
-// farthest point from its centre of rotation: the first term is the
-// centres' approach along n, the others the most any point can add by
-// turning (a point at offset ρ from its centre moves along n at
+// v the centers' velocities, ω the angular velocities, r each shape's
+// farthest point from its center of rotation: the first term is the
+// centers' approach along n, the others the most any point can add by
+// turning (a point at offset ρ from its center moves along n at
 // n·(ω × ρ) = ρ·(n × ω) ≤ r·|n × ω|; Mirtich's |ω|·r is the same bound
 // without the projection, looser when ω is not across n). The distance is never less than that gap, so the shapes stay at
 // least `target` apart until t + (d − target)/bound: advance to there and
@@ -69,15 +69,15 @@ template <scalar_type T>
 struct sweep {
   transform<T> start = transform<T>::identity();  ///< pose at t = 0
   transform<T> end = transform<T>::identity();    ///< pose at t = 1
-  vec3<T> local_center{};  ///< m, shape frame: the point the shape turns about (its centre of mass)
+  vec3<T> local_center{};  ///< m, shape frame: the point the shape turns about (its center of mass)
 };
 
-/// The motion of a sweep, resolved once: the centre's start and
+/// The motion of a sweep, resolved once: the center's start and
 /// displacement, the start orientation and the rotation vector over [0, 1].
 template <scalar_type T>
 struct sweep_motion {
-  vec3<T> center{};        ///< world, m: the centre of rotation at t = 0
-  vec3<T> translation{};   ///< m over the interval: the centre's velocity per unit t
+  vec3<T> center{};        ///< world, m: the center of rotation at t = 0
+  vec3<T> translation{};   ///< m over the interval: the center's velocity per unit t
   quat<T> rotation = quat<T>::identity();  ///< at t = 0
   vec3<T> angle{};         ///< rad over the interval, world: the angular velocity per unit t
   vec3<T> local_center{};
@@ -89,7 +89,7 @@ struct sweep_motion {
         angle(rotation_between(s.start.rotation, s.end.rotation)),
         local_center(s.local_center) {}
 
-  /// The pose at time t: the centre moved by t·translation, the
+  /// The pose at time t: the center moved by t·translation, the
   /// orientation turned by t·angle (exactly the end pose at t = 1, up to
   /// rounding).
   transform<T> at(T t) const noexcept {
@@ -137,7 +137,7 @@ struct toi_result {
 namespace detail {
 
 /// The farthest any point of the shape lies from `center` (shape frame):
-/// a ball's centre offset plus its radius, a capsule's farther cap, a
+/// a ball's center offset plus its radius, a capsule's farther cap, a
 /// hull's farthest vertex, and otherwise the farthest corner of the
 /// shape's local box (exact for a box).
 template <class Shape, scalar_type T>

@@ -96,8 +96,8 @@ struct tolerances {
   /// distances: written out, since 1e-3 squared in float is not the float
   /// nearest 1e-6.
   static constexpr T collinear_fraction_squared = T(1e-6);
-  /// Half-width of the band across a clipped patch's centre, as a fraction
-  /// of the patch's spread (its points' largest offset from the centre
+  /// Half-width of the band across a clipped patch's center, as a fraction
+  /// of the patch's spread (its points' largest offset from the center
   /// along the face's axes; relative), inside which a point counts as on
   /// the negative side when its quarter is chosen (detail/clipping.hpp), so
   /// that the two ends of a line of contact do not toss between quarters,
@@ -115,7 +115,7 @@ struct tolerances {
   /// a triangle is supported by the triangle's face, not by the corner that
   /// rounding puts an ulp higher, which would be an internal feature.
   static constexpr T feature_fraction = T(1e-4);
-  /// A sphere's centre or a capsule's core closer than this fraction of
+  /// A sphere's center or a capsule's core closer than this fraction of
   /// the radius (relative) to a triangle lies on it: the direction between
   /// them is rounding, and the triangle's face normal is taken instead
   /// (mesh.hpp).

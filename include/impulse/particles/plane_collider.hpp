@@ -33,7 +33,7 @@ struct plane_collider {
   /// μ ∈ [0, 1]: the fraction of tangential velocity removed at each contact.
   T friction = T(0.2);
 
-  /// A finite rectangle instead of a half-space: centred at `center` (on the
+  /// A finite rectangle instead of a half-space: centered at `center` (on the
   /// plane), spanning ±half_u along axis_u and ±half_v along normal × axis_u.
   bool finite = false;
   vec3<T> center{};

@@ -1,4 +1,4 @@
-// impulse/shapes/box.hpp — a solid rectangular box centred at the body origin.
+// impulse/shapes/box.hpp — a solid rectangular box centered at the body origin.
 #pragma once
 
 #include <cmath>

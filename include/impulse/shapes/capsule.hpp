@@ -42,7 +42,7 @@ struct capsule {
   aabb<T> local_aabb() const noexcept {
     return aabb<T>::from_center_half_extents({}, {radius, half_height + radius, radius});
   }
-  /// Exact: the box around the two transformed cap centres, grown by the radius.
+  /// Exact: the box around the two transformed cap centers, grown by the radius.
   aabb<T> world_aabb(const transform<T>& pose) const noexcept {
     const vec3<T> axis = rotate(pose.rotation, vec3<T>{T(0), half_height, T(0)});
     const vec3<T> reach = abs(axis) + vec3<T>::splat(radius);
@@ -53,7 +53,7 @@ struct capsule {
 /// Cylinder (mass m_c, radius r, height 2h) plus two hemispheres (together a
 /// ball of mass m_s). About the axis: m_c·r²/2 + 2/5·m_s·r². Across it: the
 /// cylinder's m_c·(r²/4 + h²/3), and each hemisphere's own 83/320·(m_s/2)·r²
-/// about its centre of mass, 3r/8 beyond the cylinder's end, carried to the
+/// about its center of mass, 3r/8 beyond the cylinder's end, carried to the
 /// middle: together m_s·(2r²/5 + h² + 3hr/4).
 template <scalar_type T>
 mass_properties<T> mass_properties_of(const capsule<T>& c, T density) {

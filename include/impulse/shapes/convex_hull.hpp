@@ -13,7 +13,7 @@
 // dropped, and faces that meet at an edge flatter than that are one polygon
 // (a box's eight corners give six quads, not twelve triangles). tolerance()
 // is Gregorius' 3·(max|x| + max|y| + max|z|)·ε, with ε the machine epsilon
-// of T and the coordinates measured from the centre of the points' bounding
+// of T and the coordinates measured from the center of the points' bounding
 // box, so a hull far from the origin is as good as one at it (evaluating its
 // planes at world coordinates x adds rounding of about ε·|x|). What the
 // construction guarantees, in units of tolerance():
@@ -91,7 +91,7 @@ class convex_hull {
     if (points.size() >= 0xffffffffu)
       detail::report_error(error_code::capacity_exceeded, "convex_hull: more points than 32-bit indices can name");
 
-    // The builder works in double on coordinates centred on the bounding box
+    // The builder works in double on coordinates centered on the bounding box
     // and scaled by a power of two (exact) into [-1, 1]: the tolerance is then
     // relative to the size of the cloud, not its distance from the origin,
     // and no product in the construction can overflow or underflow.

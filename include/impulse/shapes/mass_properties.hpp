@@ -1,7 +1,7 @@
-// impulse/shapes/mass_properties.hpp — mass, centre of mass and inertia of solids.
+// impulse/shapes/mass_properties.hpp — mass, center of mass and inertia of solids.
 //
 // mass_properties holds what a rigid body needs of its shape: the mass, the
-// centre of mass in shape space, and the inertia tensor about that centre.
+// center of mass in shape space, and the inertia tensor about that center.
 // Closed forms for the primitive solids live with each shape; this file has
 // the general polyhedron (Eberly, "Polyhedral Mass Properties (Revisited)",
 // 2002, a streamlined form of Mirtich's surface integrals, JGT 1996), the
@@ -22,7 +22,7 @@ namespace impulse {
 template <scalar_type T>
 struct mass_properties {
   T mass = T(0);              ///< kg
-  vec3<T> center{};           ///< centre of mass, m, in shape space
+  vec3<T> center{};           ///< center of mass, m, in shape space
   mat3<T> inertia{};          ///< kg·m², about `center`, shape-space axes
 };
 
@@ -42,7 +42,7 @@ mat3<T> point_inertia(T m, const vec3<T>& r) noexcept {
 
 }  // namespace detail
 
-/// The same body's inertia about a point `offset` away from its centre of
+/// The same body's inertia about a point `offset` away from its center of
 /// mass (parallel-axis theorem, in tensor form).
 template <scalar_type T>
 mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcept {
@@ -50,14 +50,14 @@ mat3<T> inertia_about(const mass_properties<T>& p, const vec3<T>& point) noexcep
 }
 
 /// The part placed in its parent's space by a rotation (as a matrix) and a
-/// translation: centre moved, inertia rotated to R·I·Rᵀ.
+/// translation: center moved, inertia rotated to R·I·Rᵀ.
 template <scalar_type T>
 mass_properties<T> transformed(const mass_properties<T>& p, const mat3<T>& rotation, const vec3<T>& translation) noexcept {
   return {p.mass, rotation * p.center + translation, rotation * p.inertia * transpose(rotation)};
 }
 
-/// Two parts as one body: masses add, the centre is the mass-weighted mean,
-/// and each part's inertia is carried to the common centre.
+/// Two parts as one body: masses add, the center is the mass-weighted mean,
+/// and each part's inertia is carried to the common center.
 template <scalar_type T>
 mass_properties<T> combine(const mass_properties<T>& a, const mass_properties<T>& b) noexcept {
   mass_properties<T> sum;

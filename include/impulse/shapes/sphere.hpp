@@ -1,4 +1,4 @@
-// impulse/shapes/sphere.hpp — a solid ball centred at the body origin.
+// impulse/shapes/sphere.hpp — a solid ball centered at the body origin.
 #pragma once
 
 #include <cmath>

@@ -20,9 +20,9 @@ namespace impulse {
 template <scalar_type T>
 struct body_def {
   body_type type = body_type::dynamic;
-  /// Where the shape's origin is and how it is turned. (A hull whose centre
+  /// Where the shape's origin is and how it is turned. (A hull whose center
   /// of mass is off its origin keeps the origin here; the body's position
-  /// is its centre of mass.)
+  /// is its center of mass.)
   transform<T> pose = transform<T>::identity();
   vec3<T> linear_velocity{};   ///< m/s (dynamic and kinematic bodies)
   vec3<T> angular_velocity{};  ///< rad/s, world (dynamic and kinematic bodies)
@@ -64,11 +64,11 @@ struct world_settings {
   /// every pair every step. Jolt's body pair cache takes 1 mm and 2°; a
   /// point carried with its body may lie past the edge of the face under
   /// it by as much as it slid, 17 mm at 2° for a corner 0.5 m from the
-  /// centre, so the angle here is 0.5° (4.4 mm): a box tipping over an
+  /// center, so the angle here is 0.5° (4.4 mm): a box tipping over an
   /// edge is tested again before it has turned far.
   T contact_reuse_distance = T(0.001);  ///< m
   T contact_reuse_angle = T(0.0087);    ///< rad
-  /// With ccd on in the config, a body whose centre moves farther in a step
+  /// With ccd on in the config, a body whose center moves farther in a step
   /// than this fraction of its thinnest half-extent (a ball's radius) is
   /// swept against static and kinematic bodies. Below it the speculative
   /// contacts (solver.speculative_distance) already catch what it meets.
@@ -104,12 +104,12 @@ struct world_settings {
   /// carry past it is held.
   T max_coordinate = std::is_same_v<T, float> ? T(1e6) : T(1e12);
   static constexpr T coordinate_ceiling = std::is_same_v<T, float> ? T(1e8) : T(1e15);
-  /// How far a joint's anchor may be from a dynamic body's centre of mass,
+  /// How far a joint's anchor may be from a dynamic body's center of mass,
   /// in multiples of the body's smallest radius of gyration (√(I_min / m):
   /// 0.41 m for a unit cube, 6 mm for a 1 cm ball). Farther, the joint's
   /// effective mass along the lever is lost in rounding (its part 1/m is
   /// below the lever's r²/I times the scalar's epsilon) and the solve
-  /// diverges: a ball 14 cm across joined 1e7 m from its centre went to
+  /// diverges: a ball 14 cm across joined 1e7 m from its center went to
   /// NaN in its first step. 1 000 in float, 10⁶ in double; a long pendulum
   /// is a distance joint, whose anchors sit on the bodies.
   T max_joint_lever = std::is_same_v<T, float> ? T(1e3) : T(1e6);

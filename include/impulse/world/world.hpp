@@ -1,13 +1,13 @@
 // impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
 // materials, joints between them, stepped through the pipeline of
 // docs/architecture.md. This file is the world's interface and its step;
-// the state it keeps is world_state.hpp, and each stage of the step is a
-// file of its own:
+// the state it keeps is detail/world_state.hpp, and each stage of the step
+// is a file of its own:
 //
-//   broad and narrow phase   contact_update.hpp
-//   islands, sleeping        islands.hpp (sleeping on)
-//   solve and write-back     solve.hpp
-//   continuous collision     continuous.hpp (ccd on)
+//   broad and narrow phase   detail/contact_update.hpp
+//   islands, sleeping        detail/islands.hpp (sleeping on)
+//   solve and write-back     detail/solve.hpp
+//   continuous collision     detail/continuous.hpp (ccd on)
 //
 // world_bodies.hpp and world_joints.hpp define the members that make and
 // destroy bodies and joints.
@@ -34,13 +34,13 @@
 #include "../core/error.hpp"
 #include "../narrowphase/ray_cast.hpp"
 #include "body_def.hpp"
-#include "contact_update.hpp"
-#include "continuous.hpp"
-#include "debug_drawing.hpp"
+#include "detail/contact_update.hpp"
+#include "detail/continuous.hpp"
+#include "detail/debug_drawing.hpp"
 #include "fwd.hpp"
-#include "islands.hpp"
-#include "solve.hpp"
-#include "world_state.hpp"
+#include "detail/islands.hpp"
+#include "detail/solve.hpp"
+#include "detail/world_state.hpp"
 
 namespace impulse {
 
@@ -116,7 +116,7 @@ class world {
     if constexpr (requires { shape.validate(); }) shape.validate();
     def.material.validate();
     const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
-    const vec3<T> center = def.type == body_type::dynamic ? detail::centre_of_mass(def, shape) : vec3<T>{};
+    const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
     body_record record = prepare_body(def, body, center);  // checks the velocities
     if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
       const aabb<T> box = shape.world_aabb(def.pose);
@@ -138,7 +138,7 @@ class world {
   [[nodiscard]] std::size_t body_count() const noexcept { return state_.bodies.size(); }
   /// Every live body, in storage order.
   [[nodiscard]] std::span<const body_id> body_ids() const noexcept { return state_.bodies.ids(); }
-  /// A body's state (position of its centre of mass, orientation, momenta,
+  /// A body's state (position of its center of mass, orientation, momenta,
   /// mass properties).
   [[nodiscard]] const rigid_body<T>& body(body_id id) const {
     require(id, "world::body: no such body");
@@ -162,9 +162,9 @@ class world {
     const transform<T> now = r.body.pose();
     quat<T> q1 = now.rotation;
     if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
-    const transform<T> centre{lerp(r.previous.position, now.position, alpha),
+    const transform<T> center{lerp(r.previous.position, now.position, alpha),
                               normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
-    return {centre.position - rotate(centre.rotation, r.center), centre.rotation};
+    return {center.position - rotate(center.rotation, r.center), center.rotation};
   }
   /// Calls f(shape) with the body's shape (one of the config's shape
   /// list, in the body's shape frame) and returns what f returns.
@@ -212,7 +212,7 @@ class world {
   /// platform calls this every step. Refused: a body that is not
   /// kinematic, a non-finite or non-unit pose, dt not positive.
   void set_target_pose(body_id id, const transform<T>& target, T dt);
-  /// A force through the centre of mass for the next step, N.
+  /// A force through the center of mass for the next step, N.
   void apply_force(body_id id, const vec3<T>& force) {
     body_record& r = dynamic_record(id, "world::apply_force: no such body");
     r.body.apply_force(force);
@@ -449,7 +449,7 @@ class world {
   }
 
   /// create_body's part that does not depend on the shape: the record of a
-  /// body made from `def`, its centre of mass at `center` in shape space;
+  /// body made from `def`, its center of mass at `center` in shape space;
   /// refuses non-finite or impossible velocities.
   body_record prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const;
   /// Adds the record made by prepare_body, with its shape, and its proxy.

@@ -38,7 +38,7 @@ struct patch_point {
 
 /// Chooses at most four of the patch's points, one per quarter of the patch
 /// (split along the reference face's unit axes u and v through the patch's
-/// centre): the one farthest from the centre, so that the four span the
+/// center): the one farthest from the center, so that the four span the
 /// patch, except that the deepest point of all is kept in its quarter.
 /// `chosen[q]` is the index of quarter q's point, or −1; the quarter is the
 /// point's feature id. The quarter, not the clipping history: when a box
@@ -51,22 +51,22 @@ struct patch_point {
 template <scalar_type T>
 void choose_by_quarter(const patch_point<T>* points, int count, const vec3<T>& u, const vec3<T>& v,
                        int chosen[4]) noexcept {
-  vec3<T> centre{};
-  for (int c = 0; c < count; ++c) centre += points[c].x;
-  centre /= T(count);
+  vec3<T> center{};
+  for (int c = 0; c < count; ++c) center += points[c].x;
+  center /= T(count);
   T spread = T(0);
   for (int c = 0; c < count; ++c)
-    spread = std::max(spread, std::max(std::abs(dot(points[c].x - centre, u)), std::abs(dot(points[c].x - centre, v))));
+    spread = std::max(spread, std::max(std::abs(dot(points[c].x - center, u)), std::abs(dot(points[c].x - center, v))));
   const T dead_band = tolerances<T>::quarter_dead_band * spread;
   const auto quarter = [&](const vec3<T>& x) {
-    return int(dot(x - centre, u) > dead_band) | (int(dot(x - centre, v) > dead_band) << 1);
+    return int(dot(x - center, u) > dead_band) | (int(dot(x - center, v) > dead_band) << 1);
   };
   int deepest = 0;
   for (int q = 0; q < 4; ++q) chosen[q] = -1;
   for (int c = 0; c < count; ++c) {
     if (points[c].separation < points[deepest].separation) deepest = c;
     int& slot = chosen[quarter(points[c].x)];
-    if (slot < 0 || length_squared(points[c].x - centre) > length_squared(points[slot].x - centre)) slot = c;
+    if (slot < 0 || length_squared(points[c].x - center) > length_squared(points[slot].x - center)) slot = c;
   }
   chosen[quarter(points[deepest].x)] = deepest;
 }

@@ -29,7 +29,7 @@
 //   along its normal, so that every plane supports the hull.
 //
 // Everything here is double, whatever the scalar of the hull, and the caller
-// (convex_hull.hpp) hands in coordinates translated to the centre of the
+// (convex_hull.hpp) hands in coordinates translated to the center of the
 // points and scaled by a power of two into [-1, 1]. For float points the
 // construction runs with the tolerance of double arithmetic and merges with
 // the float tolerance at the end (see build()).

@@ -1,4 +1,4 @@
-// impulse/dynamics/joint_tree.hpp — the joints that form trees, solved
+// impulse/dynamics/detail/joint_tree.hpp — the joints that form trees, solved
 // exactly, in time linear in their number (Baraff, "Linear-Time Dynamics
 // using Lagrange Multipliers", SIGGRAPH 1996).
 //
@@ -39,12 +39,12 @@
 #include <span>
 #include <vector>
 
-#include "../core/policy.hpp"
-#include "../math/mat3.hpp"
-#include "../math/quat.hpp"
-#include "../math/vec3.hpp"
-#include "contact_constraint.hpp"
-#include "joint.hpp"
+#include "../../core/policy.hpp"
+#include "../../math/mat3.hpp"
+#include "../../math/quat.hpp"
+#include "../../math/vec3.hpp"
+#include "../contact_constraint.hpp"
+#include "../joint.hpp"
 
 namespace impulse::detail {
 
@@ -351,7 +351,7 @@ class joint_tree {
   /// last step or substep of length `h`: its geometric stiffness, which
   /// factor adds to its bodies' inertia.
   ///
-  /// A joint that pulls with force f at a lever r (from a body's centre of
+  /// A joint that pulls with force f at a lever r (from a body's center of
   /// mass) turns with the body: rotating it by δθ changes its torque by
   /// [f]×[r]×·δθ, a stiffness the step does not see. Under a heavy load a
   /// light link swings across it as a stiff spring, at about

@@ -1,4 +1,4 @@
-// impulse/world/contact_update.hpp — the step's collision stages: each
+// impulse/world/detail/contact_update.hpp — the step's collision stages: each
 // moving body's proxy moved in the broad phase, then the narrow phase over
 // the pairs it reports (docs/architecture.md, "The step").
 //

@@ -1,4 +1,4 @@
-// impulse/core/assert.hpp — internal assertions for preconditions the caller owns.
+// impulse/core/detail/assert.hpp — internal assertions for preconditions the caller owns.
 //
 // IMPULSE_ASSERT checks invariants inside the library (a non-zero vector handed
 // to normalize, an index in range). It is on in debug builds and compiled out

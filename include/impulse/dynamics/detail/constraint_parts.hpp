@@ -1,4 +1,4 @@
-// impulse/dynamics/constraint_parts.hpp — the pieces every joint is built
+// impulse/dynamics/detail/constraint_parts.hpp — the pieces every joint is built
 // from: a point held to a point, a rotation held to a rotation, and a single
 // row along a line or about an axis.
 //
@@ -23,11 +23,11 @@
 #include <algorithm>
 #include <optional>
 
-#include "../core/policy.hpp"
-#include "../math/mat3.hpp"
-#include "../math/vec3.hpp"
-#include "contact_constraint.hpp"
-#include "softness.hpp"
+#include "../../core/policy.hpp"
+#include "../../math/mat3.hpp"
+#include "../../math/vec3.hpp"
+#include "../contact_constraint.hpp"
+#include "../softness.hpp"
 
 namespace impulse::detail {
 

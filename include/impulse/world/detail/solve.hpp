@@ -1,4 +1,4 @@
-// impulse/world/solve.hpp — the step's solve: the awake bodies and their
+// impulse/world/detail/solve.hpp — the step's solve: the awake bodies and their
 // touching contacts and joints handed to the config's solver
 // (sequential_impulse, soft_step), which applies this step's forces, solves
 // the contacts and the joints (joint.hpp; trees of joints exactly,
@@ -34,7 +34,7 @@
 #include <span>
 #include <vector>
 
-#include "../dynamics/body_motion.hpp"
+#include "../../dynamics/body_motion.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
@@ -116,7 +116,7 @@ struct body_solve {
         // The slip at the middle of the patch chooses the tangents.
         const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
-        // The positions move each centre in a straight line while each body
+        // The positions move each center in a straight line while each body
         // turns exactly, so two points that move together at the velocity
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept

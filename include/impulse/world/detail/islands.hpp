@@ -1,4 +1,4 @@
-// impulse/world/islands.hpp — the step's islands and sleeping (with
+// impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config): union–find over touching contacts and
 // joints before the solve, waking an island with any body awake; after the
 // bodies have moved, an island whose every body has been slow for

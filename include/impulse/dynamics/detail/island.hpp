@@ -1,4 +1,4 @@
-// impulse/dynamics/island.hpp — islands: the groups of bodies that touch,
+// impulse/dynamics/detail/island.hpp — islands: the groups of bodies that touch,
 // directly or through others, and so must wake and sleep together.
 //
 // Union–find with path halving and union by size (Tarjan 1975): rebuilding

@@ -1,11 +1,11 @@
-// impulse/io/snapshot.hpp — a picture of a world, drawn on the CPU with no
+// impulse/io/picture.hpp — a picture of a world, drawn on the CPU with no
 // graphics library: every body's shape as triangles (io/shape_mesh.hpp),
 // seen through a pinhole camera, hidden surfaces removed by a depth buffer,
 // each face shaded by its angle to one light (Lambert), and written as a
 // PNG. Enough for an example run headless to leave a picture behind.
 //
 //   impulse::io::camera<float> eye{.position = {9, 6, 10}, .target = {0, 1, 0}};
-//   impulse::io::save_png(impulse::io::snapshot(world, eye), "out/run.png");
+//   impulse::io::save_png(impulse::io::render(world, eye), "out/run.png");
 //
 // The PNG is written with stored (uncompressed) deflate blocks (RFC 1950,
 // 1951; PNG specification, 2003): a valid file any reader opens, at the size
@@ -50,7 +50,7 @@ struct image {
 };
 
 /// The background at row y of h: a pale sky, lighter towards the horizon.
-inline std::array<std::uint8_t, 3> sky_colour(int y, int h) {
+inline std::array<std::uint8_t, 3> sky_color(int y, int h) {
   const double f = h > 1 ? double(y) / double(h - 1) : 0.0;
   return {std::uint8_t(150 + 80 * f), std::uint8_t(180 + 60 * f), std::uint8_t(225 + 25 * f)};
 }
@@ -67,15 +67,15 @@ struct raster {
     picture.height = h;
     picture.rgb.resize(std::size_t(w) * std::size_t(h) * 3);
     for (int y = 0; y < h; ++y) {
-      const auto c = sky_colour(y, h);
+      const auto c = sky_color(y, h);
       for (int x = 0; x < w; ++x)
         std::copy(c.begin(), c.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * w + x));
     }
   }
 
   /// Fills a triangle given in pixels (x right, y down) with its view depth,
-  /// pixel centres in, by edge functions; nearer pixels win.
-  void fill(const std::array<std::array<double, 3>, 3>& p, const std::array<std::uint8_t, 3>& colour) {
+  /// pixel centers in, by edge functions; nearer pixels win.
+  void fill(const std::array<std::array<double, 3>, 3>& p, const std::array<std::uint8_t, 3>& color) {
     const double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
     if (!(std::abs(area) > 1e-12)) return;
     // The bounds are clamped to the raster while still doubles: a corner cut
@@ -103,7 +103,7 @@ struct raster {
         float& stored = depth[std::size_t(y) * std::size_t(width) + std::size_t(x)];
         if (!(z < stored)) continue;
         stored = z;
-        std::copy(colour.begin(), colour.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * width + x));
+        std::copy(color.begin(), color.end(), picture.rgb.begin() + 3 * (std::ptrdiff_t(y) * width + x));
       }
   }
 };
@@ -141,7 +141,7 @@ inline void append_chunk(std::vector<std::uint8_t>& out, const char* type, const
 /// ones orange, kinematic ones blue, as in the glTF recording; the light
 /// comes from over the camera's left shoulder.
 template <class World>
-[[nodiscard]] image snapshot(const World& w, const camera<typename World::scalar>& eye) {
+[[nodiscard]] image render(const World& w, const camera<typename World::scalar>& eye) {
   using T = typename World::scalar;
   detail::raster r(std::max(1, eye.width), std::max(1, eye.height));
   // The camera's frame: forward f, right s, up u (a right-handed view).
@@ -177,7 +177,7 @@ template <class World>
       if (!(length_squared(area) > 1e-24)) continue;  // no area: nothing to see (a pole's sliver)
       const vec3<double> normal = area / length(area);
       const double shade = 0.35 + 0.65 * std::abs(dot(normal, light));  // two-sided, as a mesh has no inside
-      const std::array<std::uint8_t, 3> colour{std::uint8_t(base[0] * shade), std::uint8_t(base[1] * shade),
+      const std::array<std::uint8_t, 3> color{std::uint8_t(base[0] * shade), std::uint8_t(base[1] * shade),
                                                std::uint8_t(base[2] * shade)};
       // Cut at the near plane (Sutherland–Hodgman against depth = near):
       // a floor that runs under the camera is drawn up to it.
@@ -192,7 +192,7 @@ template <class World>
         return std::array<double, 3>{0.5 * r.width + focal * v.x / v.z, 0.5 * r.height - focal * v.y / v.z, v.z};
       };
       for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-        r.fill({screen(polygon[0]), screen(polygon[k]), screen(polygon[k + 1])}, colour);
+        r.fill({screen(polygon[0]), screen(polygon[k]), screen(polygon[k + 1])}, color);
     }
   }
   return std::move(r.picture);

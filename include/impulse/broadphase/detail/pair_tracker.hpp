@@ -1,4 +1,4 @@
-// impulse/broadphase/pair_tracker.hpp — the overlapping pairs after an
+// impulse/broadphase/detail/pair_tracker.hpp — the overlapping pairs after an
 // update, and what changed since the one before.
 //
 // Every broad phase reports the whole current set of pairs, sorted, plus
@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "proxy.hpp"
+#include "../proxy.hpp"
 
 namespace impulse::broadphase::detail {
 

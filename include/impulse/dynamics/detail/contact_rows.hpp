@@ -1,4 +1,4 @@
-// impulse/dynamics/contact_rows.hpp — what both contact solvers do with a
+// impulse/dynamics/detail/contact_rows.hpp — what both contact solvers do with a
 // contact constraint's rows: work out their masses, carry impulses over,
 // bounce, and solve friction at the patch.
 //
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <span>
 
-#include "../core/policy.hpp"
-#include "contact_constraint.hpp"
+#include "../../core/policy.hpp"
+#include "../contact_constraint.hpp"
 
 namespace impulse::detail {
 

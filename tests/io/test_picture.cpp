@@ -1,4 +1,4 @@
-// Pictures of a world (io/snapshot.hpp): a ball covers the disc its
+// Pictures of a world (io/picture.hpp): a ball covers the disc its
 // silhouette projects to, the nearer body hides the farther, a floor under
 // the camera is cut at the near plane, and the PNG holds the picture's
 // pixels in a stream any reader can take (checked by reading it back here:
@@ -11,14 +11,14 @@
 #include <numbers>
 #include <vector>
 
-#include "impulse/io/snapshot.hpp"
+#include "impulse/io/picture.hpp"
 #include "impulse/world.hpp"
 
 using namespace impulse;
 
 namespace {
 
-bool is_sky(const io::image& picture, int x, int y) { return picture.at(x, y) == io::sky_colour(y, picture.height); }
+bool is_sky(const io::image& picture, int x, int y) { return picture.at(x, y) == io::sky_color(y, picture.height); }
 
 std::size_t covered(const io::image& picture) {
   std::size_t n = 0;
@@ -42,7 +42,7 @@ TEST_CASE("a ball's picture covers the disc its silhouette projects to") {
   w.create_body({.pose = {{0, 0, 0}, quat<float>::identity()}}, sphere<float>::make(1));
   const io::camera<float> eye{.position = {0, 0, 10}, .target = {0, 0, 0}, .vertical_fov_degrees = 45,
                               .width = 400, .height = 400};
-  const io::image picture = io::snapshot(w, eye);
+  const io::image picture = io::render(w, eye);
   const double f = 200 / std::tan(22.5 * std::numbers::pi / 180);
   const double radius = f * 1 / std::sqrt(100.0 - 1.0);
   const double ratio = double(covered(picture)) / (std::numbers::pi * radius * radius);
@@ -52,7 +52,7 @@ TEST_CASE("a ball's picture covers the disc its silhouette projects to") {
   CHECK(is_sky(picture, 200, 200 - int(radius) - 3));
 }
 
-TEST_CASE("the nearer of two bodies hides the farther in a snapshot") {
+TEST_CASE("the nearer of two bodies hides the farther in a rendered picture") {
   world<default_config> w;
   body_def<float> far;
   far.type = body_type::static_body;
@@ -61,10 +61,10 @@ TEST_CASE("the nearer of two bodies hides the farther in a snapshot") {
   body_def<float> near;
   near.pose.position = {0, 0, 0};
   w.create_body(near, box<float>::make({0.5f, 0.5f, 0.5f}));  // orange
-  const io::image picture = io::snapshot(w, io::camera<float>{.position = {0, 0, 10}, .target = {}, .width = 200,
+  const io::image picture = io::render(w, io::camera<float>{.position = {0, 0, 10}, .target = {}, .width = 200,
                                                               .height = 200});
-  const auto centre = picture.at(100, 100);
-  CHECK(centre[0] > centre[2] + 60);  // orange: the near box
+  const auto center = picture.at(100, 100);
+  CHECK(center[0] > center[2] + 60);  // orange: the near box
   const auto edge = picture.at(100, 100 + 30);  // past the near box, on the far one: grey
   CHECK(std::abs(int(edge[0]) - int(edge[2])) < 20);
   CHECK(!is_sky(picture, 100, 130));
@@ -76,7 +76,7 @@ TEST_CASE("a floor that runs under the camera is drawn up to the near plane") {
   ground.type = body_type::static_body;
   w.create_body(ground, plane<float>::make({0, 1, 0}, 0));
   const io::image picture =
-      io::snapshot(w, io::camera<float>{.position = {0, 2, 0}, .target = {0, 2, -1}, .width = 160, .height = 90});
+      io::render(w, io::camera<float>{.position = {0, 2, 0}, .target = {0, 2, -1}, .width = 160, .height = 90});
   // Looking level, the horizon is the middle row: ground below, sky above,
   // up to the plane's 100 m edge, which stands 1.1° below the horizon.
   for (int x = 0; x < 160; x += 10) {
@@ -85,7 +85,7 @@ TEST_CASE("a floor that runs under the camera is drawn up to the near plane") {
   }
 }
 
-TEST_CASE("the PNG of a snapshot reads back as its pixels") {
+TEST_CASE("the PNG of a rendered picture reads back as its pixels") {
   io::image picture;
   picture.width = 200, picture.height = 150;  // 90 150 bytes of rows: two stored blocks
   picture.rgb.resize(200 * 150 * 3);

@@ -1,4 +1,4 @@
-// impulse/dynamics/contact_batch.hpp — W contacts that share no moving body,
+// impulse/dynamics/detail/contact_batch.hpp — W contacts that share no moving body,
 // solved together as the W lanes of SIMD batches.
 //
 // The rows are those of contact_rows.hpp (a normal row per point, friction
@@ -24,14 +24,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "../core/batch.hpp"
-#include "../math/vec3_batch.hpp"
-#include "contact_constraint.hpp"
+#include "../../core/batch.hpp"
+#include "../../math/vec3_batch.hpp"
+#include "../contact_constraint.hpp"
 
 namespace impulse::detail {
 
 /// Contacts per batch: the target's widest registers, at most 8 (wider
-/// batches leave more lanes empty in the small colours).
+/// batches leave more lanes empty in the small colors).
 template <scalar_type T>
 inline constexpr int contact_lanes = native_width<T> < 8 ? native_width<T> : 8;
 

@@ -1,4 +1,4 @@
-// impulse/broadphase/proxy_store.hpp — the proxies themselves, checked.
+// impulse/broadphase/detail/proxy_store.hpp — the proxies themselves, checked.
 //
 // Every broad phase keeps its proxies' boxes and user data here, in dense
 // arrays under stable ids (core/slot_map.hpp), and refuses bad input at the
@@ -10,10 +10,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "../core/error.hpp"
-#include "../core/slot_map.hpp"
-#include "../math/aabb.hpp"
-#include "proxy.hpp"
+#include "../../core/error.hpp"
+#include "../../core/slot_map.hpp"
+#include "../../math/aabb.hpp"
+#include "../proxy.hpp"
 
 namespace impulse::broadphase::detail {
 

@@ -1,4 +1,4 @@
-// impulse/world/world_state.hpp — what a world is: its records (bodies,
+// impulse/world/detail/world_state.hpp — what a world is: its records (bodies,
 // contacts, joints), its broad phase and shapes, its events and clock, as
 // plain data, with the queries every stage asks of them; and the scratch
 // one step rebuilds. The stages of the step (docs/architecture.md, "The
@@ -20,16 +20,16 @@
 #include <span>
 #include <vector>
 
-#include "../broadphase/broad_phase.hpp"
-#include "../config.hpp"
-#include "../core/error.hpp"
-#include "../core/slot_map.hpp"
-#include "../dynamics/contact_constraint.hpp"
-#include "../dynamics/island.hpp"
-#include "../dynamics/joint.hpp"
-#include "../dynamics/rigid_body.hpp"
-#include "../narrowphase/dispatch.hpp"
-#include "body_def.hpp"
+#include "../../broadphase/broad_phase.hpp"
+#include "../../config.hpp"
+#include "../../core/error.hpp"
+#include "../../core/slot_map.hpp"
+#include "../../dynamics/contact_constraint.hpp"
+#include "../../dynamics/detail/island.hpp"
+#include "../../dynamics/joint.hpp"
+#include "../../dynamics/rigid_body.hpp"
+#include "../../narrowphase/dispatch.hpp"
+#include "../body_def.hpp"
 #include "shape_store.hpp"
 #include "world_traits.hpp"
 
@@ -49,9 +49,9 @@ struct body_record {
   rigid_body<T> body;
   impulse::material<T> material;
   shape_handle shape;
-  vec3<T> center{};      ///< centre of mass in shape space
+  vec3<T> center{};      ///< center of mass in shape space
   proxy_id proxy;
-  transform<T> previous;  ///< the centre-of-mass pose at the start of the last step
+  transform<T> previous;  ///< the center-of-mass pose at the start of the last step
   T sleep_timer = T(0);   ///< s spent below the sleep speeds
   bool awake = true;
   std::uint64_t user_data = 0;
@@ -162,9 +162,9 @@ template <scalar_type T, class Shape>
                  "world::create_body: planes and triangle meshes can only be static or kinematic");
   }
 }
-/// Where a dynamic body of `shape` has its centre of mass, in shape space.
+/// Where a dynamic body of `shape` has its center of mass, in shape space.
 template <scalar_type T, class Shape>
-[[nodiscard]] vec3<T> centre_of_mass(const body_def<T>& def, const Shape& shape) {
+[[nodiscard]] vec3<T> center_of_mass(const body_def<T>& def, const Shape& shape) {
   if constexpr (requires { mass_properties_of(shape, T(1)); }) {
     return mass_properties_of(shape, def.material.density).center;
   } else {
@@ -245,7 +245,7 @@ struct world_state {
     if (is_finite(linear) && is_finite(angular) && !within_speed_limits(linear, angular))
       report_error(error_code::invalid_parameter, message, id.index);
   }
-  /// Refuses a joint anchor farther from a dynamic body's centre of mass
+  /// Refuses a joint anchor farther from a dynamic body's center of mass
   /// than world_settings::max_joint_lever radii of gyration.
   void require_lever(const rigid_body<T>& b, const vec3<T>& anchor, body_id id) const {
     if (b.type != body_type::dynamic) return;

@@ -1,4 +1,4 @@
-// impulse/world/shape_store.hpp — the shapes of a world's bodies, one array
+// impulse/world/detail/shape_store.hpp — the shapes of a world's bodies, one array
 // per shape type of the config's shape_list.
 //
 // A body names its shape by a handle (the type's place in the list and a
@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "../core/policy.hpp"
+#include "../../core/policy.hpp"
 
 namespace impulse::detail {
 

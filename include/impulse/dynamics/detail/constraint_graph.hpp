@@ -1,21 +1,21 @@
-// impulse/dynamics/constraint_graph.hpp — contacts coloured so that no two
-// of one colour move the same body, and cut into batches of W.
+// impulse/dynamics/detail/constraint_graph.hpp — contacts colored so that no two
+// of one color move the same body, and cut into batches of W.
 //
 // Gauss–Seidel solves one row after another because each row reads the
 // velocities the last one wrote. Rows that share no moving body do not
 // read each other's writes, so they can be solved together, one per SIMD
 // lane, and give the answer the one-by-one sweep would in some order.
-// Greedy colouring of the contact graph finds such sets (Catto, "Solver2D"
+// Greedy coloring of the contact graph finds such sets (Catto, "Solver2D"
 // and Box2D v3's constraint_graph.c; Tonge, "Iterative Rigid Body
-// Solvers", GDC 2012): each contact takes the lowest colour neither of its
+// Solvers", GDC 2012): each contact takes the lowest color neither of its
 // bodies has yet. Static and kinematic bodies do not count: the solver
 // never changes their velocities, so any number of lanes may read them.
-// The colours are then solved one after another, each batch of W contacts
-// of one colour as W lanes.
+// The colors are then solved one after another, each batch of W contacts
+// of one color as W lanes.
 //
-// The order of the sweep is colour by colour rather than the contacts'
-// own order; a tower's contacts alternate between two colours, so the
-// sweep goes over every other contact and then over the rest. Colouring
+// The order of the sweep is color by color rather than the contacts'
+// own order; a tower's contacts alternate between two colors, so the
+// sweep goes over every other contact and then over the rest. Coloring
 // is a function of the contact order alone: the same contacts give the
 // same batches, and a run stays deterministic.
 #pragma once
@@ -25,49 +25,49 @@
 #include <span>
 #include <vector>
 
-#include "contact_constraint.hpp"
+#include "../contact_constraint.hpp"
 
 namespace impulse::detail {
 
-/// Contacts in colour order, cut into batches that share no moving body.
+/// Contacts in color order, cut into batches that share no moving body.
 class constraint_graph {
  public:
-  /// Colours past this many (a body touching more than 64 others) are
+  /// Colors past this many (a body touching more than 64 others) are
   /// left over and solved one by one after the batches.
-  static constexpr int max_colours = 64;
+  static constexpr int max_colors = 64;
 
   /// Batches of at most `width` contacts. A body moves under impulses
   /// when its inverse mass is not zero.
   template <scalar_type T>
   void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts, int width) {
     used_.assign(bodies.size(), 0);
-    colour_of_.resize(contacts.size());
-    std::uint32_t counts[max_colours + 1] = {};
+    color_of_.resize(contacts.size());
+    std::uint32_t counts[max_colors + 1] = {};
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
       const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
       const std::uint64_t taken = (moves_a ? used_[a] : 0) | (moves_b ? used_[b] : 0);
-      const int colour = taken == ~std::uint64_t(0) ? max_colours : std::countr_zero(~taken);
-      if (colour < max_colours) {
-        const std::uint64_t bit = std::uint64_t(1) << colour;
+      const int color = taken == ~std::uint64_t(0) ? max_colors : std::countr_zero(~taken);
+      if (color < max_colors) {
+        const std::uint64_t bit = std::uint64_t(1) << color;
         if (moves_a) used_[a] |= bit;
         if (moves_b) used_[b] |= bit;
       }
-      colour_of_[i] = std::uint8_t(colour);
-      ++counts[colour];
+      color_of_[i] = std::uint8_t(color);
+      ++counts[color];
     }
-    // Counting sort by colour: within a colour the contacts keep their order.
-    std::uint32_t start[max_colours + 2] = {};
-    for (int c = 0; c <= max_colours; ++c) start[c + 1] = start[c] + counts[c];
+    // Counting sort by color: within a color the contacts keep their order.
+    std::uint32_t start[max_colors + 2] = {};
+    for (int c = 0; c <= max_colors; ++c) start[c + 1] = start[c] + counts[c];
     order_.resize(contacts.size());
-    std::uint32_t next[max_colours + 1];
-    for (int c = 0; c <= max_colours; ++c) next[c] = start[c];
-    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[colour_of_[i]]++] = std::uint32_t(i);
+    std::uint32_t next[max_colors + 1];
+    for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
+    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[color_of_[i]]++] = std::uint32_t(i);
     batch_starts_.clear();
-    for (int c = 0; c < max_colours; ++c)
+    for (int c = 0; c < max_colors; ++c)
       for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
-    batch_starts_.push_back(start[max_colours]);
-    leftover_start_ = start[max_colours];
+    batch_starts_.push_back(start[max_colors]);
+    leftover_start_ = start[max_colors];
   }
 
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
@@ -75,15 +75,15 @@ class constraint_graph {
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(batch_starts_[k], batch_starts_[k + 1] - batch_starts_[k]);
   }
-  /// Contacts no colour could take.
+  /// Contacts no color could take.
   [[nodiscard]] std::span<const std::uint32_t> leftover() const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(leftover_start_);
   }
 
  private:
-  std::vector<std::uint64_t> used_;      // per body: the colours its contacts have
-  std::vector<std::uint8_t> colour_of_;  // per contact
-  std::vector<std::uint32_t> order_;     // contacts by colour
+  std::vector<std::uint64_t> used_;      // per body: the colors its contacts have
+  std::vector<std::uint8_t> color_of_;  // per contact
+  std::vector<std::uint32_t> order_;     // contacts by color
   std::vector<std::uint32_t> batch_starts_;
   std::uint32_t leftover_start_ = 0;
 };

@@ -1,4 +1,4 @@
-// impulse/world/continuous.hpp — the step's continuous collision (with
+// impulse/world/detail/continuous.hpp — the step's continuous collision (with
 // `ccd` in the config; off, none of it is compiled): after the bodies
 // have moved, each bullet, and each body that crossed more than
 // ccd_motion_fraction of its thinnest half-extent, is swept from where it
@@ -15,9 +15,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "../narrowphase/epa.hpp"
-#include "../narrowphase/ray_cast.hpp"
-#include "../narrowphase/time_of_impact.hpp"
+#include "../../narrowphase/epa.hpp"
+#include "../../narrowphase/ray_cast.hpp"
+#include "../../narrowphase/time_of_impact.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
@@ -115,7 +115,7 @@ struct continuous_collision {
     const T gap = state.settings.ccd_gap;
     if constexpr (std::is_same_v<M, sphere<T>>) {
       if (other_path.start == other_path.end) {
-        // The ball's centre against the body grown by its radius.
+        // The ball's center against the body grown by its radius.
         const vec3<T> from = path.start.position, to = path.end.position;
         const T distance = length(to - from);
         const narrowphase::ray_hit<T> hit =

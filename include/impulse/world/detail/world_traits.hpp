@@ -1,4 +1,4 @@
-// impulse/world/world_traits.hpp — a config's world policies, with the
+// impulse/world/detail/world_traits.hpp — a config's world policies, with the
 // defaults for those it does not name.
 //
 // default_config (config.hpp) names only what every module uses, so that a
@@ -7,19 +7,19 @@
 // dynamic BVH, sequential impulses, sleeping on, CCD off.
 #pragma once
 
-#include "../broadphase/broad_phase.hpp"
-#include "../broadphase/dynamic_bvh.hpp"
-#include "../core/policy.hpp"
-#include "../dynamics/body_motion.hpp"
-#include "../dynamics/contact_solver.hpp"
-#include "../dynamics/sequential_impulse.hpp"
-#include "../dynamics/soft_step.hpp"
-#include "../shapes/box.hpp"
-#include "../shapes/capsule.hpp"
-#include "../shapes/convex_hull.hpp"
-#include "../shapes/plane.hpp"
-#include "../shapes/sphere.hpp"
-#include "../shapes/triangle_mesh.hpp"
+#include "../../broadphase/broad_phase.hpp"
+#include "../../broadphase/dynamic_bvh.hpp"
+#include "../../core/policy.hpp"
+#include "../../dynamics/body_motion.hpp"
+#include "../../dynamics/contact_solver.hpp"
+#include "../../dynamics/sequential_impulse.hpp"
+#include "../../dynamics/soft_step.hpp"
+#include "../../shapes/box.hpp"
+#include "../../shapes/capsule.hpp"
+#include "../../shapes/convex_hull.hpp"
+#include "../../shapes/plane.hpp"
+#include "../../shapes/sphere.hpp"
+#include "../../shapes/triangle_mesh.hpp"
 
 namespace impulse::detail {
 
