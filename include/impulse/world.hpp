@@ -7,3 +7,6 @@
 #include "world/debug_draw.hpp"
 #include "world/fwd.hpp"
 #include "world/world.hpp"
+#include "world/world_events.hpp"
+#include "world/world_ray_hit.hpp"
+#include "world/world_settings.hpp"

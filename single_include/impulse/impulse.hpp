@@ -16791,8 +16791,8 @@ template <scalar_type T> struct mass_properties;
 // contacts, solver, queries, events, debug drawing and snapshots.
 
 // ---- begin impulse/world/body_def.hpp ----
-// impulse/world/body_def.hpp — what a world is told: how to make a body,
-// and the settings of the world itself; and what it reports back.
+// impulse/world/body_def.hpp — how to make a body: its type, pose,
+// velocities, material and mass, as world::create_body takes them.
 
 
 
@@ -16821,6 +16821,139 @@ struct body_def {
   bool bullet = false;
   std::uint64_t user_data = 0;
 };
+
+}  // namespace impulse
+// ---- end impulse/world/body_def.hpp ----
+// ---- begin impulse/world/debug_draw.hpp ----
+// impulse/world/debug_draw.hpp — what a world can draw, and what it draws
+// with.
+//
+// A world draws through any type with three calls, `line(a, b, color)`,
+// `point(p, color)` and `arrow(from, to, color)`, in world coordinates
+// (metres): an OpenGL line renderer, an SVG writer or a test's recorder.
+// It never allocates or keeps the drawer.
+
+
+namespace impulse {
+
+struct debug_color {
+  float r = 1, g = 1, b = 1;  ///< each in [0, 1]
+};
+
+/// What world::draw shows.
+struct debug_draw_flags {
+  bool aabbs = false;       ///< each body's bounding box (as the broad phase has it, before the speculative margin)
+  bool contacts = true;     ///< contact points
+  bool normals = true;      ///< contact normals, 0.2 m long
+  bool velocities = false;  ///< each dynamic body's velocity, drawn as the step it makes in 0.1 s
+  bool forces = false;      ///< each contact point's last impulse divided by dt, at 0.01 m per newton
+};
+
+template <class D, class T>
+concept debug_drawer = requires(D& d, const vec3<T>& p, const debug_color& c) {
+  d.line(p, p, c);
+  d.point(p, c);
+  d.arrow(p, p, c);
+};
+
+}  // namespace impulse
+// ---- end impulse/world/debug_draw.hpp ----
+// ---- begin impulse/world/fwd.hpp ----
+// impulse/world/fwd.hpp — the world module's names.
+
+
+namespace impulse {
+
+template <scalar_type T> struct body_def;
+template <scalar_type T> struct world_settings;
+template <scalar_type T> struct world_ray_hit;
+struct contact_event;
+template <scalar_type T> struct joint_broken_event;
+struct debug_color;
+struct debug_draw_flags;
+template <class Config> class world_snapshot;
+template <class Config = default_config> class world;
+
+}  // namespace impulse
+// ---- end impulse/world/fwd.hpp ----
+// ---- begin impulse/world/world.hpp ----
+// impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
+// materials, joints between them, stepped through the pipeline of
+// docs/architecture.md. This file is the world's interface and its step;
+// the state it keeps is detail/world_state.hpp, and each stage of the step
+// is a file of its own:
+//
+//   broad and narrow phase   detail/contact_update.hpp
+//   islands, sleeping        detail/islands.hpp (sleeping on)
+//   solve and write-back     detail/solve.hpp
+//   continuous collision     detail/continuous.hpp (ccd on)
+//
+// world_bodies.hpp and world_joints.hpp define the members that make and
+// destroy bodies and joints.
+//
+// The world is a value: copying it copies every body, shape, contact and
+// impulse, and snapshot() / restore() are that copy. A step is a pure
+// function of the state (no clocks, no addresses, containers iterated in
+// id order), so the same state stepped twice gives the same bits.
+
+
+// ---- begin impulse/world/world_events.hpp ----
+// impulse/world/world_events.hpp — what a step reports: contacts that began
+// or ended, joints that broke.
+
+
+namespace impulse {
+
+/// Two bodies that began or stopped touching in the last step (touching:
+/// their shapes are within the solver's speculative distance).
+struct contact_event {
+  body_id a;
+  body_id b;
+  friend constexpr bool operator==(const contact_event&, const contact_event&) = default;
+};
+
+/// A joint that broke in the last step: the impulse it applied exceeded
+/// its break_force or break_torque times the step.
+template <scalar_type T>
+struct joint_broken_event {
+  joint_id joint;
+  body_id a;
+  body_id b;
+  T time = T(0);    ///< the world's time at the end of the step it broke in, s
+  T force = T(0);   ///< what it applied in that step, N
+  T torque = T(0);  ///< N·m
+  friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
+};
+
+}  // namespace impulse
+// ---- end impulse/world/world_events.hpp ----
+// ---- begin impulse/world/world_ray_hit.hpp ----
+// impulse/world/world_ray_hit.hpp — what world::ray_cast finds: the
+// nearest body a ray meets, where and at what fraction.
+
+
+namespace impulse {
+
+/// The nearest body a ray meets.
+template <scalar_type T>
+struct world_ray_hit {
+  body_id body;
+  T fraction = T(0);  ///< of the ray's translation
+  vec3<T> point{};    ///< world, m
+  vec3<T> normal{};   ///< world, unit, out of the body
+};
+
+}  // namespace impulse
+// ---- end impulse/world/world_ray_hit.hpp ----
+// ---- begin impulse/world/world_settings.hpp ----
+// impulse/world/world_settings.hpp — a world's runtime settings (the
+// compile-time ones are in its config): gravity, the solver's settings, the
+// fixed step, sleeping, contact reuse, continuous collision, and the limits
+// bad input is refused at.
+
+
+
+namespace impulse {
 
 /// The world's runtime settings (the compile-time ones are in its config).
 template <scalar_type T>
@@ -16936,111 +17069,8 @@ struct world_settings {
   }
 };
 
-/// Two bodies that began or stopped touching in the last step (touching:
-/// their shapes are within the solver's speculative distance).
-struct contact_event {
-  body_id a;
-  body_id b;
-  friend constexpr bool operator==(const contact_event&, const contact_event&) = default;
-};
-
-/// A joint that broke in the last step: the impulse it applied exceeded
-/// its break_force or break_torque times the step.
-template <scalar_type T>
-struct joint_broken_event {
-  joint_id joint;
-  body_id a;
-  body_id b;
-  T time = T(0);    ///< the world's time at the end of the step it broke in, s
-  T force = T(0);   ///< what it applied in that step, N
-  T torque = T(0);  ///< N·m
-  friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
-};
-
-/// The nearest body a ray meets.
-template <scalar_type T>
-struct world_ray_hit {
-  body_id body;
-  T fraction = T(0);  ///< of the ray's translation
-  vec3<T> point{};    ///< world, m
-  vec3<T> normal{};   ///< world, unit, out of the body
-};
-
 }  // namespace impulse
-// ---- end impulse/world/body_def.hpp ----
-// ---- begin impulse/world/debug_draw.hpp ----
-// impulse/world/debug_draw.hpp — what a world can draw, and what it draws
-// with.
-//
-// A world draws through any type with three calls, `line(a, b, color)`,
-// `point(p, color)` and `arrow(from, to, color)`, in world coordinates
-// (metres): an OpenGL line renderer, an SVG writer or a test's recorder.
-// It never allocates or keeps the drawer.
-
-
-namespace impulse {
-
-struct debug_color {
-  float r = 1, g = 1, b = 1;  ///< each in [0, 1]
-};
-
-/// What world::draw shows.
-struct debug_draw_flags {
-  bool aabbs = false;       ///< each body's bounding box (as the broad phase has it, before the speculative margin)
-  bool contacts = true;     ///< contact points
-  bool normals = true;      ///< contact normals, 0.2 m long
-  bool velocities = false;  ///< each dynamic body's velocity, drawn as the step it makes in 0.1 s
-  bool forces = false;      ///< each contact point's last impulse divided by dt, at 0.01 m per newton
-};
-
-template <class D, class T>
-concept debug_drawer = requires(D& d, const vec3<T>& p, const debug_color& c) {
-  d.line(p, p, c);
-  d.point(p, c);
-  d.arrow(p, p, c);
-};
-
-}  // namespace impulse
-// ---- end impulse/world/debug_draw.hpp ----
-// ---- begin impulse/world/fwd.hpp ----
-// impulse/world/fwd.hpp — the world module's names.
-
-
-namespace impulse {
-
-template <scalar_type T> struct body_def;
-template <scalar_type T> struct world_settings;
-template <scalar_type T> struct world_ray_hit;
-struct contact_event;
-template <scalar_type T> struct joint_broken_event;
-struct debug_color;
-struct debug_draw_flags;
-template <class Config> class world_snapshot;
-template <class Config = default_config> class world;
-
-}  // namespace impulse
-// ---- end impulse/world/fwd.hpp ----
-// ---- begin impulse/world/world.hpp ----
-// impulse/world/world.hpp — impulse::world<Config>: bodies with shapes and
-// materials, joints between them, stepped through the pipeline of
-// docs/architecture.md. This file is the world's interface and its step;
-// the state it keeps is detail/world_state.hpp, and each stage of the step
-// is a file of its own:
-//
-//   broad and narrow phase   detail/contact_update.hpp
-//   islands, sleeping        detail/islands.hpp (sleeping on)
-//   solve and write-back     detail/solve.hpp
-//   continuous collision     detail/continuous.hpp (ccd on)
-//
-// world_bodies.hpp and world_joints.hpp define the members that make and
-// destroy bodies and joints.
-//
-// The world is a value: copying it copies every body, shape, contact and
-// impulse, and snapshot() / restore() are that copy. A step is a pure
-// function of the state (no clocks, no addresses, containers iterated in
-// id order), so the same state stepped twice gives the same bits.
-
-
+// ---- end impulse/world/world_settings.hpp ----
 // ---- begin impulse/world/detail/contact_update.hpp ----
 // impulse/world/detail/contact_update.hpp — the step's collision stages: each
 // moving body's proxy moved in the broad phase, then the narrow phase over

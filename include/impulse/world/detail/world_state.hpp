@@ -30,6 +30,8 @@
 #include "../../dynamics/rigid_body.hpp"
 #include "../../narrowphase/dispatch.hpp"
 #include "../body_def.hpp"
+#include "../world_events.hpp"
+#include "../world_settings.hpp"
 #include "shape_store.hpp"
 #include "world_traits.hpp"
 
