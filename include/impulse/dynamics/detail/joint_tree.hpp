@@ -37,6 +37,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "../../core/policy.hpp"
@@ -489,24 +490,16 @@ class joint_tree {
   /// horizontal, its tail's whip opened 1.9 mm at 0.5 and 0.004 mm at 1.
   ///
   /// Each step is checked (newton_step) because unchecked ones tore chains
-  /// apart. The factor of the first pass used to serve the later ones (a
-  /// chord method, which took the ragdoll pile from 7.7 to 6.1 ms a step),
-  /// and every step was taken whole. A chain of 20 equal links let go from
-  /// horizontal (1 kg, 0.5 m, 60 Hz) opened 13 m, float and double alike,
-  /// from its 264th step, as its whip reached the middle links: their
-  /// first Newton step turned them by up to 0.16 rad, the factor left
-  /// behind no longer described them, and the later passes, taken with it,
-  /// raised the worst error of that step from 1.5 to 2.1 mm and of the
-  /// next from 5.4 to 36 mm; what a step left was the next one's start.
-  /// Throughout, the velocity solve was exact (J·v within 1e-6 m/s of 0,
-  /// its joint pivots 0.05 to 14: the factor is well conditioned), and a
-  /// fresh factor each pass kept the chain within 0.01 mm. At 100 links
-  /// that was not enough (0.28 m in float, 0.65 m in double, from 36–42 m):
-  /// across a taut, nearly straight run of links a full step shortens the
-  /// run by turning light links tenths of a radian, which works only to
-  /// first order, and the steps overshoot back and forth; and at the whip
-  /// a step starts up to 0.2 m off, which takes up to 21 Newton steps, not
-  /// four.
+  /// apart: with the first pass's factor serving the later ones and every
+  /// step taken whole, a chain of 20 equal links let go from horizontal
+  /// (1 kg, 0.5 m, 60 Hz) opened 13 m from its 264th step, as its whip
+  /// reached the middle links, whose first Newton step turned them by up
+  /// to 0.16 rad and left the factor behind; the velocity solve was exact
+  /// throughout (J·v within 1e-6 m/s of 0). A fresh factor each pass held
+  /// it within 0.01 mm, but not 100 links (0.28–0.65 m): across a taut run
+  /// a full step overshoots back and forth, and at the whip a step starts
+  /// up to 0.2 m off, which takes up to 21 Newton steps, not four
+  /// (docs/joints.md, "Drift").
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints, int passes,
                       T fraction, bool limits) {
     // The velocity solve's factor is of the poses at the start of the step:
@@ -781,8 +774,15 @@ class joint_tree {
     for (int c = 0; c < 6; ++c) x[c] *= f;
   }
 
+  /// Hands every joint back to Gauss–Seidel, its rows' impulses forgotten:
+  /// warm_start_joint left them to the tree, so they were not applied.
   void abandon(std::span<joint_constraint<T>> joints) noexcept {
-    for (joint_constraint<T>& j : joints) j.in_tree = false;
+    for (joint_constraint<T>& j : joints)
+      if (std::exchange(j.in_tree, false)) {
+        j.point_impulse = j.rotation_impulse = {};
+        j.across_impulse[0] = j.across_impulse[1] = T(0);
+        if (j.type == joint_type::distance) j.axial_impulse = T(0);
+      }
     nodes_.clear();
   }
 
