@@ -9038,7 +9038,6 @@ class joint_tree {
     return b.inverse_inertia;
   }
 
-
   /// Errors below this (m or rad) are not worth a factorisation: Newton's
   /// method has converged to rounding after two steps on the chain, and the
   /// factor is most of the cost of a ragdoll pile's joints.
@@ -17523,8 +17522,7 @@ template <scalar_type T, class Shape>
       p.inertia = p.inertia * (def.mass / p.mass);
       p.mass = def.mass;
     }
-    rigid_body<T> b = rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
-    return b;
+    return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
                  "world::create_body: planes and triangle meshes can only be static or kinematic");

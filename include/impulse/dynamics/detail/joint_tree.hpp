@@ -547,7 +547,6 @@ class joint_tree {
     return b.inverse_inertia;
   }
 
-
   /// Errors below this (m or rad) are not worth a factorisation: Newton's
   /// method has converged to rounding after two steps on the chain, and the
   /// factor is most of the cost of a ragdoll pile's joints.

@@ -157,8 +157,7 @@ template <scalar_type T, class Shape>
       p.inertia = p.inertia * (def.mass / p.mass);
       p.mass = def.mass;
     }
-    rigid_body<T> b = rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
-    return b;
+    return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
                  "world::create_body: planes and triangle meshes can only be static or kinematic");
