@@ -739,6 +739,44 @@ def render_performance_scenes(ctx):
     return table(header, rows, ["---"] + ["---:"] * (len(header) - 1))
 
 
+ASLEEP_LABELS = {
+    "pile_asleep": "`pile_asleep` (1000 boxes)",
+    "pyramid_asleep": "`pyramid_asleep` (210 boxes)",
+}
+ASLEEP_TARGET_US = 2.0
+
+
+def render_performance_asleep(ctx):
+    """The _asleep scenes: µs per step with every body asleep, and the steps each engine took to get there."""
+    s = Scenes(source(ctx, "bench/scenes/results.csv"))
+    columns = [c for c, _ in IMPULSE_CONFIGS if c in s.columns] + [c for c in ("Bullet", "ODE") if c in s.columns]
+    rows = []
+    for scene, label in ASLEEP_LABELS.items():
+        if not any((c, scene) in s.ms for c in columns):
+            continue
+        cells = []
+        for c in columns:
+            t, awake = s.ms.get((c, scene)), s.get(c, scene, "bodies_awake")
+            if t is None:
+                cells.append("–")
+                continue
+            text = sig(t * 1000, 2) + (" µs" if c in ("impulse BVH", "Bullet", "ODE") else "")
+            if awake:  # never all asleep within the settling limit: timed with bodies awake
+                text += f" ({awake:.0f} awake)"
+            cells.append(text)
+        settle = [s.get(c, scene, "steps_to_sleep") for c in ("impulse BVH", "Bullet")]
+        cells.append(" / ".join("–" if n is None else f"{n:.0f}" for n in settle))
+        ours = s.ms.get(("impulse BVH", scene))
+        cells.append("–" if ours is None else
+                     (f"**{sig(ours * 1000, 2)} µs**" if ours * 1000 <= ASLEEP_TARGET_US else f"{sig(ours * 1000, 2)} µs"))
+        cells.append(f"≤ {ASLEEP_TARGET_US:g} µs")
+        rows.append([label] + cells)
+    if not rows:
+        return ["None of this table's scenes ran (pile_asleep, pyramid_asleep)."]
+    header = ["scene (all asleep)"] + columns + ["steps to sleep (impulse / Bullet)", "impulse", "target"]
+    return table(header, rows, ["---"] + ["---:"] * (len(header) - 1))
+
+
 def length(metres):
     """A length in mm below 1 cm, else in cm: 0.69 mm, 0.007 mm, 2 cm, 97 cm, 191 cm."""
     if metres < 0.01:
@@ -988,6 +1026,7 @@ BLOCKS = [
     Block("performance_narrowphase_ground", "docs/performance.md", "narrowphase",
           render_performance_narrowphase_ground),
     Block("performance_scenes", "docs/performance.md", "scenes", render_performance_scenes),
+    Block("performance_asleep", "docs/performance.md", "scenes", render_performance_asleep),
     Block("broadphase_uniform", "docs/broadphase.md", "broadphase", render_broadphase_distribution("uniform")),
     Block("broadphase_clustered", "docs/broadphase.md", "broadphase", render_broadphase_distribution("clustered")),
     Block("broadphase_falling_pile", "docs/broadphase.md", "broadphase",

@@ -87,6 +87,9 @@ struct scene_spec {
   int steps = 0;
   bool sleeping = true;           ///< false: no body may ever deactivate
   metric_set metrics = metric_set::pile;
+  /// > 0 (the _asleep scenes): first run untimed until every body sleeps,
+  /// at most this many steps; then `steps` more, timed.
+  int settle_limit = 0;
 };
 
 /// The `pile` grid: box (i, j, k) is centered at ((i − 4.5)·1.2, 1.0 + 1.2·j,
@@ -173,6 +176,16 @@ inline scene_spec make_pyramid(std::string_view name, bool sleeping) {
   scene_spec s = make_scene_base(name, 1200, sleeping, metric_set::pyramid);
   s.bodies.push_back(make_ground(m));
   add_pyramid(s, 20, 1, m);
+  return s;
+}
+
+/// `pile_asleep`, `pyramid_asleep`: the scene with sleeping on, settled
+/// until every body sleeps (at most 60 s), then 300 steps timed: what a
+/// step costs with nothing to do.
+inline scene_spec make_asleep(scene_spec s, std::string_view name) {
+  s.name = std::string(name);
+  s.steps = 300;
+  s.settle_limit = 3600;
   return s;
 }
 
@@ -280,7 +293,8 @@ inline scene_spec make_cradle() {
 inline const std::vector<std::string_view>& scene_names() {
   static const std::vector<std::string_view> names{
       "pile",    "pile_nosleep",   "pyramid",        "pyramid_nosleep", "spheres", "spheres_nosleep", "large_pyramid",
-      "bounce",  "incline",        "incline_static", "tower10",         "heavy_on_light", "cradle"};
+      "bounce",  "incline",        "incline_static", "tower10",         "heavy_on_light", "cradle",
+      "pile_asleep", "pyramid_asleep"};
   return names;
 }
 
@@ -301,6 +315,8 @@ inline scene_spec make_scene(std::string_view name) {
   if (name == "tower10") return make_tower10();
   if (name == "heavy_on_light") return make_heavy_on_light();
   if (name == "cradle") return make_cradle();
+  if (name == "pile_asleep") return make_asleep(make_pile(name, true), name);
+  if (name == "pyramid_asleep") return make_asleep(make_pyramid(name, true), name);
   throw std::invalid_argument("unknown scene: " + std::string(name));
 }
 

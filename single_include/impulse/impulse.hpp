@@ -1366,6 +1366,12 @@ class pair_tracker {
     current_.swap(found);
   }
 
+  /// An update with no proxy changed: the same pairs, none begun or ended.
+  void keep() noexcept {
+    begun_.clear();
+    ended_.clear();
+  }
+
   /// Sorts one update's pairs. Within one update every slot holds one
   /// proxy, so the slot pair alone orders them as operator< does, and a
   /// least-significant-digit radix sort on it (11 bits a pass, only as many
@@ -1430,16 +1436,19 @@ class proxy_store {
  public:
   proxy_id insert(const aabb<T>& box, std::uint64_t user_data) {
     require_box(box);
+    changed_ = true;
     return proxies_.insert({box, user_data});
   }
   void set_box(proxy_id id, const aabb<T>& box) {
     require(id);
     require_box(box);
     proxies_[id].box = box;
+    changed_ = true;
   }
   void erase(proxy_id id) {
     require(id);
     proxies_.erase(id);
+    changed_ = true;
   }
 
   void require(proxy_id id) const {
@@ -1453,6 +1462,11 @@ class proxy_store {
       impulse::detail::report_error(error_code::invalid_parameter,
                                     "broad phase: the box's lower corner is above its upper corner");
   }
+
+  /// Whether a proxy came, moved or went since the last call. A broad
+  /// phase whose proxies all stood still has the pairs it had: with every
+  /// body asleep, its update costs nothing.
+  [[nodiscard]] bool take_changed() noexcept { return std::exchange(changed_, false); }
 
   [[nodiscard]] bool contains(proxy_id id) const noexcept { return proxies_.contains(id); }
   [[nodiscard]] const aabb<T>& box(proxy_id id) const {
@@ -1470,6 +1484,7 @@ class proxy_store {
 
  private:
   slot_map<proxy<T>, proxy_id> proxies_;
+  bool changed_ = false;
 };
 
 }  // namespace impulse::broadphase::detail
@@ -1485,6 +1500,7 @@ class basic_brute_force {
   void destroy(proxy_id id) { store_.erase(id); }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     found_.clear();
     const auto& proxies = store_.values();
     const auto& ids = store_.ids();
@@ -1980,6 +1996,10 @@ class basic_dynamic_bvh {
   }
 
   void update() {
+    if (!store_.take_changed()) {  // nothing came, moved or went
+      reinserted_ = 0;
+      return pairs_.keep();
+    }
     // Stamp every leaf whose fat box changed, and its ancestors, stopping
     // at the first ancestor already stamped: the path above it is done.
     auto& nodes = tree_.nodes();
@@ -2352,6 +2372,7 @@ class basic_octree {
   }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     found_.clear();
     refresh();
     if (should_shrink()) {
@@ -3128,6 +3149,7 @@ class basic_spatial_hash {
   void destroy(proxy_id id) { store_.erase(id); }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     choose_cell_size();
     build_grid();
     found_.clear();
@@ -4253,6 +4275,7 @@ class basic_sweep_and_prune {
   }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     for (const std::uint32_t h : destroyed_) {
       if (handles_[h].state == proxy_state::removed) unplace(h);
       handles_[h].state = proxy_state::free;
@@ -16897,7 +16920,8 @@ template <class Config = default_config> class world;
 
 // ---- begin impulse/world/world_events.hpp ----
 // impulse/world/world_events.hpp — what a step reports: contacts that began
-// or ended, joints that broke.
+// or ended, joints that broke, and how much of the world it visited.
+
 
 
 namespace impulse {
@@ -16921,6 +16945,19 @@ struct joint_broken_event {
   T force = T(0);   ///< what it applied in that step, N
   T torque = T(0);  ///< N·m
   friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
+};
+
+/// How much of the world the last step worked on (world::last_step_counts):
+/// what a profile needs beside the times, and what shows that sleeping
+/// bodies cost nothing (docs/world.md, "Sleeping costs nothing").
+struct step_counts {
+  std::size_t active_bodies = 0;     ///< awake dynamic bodies and kinematic ones: those the step moved or could have
+  std::size_t solver_bodies = 0;     ///< those the solver saw: the active ones and the static ones they touch
+  std::size_t updated_contacts = 0;  ///< contact records the narrow phase updated (tested, or carried with their bodies)
+  std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
+  std::size_t solved_joints = 0;
+  bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
+  friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };
 
 }  // namespace impulse
@@ -17406,6 +17443,10 @@ namespace impulse::detail {
 /// distinct normal against a mesh (a box in a corner of it: two or three).
 inline constexpr int max_manifolds = 4;
 
+/// The sleep_set of a body in no sleeping island: awake, or made asleep
+/// (body_def::awake false) and not yet grouped.
+inline constexpr std::uint32_t no_sleep_set = 0xffffffffu;
+
 /// Where a kinematic body is with its set_target_pose: none, moving there
 /// in the coming step, or arrived (its velocities kept until the next step
 /// begins, then zeroed unless a new target came).
@@ -17421,6 +17462,7 @@ struct body_record {
   transform<T> previous;  ///< the center-of-mass pose at the start of the last step
   T sleep_timer = T(0);   ///< s spent below the sleep speeds
   bool awake = true;
+  std::uint32_t sleep_set = no_sleep_set;  ///< asleep: its island (world_state::sleep_sets)
   std::uint64_t user_data = 0;
   target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
   bool bullet = false;
@@ -17474,11 +17516,6 @@ template <scalar_type T>
 [[nodiscard]] transform<T> shape_pose_of(const body_record<T>& r) noexcept {
   return {r.body.position - rotate(r.body.orientation, r.center), r.body.orientation};
 }
-template <scalar_type T>
-void wake_record(body_record<T>& r) noexcept {
-  r.awake = true;
-  r.sleep_timer = T(0);
-}
 /// Whether the body moves this step: dynamic and awake, or kinematic with a
 /// velocity.
 template <scalar_type T>
@@ -17487,6 +17524,12 @@ template <scalar_type T>
   if (r.body.type == body_type::kinematic)
     return r.body.kinematic_velocity != vec3<T>{} || r.body.kinematic_angular_velocity != vec3<T>{};
   return false;
+}
+/// Whether a step works on the body (world_state::awake_bodies): dynamic
+/// and awake, or kinematic, moving or not.
+template <scalar_type T>
+[[nodiscard]] bool is_active(const body_record<T>& r) noexcept {
+  return r.body.type == body_type::kinematic || (r.body.type == body_type::dynamic && r.awake);
 }
 /// Whether the solver moves the body: dynamic and awake.
 template <scalar_type T>
@@ -17563,8 +17606,35 @@ struct world_state {
   std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
   std::size_t pairs_over_limit = 0;          ///< in the last step: see world::pairs_over_limit
   std::vector<contact_event> begun, ended;
+  step_counts counts{};  ///< the last step's
   T time = T(0), accumulator = T(0), last_dt = T(0);
   std::uint64_t step_count = 0;
+
+  // ---- the awake set: what a step works on ----
+
+  /// The dense places of the active bodies (is_active: awake dynamic ones
+  /// and every kinematic one), ascending; and the places of the contacts
+  /// (in `contacts`) and joints (in joints.values()) with an active body,
+  /// ascending. A step visits these and nothing else, so a sleeping body
+  /// costs it nothing. Rebuilt by refresh_awake() once awake_stale says a
+  /// body woke or slept, or a record came or went.
+  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints;
+  bool awake_stale = true;
+  /// The contact records must be merged with the broad phase's pairs at
+  /// the next step though the pairs did not change: a record was dropped,
+  /// or a joint that kept two bodies apart went (contact_update.hpp).
+  bool pairs_stale = true;
+  /// The sleeping islands, each as the bodies it had when it fell asleep
+  /// (a body's sleep_set names its own): touching one body wakes them all,
+  /// at once. Sets go to free_sleep_sets when they wake.
+  std::vector<std::vector<body_id>> sleep_sets;
+  std::vector<std::uint32_t> free_sleep_sets;
+  /// Bodies were made asleep (body_def::awake false) and are in no island
+  /// yet: the next step groups every sleeping body afresh (islands.hpp).
+  bool ungrouped_sleepers = false;
+  /// The bodies that fell asleep in the last step: their `previous` is
+  /// still that step's start, and becomes their pose at the next.
+  std::vector<body_id> fell_asleep;
 
   // ---- bodies ----
 
@@ -17586,8 +17656,55 @@ struct world_state {
   [[nodiscard]] typename dispatcher::shape_ref shape_ref_of(const body_record<T>& r) const noexcept {
     return {shape_store.address(r.shape), r.shape.type};
   }
-  void wake_all() noexcept {
-    for (body_record<T>& r : bodies.values()) wake_record(r);
+  /// Wakes a body, and every body of its sleeping island with it.
+  void wake(body_record<T>& r) {
+    r.sleep_timer = T(0);
+    if (r.awake) return;
+    r.awake = true;
+    awake_stale = true;
+    if (r.sleep_set != no_sleep_set) wake_set(r.sleep_set);
+  }
+  /// Wakes the bodies of a sleeping island that are still in it.
+  void wake_set(std::uint32_t set) {
+    for (const body_id id : sleep_sets[set]) {
+      if (!bodies.contains(id)) continue;
+      body_record<T>& r = bodies[id];
+      if (r.sleep_set != set) continue;
+      r.awake = true;
+      r.sleep_timer = T(0);
+      r.sleep_set = no_sleep_set;
+    }
+    sleep_sets[set].clear();
+    free_sleep_sets.push_back(set);
+    awake_stale = true;
+  }
+  void wake_all() {
+    for (body_record<T>& r : bodies.values()) {
+      r.awake = true;
+      r.sleep_timer = T(0);
+      r.sleep_set = no_sleep_set;
+    }
+    sleep_sets.clear();
+    free_sleep_sets.clear();
+    fell_asleep.clear();
+    ungrouped_sleepers = false;
+    awake_stale = true;
+  }
+  /// Brings awake_bodies, awake_contacts and awake_joints up to date.
+  void refresh_awake() {
+    if (!awake_stale) return;
+    awake_stale = false;
+    const std::vector<body_record<T>>& all = bodies.values();
+    awake_bodies.clear();
+    for (std::uint32_t i = 0; i < all.size(); ++i)
+      if (is_active(all[i])) awake_bodies.push_back(i);
+    awake_contacts.clear();
+    for (std::uint32_t k = 0; k < contacts.size(); ++k)
+      if (is_active(bodies[contacts[k].a]) || is_active(bodies[contacts[k].b])) awake_contacts.push_back(k);
+    awake_joints.clear();
+    const std::vector<joint_record<T>>& js = joints.values();
+    for (std::uint32_t k = 0; k < js.size(); ++k)
+      if (is_active(bodies[js[k].a]) || is_active(bodies[js[k].b])) awake_joints.push_back(k);
   }
   /// Whether a point is within max_coordinate of the origin on every axis
   /// (false for NaN).
@@ -17634,6 +17751,7 @@ struct world_state {
   }
   /// A record that is dropped: its pair ends, its manifolds are freed.
   void end_contact(const contact_record<T>& c) {
+    awake_stale = true;
     if (c.touching) ended.push_back({c.a, c.b});
     for (int m = 0; m < c.manifold_count; ++m) free_manifolds.push_back(c.slots[std::size_t(m)]);
   }
@@ -17649,10 +17767,11 @@ struct world_state {
     if (r.def.collide_connected) return;
     const auto at = std::lower_bound(joined.begin(), joined.end(), pair_key(r.a, r.b));
     if (at != joined.end() && *at == pair_key(r.a, r.b)) joined.erase(at);
+    pairs_stale = true;  // the pair makes contact again
   }
   void wake_joint(const joint_record<T>& r) {
-    wake_record(bodies[r.a]);
-    wake_record(bodies[r.b]);
+    wake(bodies[r.a]);
+    wake(bodies[r.b]);
   }
   /// The joint's parts and errors at the bodies' present poses.
   [[nodiscard]] joint_constraint<T> measure(const joint_record<T>& r) const {
@@ -17690,7 +17809,14 @@ struct step_scratch {
 
   solver_type solver{};
   std::vector<contact_record<T>> next_contacts;
-  std::vector<solver_body<T>> solver_bodies;  ///< per dense body
+  /// The bodies the solver sees (solve.hpp): the active ones and the static
+  /// ones their solved contacts and joints reach, in dense order.
+  std::vector<solver_body<T>> solver_bodies;
+  std::vector<std::uint32_t> solver_dense;  ///< each solver body's dense place
+  std::vector<std::uint32_t> solver_place;  ///< per dense body: its solver place, if it has one
+  std::vector<std::uint32_t> reached;       ///< the static bodies among them
+  std::vector<std::uint32_t> gathered;      ///< per dense body: the gather that last took it
+  std::uint32_t gather = 0;                 ///< this step's gather
   std::vector<contact_constraint<T>> constraints;
   std::vector<constraint_source> sources;
   std::vector<joint_constraint<T>> joints;
@@ -17698,12 +17824,14 @@ struct step_scratch {
   std::vector<joint_id> doomed_joints;       ///< world::destroy_body's
   std::vector<support> supports;
   std::vector<T> load;
-  union_find islands;
+  union_find islands;  ///< over awake_bodies' places (islands.hpp)
+  std::vector<std::uint32_t> awake_place;  ///< per dense body: its place in awake_bodies, if it has one
   std::vector<std::uint8_t> island_flag;
   std::vector<T> island_timer;
-  std::vector<std::uint8_t> held;  ///< per dense body: held in this step (hold)
+  std::vector<std::uint32_t> island_set;
+  std::vector<std::uint8_t> held;  ///< per solver body: held in this step (hold)
 
-  /// Holds dense body i for this step: it keeps its pose, loses its
+  /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).
   void hold(world_state<Config>& state, std::size_t i) {
     held[i] = 1;
@@ -17711,7 +17839,7 @@ struct step_scratch {
     s.inverse_mass = T(0);
     s.inverse_inertia = mat3<T>{};
     s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
-    state.held.push_back(state.bodies.ids()[i]);
+    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
   }
   [[nodiscard]] bool is_held(std::uint32_t i) const noexcept { return held[i] != 0; }
 };
@@ -17731,14 +17859,18 @@ struct contact_update {
 
   /// The broad phase, then the narrow phase.
   void run() {
+    state.counts = step_counts{};
+    state.refresh_awake();
     update_broad_phase();
     update_contacts();
   }
 
  private:
   void update_broad_phase() {
-    for (const body_record<T>& r : state.bodies.values())
+    for (const std::uint32_t i : state.awake_bodies) {
+      const body_record<T>& r = state.bodies.values()[i];
       if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r));
+    }
     state.broad.update();
   }
 
@@ -17757,6 +17889,18 @@ struct contact_update {
     const world_settings<T>& s = state.settings;
     const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
                               std::cos(s.contact_reuse_angle / T(2))};
+    // With the broad phase's pairs as they were, the records are too (but
+    // for pairs waiting for room, and those a joint no longer keeps apart),
+    // and only the pairs of bodies that move can change: a sleeping pile
+    // costs nothing here.
+    const bool quiet = !state.pairs_stale && state.pairs_over_limit == 0 && state.broad.begun().empty() &&
+                       state.broad.ended().empty();
+    state.pairs_stale = false;
+    if (quiet) {
+      for (const std::uint32_t k : state.awake_contacts) collide(old[k], limits);
+      return;
+    }
+    state.counts.pairs_merged = true;
     // Most steps have the last step's pairs: then the records are updated
     // where they are, rather than copied over.
     if (same_pairs(pairs)) {
@@ -17796,6 +17940,7 @@ struct contact_update {
     }
     while (i < old.size()) state.end_contact(old[i++]);
     old.swap(scratch.next_contacts);
+    state.awake_stale = true;
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
@@ -17842,6 +17987,7 @@ struct contact_update {
     // Two bodies that are not moving keep their manifolds: sleeping ones
     // wake with the contacts they slept on.
     if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
+    ++state.counts.updated_contacts;
     const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
     const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
     if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
@@ -17967,9 +18113,9 @@ struct continuous_collision {
   /// Sweeps the bodies that need it (above).
   void run() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (const std::uint32_t i : state.awake_bodies) {
       const body_record<T>& r = bodies[i];
-      if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
+      if (!is_solved(r) || scratch.is_held(scratch.solver_place[i])) continue;
       const T moved = length(r.body.position - r.previous.position);
       if (r.bullet || moved > state.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
     }
@@ -18154,11 +18300,22 @@ void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& 
 // ---- end impulse/world/detail/debug_drawing.hpp ----
 // ---- begin impulse/world/detail/islands.hpp ----
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
-// `sleeping` on in the config): union–find over touching contacts and
-// joints before the solve, waking an island with any body awake; after the
-// bodies have moved, an island whose every body has been slow for
-// sleep_time goes to sleep: no forces, no contacts solved, no narrow phase,
-// until something wakes it.
+// `sleeping` on in the config). Before the solve, a sleeping body touching
+// or joined to a moving one wakes, with its whole island, and the awake
+// bodies are joined into islands by their touching contacts and joints;
+// after the bodies have moved, an island whose every body has been slow
+// for sleep_time falls asleep: no forces, no contacts solved, no narrow
+// phase, until something wakes it.
+//
+// A sleeping island keeps its bodies (world_state::sleep_sets), as Box2D's
+// solver sets do, so that waking it needs no search, and the step visits
+// only the awake set (world_state::awake_bodies and the contacts and joints
+// that have an awake body): with everything asleep, it visits nothing.
+// An island falls asleep whole, with every body touching its bodies, so a
+// sleeping island touches only itself and static bodies, and wakes only
+// from outside it: by a moving body's contact or joint, or by the world's
+// API (world_state::wake). Bodies made asleep (body_def::awake false) are
+// in no island until the next step groups every sleeping body afresh.
 
 
 
@@ -18171,33 +18328,15 @@ struct island_update {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
-  /// Before the solve: dynamic bodies touching or joined are one island,
-  /// and an island with any body awake wakes entirely.
+  /// Before the solve: a sleeping island touching or joined to a moving
+  /// body wakes; then the awake bodies' islands.
   void wake() {
-    std::vector<body_record<T>>& bodies = state.bodies.values();
-    scratch.islands.reset(bodies.size());
-    // Dynamic bodies touching or joined are one island; one resting on (or
-    // joined to) a kinematic body that moves wakes.
-    const auto link = [&](std::uint32_t a, std::uint32_t b) {
-      const body_type ta = bodies[a].body.type, tb = bodies[b].body.type;
-      if (ta == body_type::dynamic && tb == body_type::dynamic) {
-        scratch.islands.unite(a, b);
-      } else if (ta == body_type::kinematic && tb == body_type::dynamic && is_moving(bodies[a])) {
-        wake_record(bodies[b]);
-      } else if (tb == body_type::kinematic && ta == body_type::dynamic && is_moving(bodies[b])) {
-        wake_record(bodies[a]);
-      }
-    };
-    for (const contact_record<T>& c : state.contacts)
-      if (c.touching) link(state.dense(c.a), state.dense(c.b));
-    for (const joint_record<T>& j : state.joints.values())
-      if (!j.broken) link(state.dense(j.a), state.dense(j.b));
-    scratch.island_flag.assign(bodies.size(), 0);
-    for (std::uint32_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].body.type == body_type::dynamic && bodies[i].awake) scratch.island_flag[scratch.islands.find(i)] = 1;
-    for (std::uint32_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].body.type == body_type::dynamic && !bodies[i].awake && scratch.island_flag[scratch.islands.find(i)])
-        wake_record(bodies[i]);
+    if (state.ungrouped_sleepers) group_sleepers();
+    state.refresh_awake();
+    // A woken island brings its contacts into the awake set, and they touch
+    // only itself and static bodies: the second pass finds nothing to wake.
+    while (wake_touched()) state.refresh_awake();
+    find_islands();
   }
 
   /// After the bodies have moved: an island whose every body has been slow
@@ -18205,14 +18344,14 @@ struct island_update {
   void sleep(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
     const world_settings<T>& s = state.settings;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (const std::uint32_t i : state.awake_bodies) {
       body_record<T>& r = bodies[i];
-      if (r.body.type != body_type::dynamic || !r.awake) continue;
+      if (r.body.type != body_type::dynamic) continue;
       // A body still being pushed out of a penetration is not at rest,
       // though its velocity is: it would sleep sunk in.
       // The correction speed is held to a tenth of the sleep speeds: 5 mm/s
       // is 0.4 mm of penetration beyond the slop at the default rate.
-      const solver_body<T>& motion = scratch.solver_bodies[i];
+      const solver_body<T>& motion = scratch.solver_bodies[scratch.solver_place[i]];
       const T linear = s.sleep_linear_speed, angular = s.sleep_angular_speed;
       const bool slow = length_squared(r.body.linear_velocity()) <= linear * linear &&
                         length_squared(r.body.angular_velocity()) <= angular * angular &&
@@ -18221,33 +18360,137 @@ struct island_update {
       r.sleep_timer = slow ? r.sleep_timer + dt : T(0);
     }
     // A body carried by (or joined to) a moving kinematic body stays awake.
-    for (const contact_record<T>& c : state.contacts) {
-      if (!c.touching) continue;
-      body_record<T>& a = state.bodies[c.a];
-      body_record<T>& b = state.bodies[c.b];
+    const auto carried = [&](body_id ia, body_id ib) {
+      body_record<T>& a = state.bodies[ia];
+      body_record<T>& b = state.bodies[ib];
       if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
       if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
+    };
+    for (const std::uint32_t k : state.awake_contacts)
+      if (state.contacts[k].touching) carried(state.contacts[k].a, state.contacts[k].b);
+    for (const std::uint32_t k : state.awake_joints)
+      if (!state.joints.values()[k].broken) carried(state.joints.values()[k].a, state.joints.values()[k].b);
+    const std::size_t n = state.awake_bodies.size();
+    scratch.island_timer.assign(n, std::numeric_limits<T>::infinity());
+    for (std::uint32_t p = 0; p < n; ++p) {
+      const body_record<T>& r = bodies[state.awake_bodies[p]];
+      if (r.body.type != body_type::dynamic) continue;
+      T& t = scratch.island_timer[scratch.islands.find(p)];
+      t = std::min(t, r.sleep_timer);
     }
-    for (const joint_record<T>& j : state.joints.values()) {
-      if (j.broken) continue;
-      body_record<T>& a = state.bodies[j.a];
-      body_record<T>& b = state.bodies[j.b];
-      if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
-      if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
+    scratch.island_set.assign(n, no_sleep_set);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      const std::uint32_t i = state.awake_bodies[p];
+      body_record<T>& r = bodies[i];
+      const std::uint32_t root = scratch.islands.find(p);
+      if (r.body.type != body_type::dynamic || scratch.island_timer[root] < s.sleep_time) continue;
+      std::uint32_t& set = scratch.island_set[root];
+      if (set == no_sleep_set) set = new_sleep_set();
+      put_to_sleep(r, state.bodies.ids()[i], set);
+      state.fell_asleep.push_back(state.bodies.ids()[i]);
     }
-    scratch.island_timer.assign(bodies.size(), std::numeric_limits<T>::infinity());
-    for (std::uint32_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].body.type == body_type::dynamic && bodies[i].awake) {
-        T& t = scratch.island_timer[scratch.islands.find(i)];
-        t = std::min(t, bodies[i].sleep_timer);
+  }
+
+ private:
+  /// Wakes each sleeping body that a moving one touches or is joined to
+  /// (and so its island); returns whether any woke.
+  bool wake_touched() {
+    bool woke = false;
+    const auto wake_by = [&](const body_record<T>& mover, body_record<T>& sleeper) {
+      if (!is_moving(mover) || sleeper.body.type != body_type::dynamic || sleeper.awake) return;
+      state.wake(sleeper);
+      woke = true;
+    };
+    const auto link = [&](body_id a, body_id b) {
+      wake_by(state.bodies[a], state.bodies[b]);
+      wake_by(state.bodies[b], state.bodies[a]);
+    };
+    for (const std::uint32_t k : state.awake_contacts)
+      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
+    for (const std::uint32_t k : state.awake_joints)
+      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+    return woke;
+  }
+
+  /// The awake dynamic bodies touching or joined are one island
+  /// (scratch.islands, over their places in awake_bodies).
+  void find_islands() {
+    scratch.awake_place.resize(state.bodies.size());
+    for (std::uint32_t p = 0; p < state.awake_bodies.size(); ++p) scratch.awake_place[state.awake_bodies[p]] = p;
+    scratch.islands.reset(state.awake_bodies.size());
+    const auto link = [&](body_id a, body_id b) {
+      if (state.bodies[a].body.type == body_type::dynamic && state.bodies[b].body.type == body_type::dynamic)
+        scratch.islands.unite(scratch.awake_place[state.dense(a)], scratch.awake_place[state.dense(b)]);
+    };
+    for (const std::uint32_t k : state.awake_contacts)
+      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
+    for (const std::uint32_t k : state.awake_joints)
+      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+  }
+
+  /// Every body's island found afresh over all touching contacts and
+  /// joints: an island with a body awake (or resting on a moving kinematic
+  /// body) wakes whole, and each other one becomes a sleeping island. Run
+  /// when bodies were made asleep, which are in no island until then.
+  void group_sleepers() {
+    state.ungrouped_sleepers = false;
+    std::vector<body_record<T>>& bodies = state.bodies.values();
+    for (body_record<T>& r : bodies) r.sleep_set = no_sleep_set;
+    state.sleep_sets.clear();
+    state.free_sleep_sets.clear();
+    scratch.islands.reset(bodies.size());
+    scratch.island_flag.assign(bodies.size(), 0);
+    const auto link = [&](std::uint32_t a, std::uint32_t b) {
+      const body_type ta = bodies[a].body.type, tb = bodies[b].body.type;
+      if (ta == body_type::dynamic && tb == body_type::dynamic) {
+        scratch.islands.unite(a, b);
+      } else if (ta == body_type::kinematic && tb == body_type::dynamic && is_moving(bodies[a])) {
+        scratch.island_flag[b] = 1;
+      } else if (tb == body_type::kinematic && ta == body_type::dynamic && is_moving(bodies[b])) {
+        scratch.island_flag[a] = 1;
       }
+    };
+    for (const contact_record<T>& c : state.contacts)
+      if (c.touching) link(state.dense(c.a), state.dense(c.b));
+    for (const joint_record<T>& j : state.joints.values())
+      if (!j.broken) link(state.dense(j.a), state.dense(j.b));
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].body.type == body_type::dynamic && (bodies[i].awake || scratch.island_flag[i]))
+        scratch.island_flag[scratch.islands.find(i)] = 1;
+    scratch.island_set.assign(bodies.size(), no_sleep_set);
     for (std::uint32_t i = 0; i < bodies.size(); ++i) {
       body_record<T>& r = bodies[i];
-      if (r.body.type != body_type::dynamic || !r.awake || scratch.island_timer[scratch.islands.find(i)] < s.sleep_time) continue;
-      r.awake = false;
-      r.body.linear_momentum = {};
-      r.body.angular_momentum = {};
+      if (r.body.type != body_type::dynamic || r.awake) continue;
+      const std::uint32_t root = scratch.islands.find(i);
+      if (scratch.island_flag[root]) {
+        state.wake(r);
+        continue;
+      }
+      std::uint32_t& set = scratch.island_set[root];
+      if (set == no_sleep_set) set = new_sleep_set();
+      r.sleep_set = set;
+      state.sleep_sets[set].push_back(state.bodies.ids()[i]);
     }
+    state.awake_stale = true;
+  }
+
+  std::uint32_t new_sleep_set() {
+    if (!state.free_sleep_sets.empty()) {
+      const std::uint32_t set = state.free_sleep_sets.back();
+      state.free_sleep_sets.pop_back();
+      return set;
+    }
+    state.sleep_sets.emplace_back();
+    return std::uint32_t(state.sleep_sets.size() - 1);
+  }
+
+  void put_to_sleep(body_record<T>& r, body_id id, std::uint32_t set) {
+    r.awake = false;
+    r.body.linear_momentum = {};
+    r.body.angular_momentum = {};
+    r.sleep_set = set;
+    state.sleep_sets[set].push_back(id);
+    state.awake_stale = true;
   }
 };
 
@@ -18299,16 +18542,21 @@ struct body_solve {
   /// Solves and moves the bodies over dt (above).
   void run(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
+    state.refresh_awake();
+    settle_sleepers();
+    gather_bodies();
     const vec3<T> gravity_step = state.settings.gravity * dt;
-    scratch.solver_bodies.resize(bodies.size());
-    scratch.held.assign(bodies.size(), 0);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const rigid_body<T>& b = bodies[i].body;
+    const std::size_t count = scratch.solver_dense.size();
+    scratch.solver_bodies.resize(count);
+    scratch.held.assign(count, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+      const body_record<T>& r = bodies[scratch.solver_dense[i]];
+      const rigid_body<T>& b = r.body;
       solver_body<T>& s = scratch.solver_bodies[i];
       s = solver_body<T>{};
       s.position = b.position;
       s.orientation = b.orientation;
-      if (is_solved(bodies[i])) {
+      if (is_solved(r)) {
         s.inverse_mass = b.inverse_mass;
         s.inverse_inertia = b.inverse_inertia_world();
         s.linear_velocity = b.linear_momentum * b.inverse_mass;
@@ -18333,14 +18581,17 @@ struct body_solve {
     // Reserved exactly: grown by doubling, the largest per-step array
     // would hold up to twice what it needs, and three times while it moves.
     std::size_t manifold_count = 0;
-    for (const contact_record<T>& c : state.contacts) manifold_count += c.manifold_count;
+    for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
     scratch.constraints.reserve(manifold_count);
     scratch.sources.reserve(manifold_count);
-    for (std::uint32_t k = 0; k < state.contacts.size(); ++k) {
+    for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
-      const std::uint32_t ia = state.dense(c.a), ib = state.dense(c.b);
-      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      const body_record<T>& ra = state.bodies[c.a];
+      const body_record<T>& rb = state.bodies[c.b];
+      if (!is_solved(ra) && !is_solved(rb)) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
         const contact_manifold<T>& manifold = state.slot_of(c, m).manifold;
         contact_constraint<T> cc;
@@ -18358,8 +18609,8 @@ struct body_solve {
         T spread = T(0);
         for (int p = 0; p < manifold.count; ++p) spread += length(manifold.points[std::size_t(p)].position - middle);
         cc.twist_radius = spread * (T(2) / T(3)) / T(manifold.count);
-        cc.anchor_a = middle - bodies[ia].body.position;
-        cc.anchor_b = middle - bodies[ib].body.position;
+        cc.anchor_a = middle - ra.body.position;
+        cc.anchor_b = middle - rb.body.position;
         // The slip at the middle of the patch chooses the tangents.
         const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
@@ -18383,8 +18634,8 @@ struct body_solve {
         for (int p = 0; p < manifold.count; ++p) {
           const contact_point<T>& point = manifold.points[std::size_t(p)];
           contact_constraint_point<T>& cp = cc.points[p];
-          cp.offset_a = point.position - bodies[ia].body.position;
-          cp.offset_b = point.position - bodies[ib].body.position;
+          cp.offset_a = point.position - ra.body.position;
+          cp.offset_b = point.position - rb.body.position;
           cp.depth = point.depth;
           cp.normal_impulse = carried.normal[std::size_t(p)];
         }
@@ -18397,15 +18648,19 @@ struct body_solve {
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
-    for (std::uint32_t k = 0; k < state.joints.size(); ++k) {
+    for (const std::uint32_t k : state.awake_joints) {
       const joint_record<T>& r = state.joints.values()[k];
-      if (r.broken) continue;
-      const std::uint32_t ia = state.dense(r.a), ib = state.dense(r.b);
-      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      if (r.broken || (!is_solved(state.bodies[r.a]) && !is_solved(state.bodies[r.b]))) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(r.a)], ib = scratch.solver_place[state.dense(r.b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
       scratch.joints.push_back(r.constraint);
       scratch.joints.back().body_a = ia, scratch.joints.back().body_b = ib;
       scratch.joint_sources.push_back(k);
     }
+    state.counts.active_bodies = state.awake_bodies.size();
+    state.counts.solver_bodies = count;
+    state.counts.solved_manifolds = scratch.constraints.size();
+    state.counts.solved_joints = scratch.joints.size();
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -18417,8 +18672,8 @@ struct body_solve {
       kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
       kept.twist = cc.twist_impulse;
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      body_record<T>& r = bodies[i];
+    for (std::size_t i = 0; i < count; ++i) {
+      body_record<T>& r = bodies[scratch.solver_dense[i]];
       rigid_body<T>& b = r.body;
       r.previous = b.pose();
       if (scratch.is_held(std::uint32_t(i))) {
@@ -18481,6 +18736,48 @@ struct body_solve {
   }
 
  private:
+  /// Bodies that fell asleep in the last step have stood still since: the
+  /// pose at this step's start is where they are.
+  void settle_sleepers() {
+    for (const body_id id : state.fell_asleep)
+      if (state.bodies.contains(id) && !state.bodies[id].awake) state.bodies[id].previous = state.bodies[id].body.pose();
+    state.fell_asleep.clear();
+  }
+
+  /// The bodies the solver sees, in dense order: the active ones, and the
+  /// static ones that their solved contacts and joints reach. A sleeping
+  /// body is none of these (it would have woken, islands.hpp), so the
+  /// solver and the write-back never visit one.
+  void gather_bodies() {
+    const std::size_t n = state.bodies.size();
+    scratch.solver_place.resize(n);
+    scratch.gathered.resize(n);
+    if (++scratch.gather == 0) {  // the stamps wrapped: forget them all
+      std::fill(scratch.gathered.begin(), scratch.gathered.end(), 0u);
+      scratch.gather = 1;
+    }
+    for (const std::uint32_t i : state.awake_bodies) scratch.gathered[i] = scratch.gather;
+    scratch.reached.clear();
+    const auto reach = [&](body_id a, body_id b) {
+      if (!is_solved(state.bodies[a]) && !is_solved(state.bodies[b])) return;
+      for (const body_id id : {a, b}) {
+        const std::uint32_t i = state.dense(id);
+        if (scratch.gathered[i] == scratch.gather) continue;
+        scratch.gathered[i] = scratch.gather;
+        scratch.reached.push_back(i);
+      }
+    };
+    for (const std::uint32_t k : state.awake_contacts)
+      if (state.contacts[k].touching) reach(state.contacts[k].a, state.contacts[k].b);
+    for (const std::uint32_t k : state.awake_joints)
+      if (!state.joints.values()[k].broken) reach(state.joints.values()[k].a, state.joints.values()[k].b);
+    std::sort(scratch.reached.begin(), scratch.reached.end());
+    scratch.solver_dense.resize(state.awake_bodies.size() + scratch.reached.size());
+    std::merge(state.awake_bodies.begin(), state.awake_bodies.end(), scratch.reached.begin(), scratch.reached.end(),
+               scratch.solver_dense.begin());
+    for (std::uint32_t i = 0; i < scratch.solver_dense.size(); ++i) scratch.solver_place[scratch.solver_dense[i]] = i;
+  }
+
   /// For a solver that moves the bodies itself, holding ω over each
   /// substep: the change of ω over the step that keeps L = I_w·ω as the
   /// body turns (ω × I·ω, the gyroscopic term), taken implicitly by one
@@ -18502,21 +18799,22 @@ struct body_solve {
   /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      scratch.solver_bodies[i].position = bodies[i].body.position;
-      scratch.solver_bodies[i].orientation = bodies[i].body.orientation;
+    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+      scratch.solver_bodies[i].position = bodies[scratch.solver_dense[i]].body.position;
+      scratch.solver_bodies[i].orientation = bodies[scratch.solver_dense[i]].body.orientation;
     }
     scratch.solver.project_joints(scratch.solver_bodies, scratch.joints, state.settings.solver);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (!is_solved(bodies[i]) || scratch.is_held(std::uint32_t(i))) continue;
+    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+      body_record<T>& r = bodies[scratch.solver_dense[i]];
+      if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
       const solver_body<T>& s = scratch.solver_bodies[i];
       if (state.within_bounds(s.position) && is_finite(s.orientation) && length_squared(s.orientation) > T(0)) {
-        bodies[i].body.position = s.position;
-        bodies[i].body.orientation = normalize(s.orientation);
+        r.body.position = s.position;
+        r.body.orientation = normalize(s.orientation);
       } else {
-        rigid_body<T>& b = bodies[i].body;
-        b.position = bodies[i].previous.position;
-        b.orientation = bodies[i].previous.rotation;
+        rigid_body<T>& b = r.body;
+        b.position = r.previous.position;
+        b.orientation = r.previous.rotation;
         b.linear_momentum = {};
         b.angular_momentum = {};
         scratch.hold(state, i);
@@ -18639,8 +18937,7 @@ class world {
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
   static constexpr bool ccd = detail::world_ccd<Config>();
-  /// Manifolds one pair can have: one for two convex shapes, one per
-  /// distinct normal against a mesh (a box in a corner of it: two or three).
+  /// Manifolds one pair can have (one per distinct normal against a mesh).
   static constexpr int max_manifolds = detail::max_manifolds;
   /// The longest step, s: a step is a small piece of motion, and one of a
   /// thousand years (finite) would carry every body out of finite numbers.
@@ -18764,9 +19061,7 @@ class world {
     return state_.bodies[id].awake;
   }
   [[nodiscard]] std::size_t awake_body_count() const noexcept {
-    std::size_t n = 0;
-    for (const body_record& r : state_.bodies.values()) n += r.body.type == body_type::dynamic && r.awake;
-    return n;
+    return std::size_t(std::ranges::count_if(state_.bodies.values(), [](const body_record& r) { return detail::is_solved(r); }));
   }
 
   /// Sets a body's velocities (a dynamic or kinematic body) and wakes it.
@@ -18777,7 +19072,7 @@ class world {
     body_record& r = state_.bodies[id];
     state_.require_speeds(linear, angular, "world::set_velocity: faster than max_linear_speed or max_angular_speed", id);
     r.body.set_velocity(linear, angular);  // refuses non-finite values and static bodies
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// Moves a body (its shape's origin) at once, and wakes it. Contacts
   /// follow at the next step; nothing in between is swept.
@@ -18793,28 +19088,28 @@ class world {
   void apply_force(body_id id, const vec3<T>& force) {
     body_record& r = dynamic_record(id, "world::apply_force: no such body");
     r.body.apply_force(force);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// A force at a world point for the next step, N.
   void apply_force_at(body_id id, const vec3<T>& force, const vec3<T>& point) {
     body_record& r = dynamic_record(id, "world::apply_force_at: no such body");
     r.body.apply_force_at(force, point);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   void apply_torque(body_id id, const vec3<T>& torque) {
     body_record& r = dynamic_record(id, "world::apply_torque: no such body");
     r.body.apply_torque(torque);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// An impulse at a world point, now, N·s.
   void apply_impulse_at(body_id id, const vec3<T>& impulse, const vec3<T>& point) {
     body_record& r = dynamic_record(id, "world::apply_impulse_at: no such body");
     r.body.apply_impulse_at(impulse, point);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   void wake(body_id id) {
     require(id, "world::wake: no such body");
-    detail::wake_record(state_.bodies[id]);
+    state_.wake(state_.bodies[id]);
   }
 
   // ---- joints ----
@@ -18922,6 +19217,8 @@ class world {
 
   [[nodiscard]] T time() const noexcept { return state_.time; }
   [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
+  /// How much of the world the last step worked on (step_counts).
+  [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
 
   // ---- events and contacts ----
 
@@ -19202,6 +19499,8 @@ body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
   r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  state_.awake_stale = true;
+  if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
 }
 
@@ -19220,13 +19519,14 @@ void world<Config>::destroy_body(body_id id) {
     if (c.a != id && c.b != id) return false;
     state_.end_contact(c);
     const body_id other = c.a == id ? c.b : c.a;
-    detail::wake_record(state_.bodies[other]);
+    state_.wake(state_.bodies[other]);
     return true;
   });
   body_record& r = state_.bodies[id];
   state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
   state_.bodies.erase(id);
+  state_.awake_stale = true;  // the last body took its dense place
 }
 
 template <class Config>
@@ -19245,7 +19545,7 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
                          "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
   r = moved;
   state_.broad.move(r.proxy, box);
-  detail::wake_record(r);
+  state_.wake(r);
 }
 
 template <class Config>
@@ -19342,8 +19642,9 @@ joint_id world<Config>::create_joint(const joint_def<T>& def) {
     state_.joined.insert(std::upper_bound(state_.joined.begin(), state_.joined.end(), key), key);
     end_contacts_between(def.body_a, def.body_b);
   }
-  detail::wake_record(ra);
-  detail::wake_record(rb);
+  state_.wake(ra);
+  state_.wake(rb);
+  state_.awake_stale = true;
   return state_.joints.insert(record);
 }
 
@@ -19354,9 +19655,10 @@ void world<Config>::destroy_joint(joint_id id) {
   require(id, "world::destroy_joint: no such joint (destroyed already?)");
   const joint_record& r = state_.joints[id];
   if (!r.broken) state_.unjoin(r);
-  detail::wake_record(state_.bodies[r.a]);
-  detail::wake_record(state_.bodies[r.b]);
+  state_.wake(state_.bodies[r.a]);
+  state_.wake(state_.bodies[r.b]);
   state_.joints.erase(id);
+  state_.awake_stale = true;
 }
 
 template <class Config>

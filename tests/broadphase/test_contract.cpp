@@ -149,3 +149,24 @@ TEST_CASE_TEMPLATE("bad boxes rays and ids are refused and change nothing", BP, 
   CHECK(bp.box(a) == cube<T>(0, 0, 0, 1));
   CHECK(bp.user_data(b) == 8);
 }
+
+TEST_CASE_TEMPLATE("an update after nothing came, moved or went keeps the pairs and begins and ends none", BP,
+                   IMPULSE_ALL_BROAD_PHASES) {
+  using T = scalar_of<BP>;
+  BP bp;
+  const proxy_id a = bp.create(cube<T>(0, 0, 0, 1), 1);
+  const proxy_id b = bp.create(cube<T>(1, 0, 0, 1), 2);
+  const proxy_id c = bp.create(cube<T>(5, 0, 0, 1), 3);
+  bp.update();
+  REQUIRE(bp.begun().size() == 1);
+  bp.update();  // the world's step with every body asleep
+  REQUIRE(bp.pairs().size() == 1);
+  CHECK(bp.pairs()[0] == proxy_pair{a, b});
+  CHECK(bp.begun().empty());
+  CHECK(bp.ended().empty());
+  bp.move(c, cube<T>(1.5, 0, 0, 1));  // then one moves: its pairs begin
+  bp.update();
+  CHECK(bp.pairs().size() == 3);
+  CHECK(bp.begun().size() == 2);
+  CHECK(bp.ended().empty());
+}

@@ -25,6 +25,7 @@ class basic_brute_force {
   void destroy(proxy_id id) { store_.erase(id); }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     found_.clear();
     const auto& proxies = store_.values();
     const auto& ids = store_.ids();

@@ -93,6 +93,10 @@ class basic_dynamic_bvh {
   }
 
   void update() {
+    if (!store_.take_changed()) {  // nothing came, moved or went
+      reinserted_ = 0;
+      return pairs_.keep();
+    }
     // Stamp every leaf whose fat box changed, and its ancestors, stopping
     // at the first ancestor already stamped: the path above it is done.
     auto& nodes = tree_.nodes();

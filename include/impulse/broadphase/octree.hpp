@@ -151,6 +151,7 @@ class basic_octree {
   }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     found_.clear();
     refresh();
     if (should_shrink()) {

@@ -143,6 +143,7 @@ class basic_spatial_hash {
   void destroy(proxy_id id) { store_.erase(id); }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     choose_cell_size();
     build_grid();
     found_.clear();

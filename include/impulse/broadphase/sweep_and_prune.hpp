@@ -111,6 +111,7 @@ class basic_sweep_and_prune {
   }
 
   void update() {
+    if (!store_.take_changed()) return pairs_.keep();  // nothing came, moved or went
     for (const std::uint32_t h : destroyed_) {
       if (handles_[h].state == proxy_state::removed) unplace(h);
       handles_[h].state = proxy_state::free;

@@ -65,8 +65,7 @@ class world {
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
   static constexpr bool ccd = detail::world_ccd<Config>();
-  /// Manifolds one pair can have: one for two convex shapes, one per
-  /// distinct normal against a mesh (a box in a corner of it: two or three).
+  /// Manifolds one pair can have (one per distinct normal against a mesh).
   static constexpr int max_manifolds = detail::max_manifolds;
   /// The longest step, s: a step is a small piece of motion, and one of a
   /// thousand years (finite) would carry every body out of finite numbers.
@@ -190,9 +189,7 @@ class world {
     return state_.bodies[id].awake;
   }
   [[nodiscard]] std::size_t awake_body_count() const noexcept {
-    std::size_t n = 0;
-    for (const body_record& r : state_.bodies.values()) n += r.body.type == body_type::dynamic && r.awake;
-    return n;
+    return std::size_t(std::ranges::count_if(state_.bodies.values(), [](const body_record& r) { return detail::is_solved(r); }));
   }
 
   /// Sets a body's velocities (a dynamic or kinematic body) and wakes it.
@@ -203,7 +200,7 @@ class world {
     body_record& r = state_.bodies[id];
     state_.require_speeds(linear, angular, "world::set_velocity: faster than max_linear_speed or max_angular_speed", id);
     r.body.set_velocity(linear, angular);  // refuses non-finite values and static bodies
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// Moves a body (its shape's origin) at once, and wakes it. Contacts
   /// follow at the next step; nothing in between is swept.
@@ -219,28 +216,28 @@ class world {
   void apply_force(body_id id, const vec3<T>& force) {
     body_record& r = dynamic_record(id, "world::apply_force: no such body");
     r.body.apply_force(force);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// A force at a world point for the next step, N.
   void apply_force_at(body_id id, const vec3<T>& force, const vec3<T>& point) {
     body_record& r = dynamic_record(id, "world::apply_force_at: no such body");
     r.body.apply_force_at(force, point);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   void apply_torque(body_id id, const vec3<T>& torque) {
     body_record& r = dynamic_record(id, "world::apply_torque: no such body");
     r.body.apply_torque(torque);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   /// An impulse at a world point, now, N·s.
   void apply_impulse_at(body_id id, const vec3<T>& impulse, const vec3<T>& point) {
     body_record& r = dynamic_record(id, "world::apply_impulse_at: no such body");
     r.body.apply_impulse_at(impulse, point);
-    detail::wake_record(r);
+    state_.wake(r);
   }
   void wake(body_id id) {
     require(id, "world::wake: no such body");
-    detail::wake_record(state_.bodies[id]);
+    state_.wake(state_.bodies[id]);
   }
 
   // ---- joints ----
@@ -348,6 +345,8 @@ class world {
 
   [[nodiscard]] T time() const noexcept { return state_.time; }
   [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
+  /// How much of the world the last step worked on (step_counts).
+  [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
 
   // ---- events and contacts ----
 

@@ -38,6 +38,8 @@ body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
   r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  state_.awake_stale = true;
+  if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
 }
 
@@ -56,13 +58,14 @@ void world<Config>::destroy_body(body_id id) {
     if (c.a != id && c.b != id) return false;
     state_.end_contact(c);
     const body_id other = c.a == id ? c.b : c.a;
-    detail::wake_record(state_.bodies[other]);
+    state_.wake(state_.bodies[other]);
     return true;
   });
   body_record& r = state_.bodies[id];
   state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
   state_.bodies.erase(id);
+  state_.awake_stale = true;  // the last body took its dense place
 }
 
 template <class Config>
@@ -81,7 +84,7 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
                          "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
   r = moved;
   state_.broad.move(r.proxy, box);
-  detail::wake_record(r);
+  state_.wake(r);
 }
 
 template <class Config>

@@ -1,6 +1,8 @@
 // impulse/world/world_events.hpp — what a step reports: contacts that began
-// or ended, joints that broke.
+// or ended, joints that broke, and how much of the world it visited.
 #pragma once
+
+#include <cstddef>
 
 #include "../dynamics/fwd.hpp"
 
@@ -25,6 +27,19 @@ struct joint_broken_event {
   T force = T(0);   ///< what it applied in that step, N
   T torque = T(0);  ///< N·m
   friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
+};
+
+/// How much of the world the last step worked on (world::last_step_counts):
+/// what a profile needs beside the times, and what shows that sleeping
+/// bodies cost nothing (docs/world.md, "Sleeping costs nothing").
+struct step_counts {
+  std::size_t active_bodies = 0;     ///< awake dynamic bodies and kinematic ones: those the step moved or could have
+  std::size_t solver_bodies = 0;     ///< those the solver saw: the active ones and the static ones they touch
+  std::size_t updated_contacts = 0;  ///< contact records the narrow phase updated (tested, or carried with their bodies)
+  std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
+  std::size_t solved_joints = 0;
+  bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
+  friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };
 
 }  // namespace impulse

@@ -56,8 +56,9 @@ joint_id world<Config>::create_joint(const joint_def<T>& def) {
     state_.joined.insert(std::upper_bound(state_.joined.begin(), state_.joined.end(), key), key);
     end_contacts_between(def.body_a, def.body_b);
   }
-  detail::wake_record(ra);
-  detail::wake_record(rb);
+  state_.wake(ra);
+  state_.wake(rb);
+  state_.awake_stale = true;
   return state_.joints.insert(record);
 }
 
@@ -68,9 +69,10 @@ void world<Config>::destroy_joint(joint_id id) {
   require(id, "world::destroy_joint: no such joint (destroyed already?)");
   const joint_record& r = state_.joints[id];
   if (!r.broken) state_.unjoin(r);
-  detail::wake_record(state_.bodies[r.a]);
-  detail::wake_record(state_.bodies[r.b]);
+  state_.wake(state_.bodies[r.a]);
+  state_.wake(state_.bodies[r.b]);
   state_.joints.erase(id);
+  state_.awake_stale = true;
 }
 
 template <class Config>

@@ -47,6 +47,12 @@ class pair_tracker {
     current_.swap(found);
   }
 
+  /// An update with no proxy changed: the same pairs, none begun or ended.
+  void keep() noexcept {
+    begun_.clear();
+    ended_.clear();
+  }
+
   /// Sorts one update's pairs. Within one update every slot holds one
   /// proxy, so the slot pair alone orders them as operator< does, and a
   /// least-significant-digit radix sort on it (11 bits a pass, only as many

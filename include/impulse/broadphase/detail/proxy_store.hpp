@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "../../core/error.hpp"
@@ -28,16 +29,19 @@ class proxy_store {
  public:
   proxy_id insert(const aabb<T>& box, std::uint64_t user_data) {
     require_box(box);
+    changed_ = true;
     return proxies_.insert({box, user_data});
   }
   void set_box(proxy_id id, const aabb<T>& box) {
     require(id);
     require_box(box);
     proxies_[id].box = box;
+    changed_ = true;
   }
   void erase(proxy_id id) {
     require(id);
     proxies_.erase(id);
+    changed_ = true;
   }
 
   void require(proxy_id id) const {
@@ -51,6 +55,11 @@ class proxy_store {
       impulse::detail::report_error(error_code::invalid_parameter,
                                     "broad phase: the box's lower corner is above its upper corner");
   }
+
+  /// Whether a proxy came, moved or went since the last call. A broad
+  /// phase whose proxies all stood still has the pairs it had: with every
+  /// body asleep, its update costs nothing.
+  [[nodiscard]] bool take_changed() noexcept { return std::exchange(changed_, false); }
 
   [[nodiscard]] bool contains(proxy_id id) const noexcept { return proxies_.contains(id); }
   [[nodiscard]] const aabb<T>& box(proxy_id id) const {
@@ -68,6 +77,7 @@ class proxy_store {
 
  private:
   slot_map<proxy<T>, proxy_id> proxies_;
+  bool changed_ = false;
 };
 
 }  // namespace impulse::broadphase::detail

@@ -47,9 +47,9 @@ struct continuous_collision {
   /// Sweeps the bodies that need it (above).
   void run() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (const std::uint32_t i : state.awake_bodies) {
       const body_record<T>& r = bodies[i];
-      if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
+      if (!is_solved(r) || scratch.is_held(scratch.solver_place[i])) continue;
       const T moved = length(r.body.position - r.previous.position);
       if (r.bullet || moved > state.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
     }

@@ -52,16 +52,21 @@ struct body_solve {
   /// Solves and moves the bodies over dt (above).
   void run(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
+    state.refresh_awake();
+    settle_sleepers();
+    gather_bodies();
     const vec3<T> gravity_step = state.settings.gravity * dt;
-    scratch.solver_bodies.resize(bodies.size());
-    scratch.held.assign(bodies.size(), 0);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const rigid_body<T>& b = bodies[i].body;
+    const std::size_t count = scratch.solver_dense.size();
+    scratch.solver_bodies.resize(count);
+    scratch.held.assign(count, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+      const body_record<T>& r = bodies[scratch.solver_dense[i]];
+      const rigid_body<T>& b = r.body;
       solver_body<T>& s = scratch.solver_bodies[i];
       s = solver_body<T>{};
       s.position = b.position;
       s.orientation = b.orientation;
-      if (is_solved(bodies[i])) {
+      if (is_solved(r)) {
         s.inverse_mass = b.inverse_mass;
         s.inverse_inertia = b.inverse_inertia_world();
         s.linear_velocity = b.linear_momentum * b.inverse_mass;
@@ -86,14 +91,17 @@ struct body_solve {
     // Reserved exactly: grown by doubling, the largest per-step array
     // would hold up to twice what it needs, and three times while it moves.
     std::size_t manifold_count = 0;
-    for (const contact_record<T>& c : state.contacts) manifold_count += c.manifold_count;
+    for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
     scratch.constraints.reserve(manifold_count);
     scratch.sources.reserve(manifold_count);
-    for (std::uint32_t k = 0; k < state.contacts.size(); ++k) {
+    for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
-      const std::uint32_t ia = state.dense(c.a), ib = state.dense(c.b);
-      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      const body_record<T>& ra = state.bodies[c.a];
+      const body_record<T>& rb = state.bodies[c.b];
+      if (!is_solved(ra) && !is_solved(rb)) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
       for (int m = 0; m < c.manifold_count; ++m) {
         const contact_manifold<T>& manifold = state.slot_of(c, m).manifold;
         contact_constraint<T> cc;
@@ -111,8 +119,8 @@ struct body_solve {
         T spread = T(0);
         for (int p = 0; p < manifold.count; ++p) spread += length(manifold.points[std::size_t(p)].position - middle);
         cc.twist_radius = spread * (T(2) / T(3)) / T(manifold.count);
-        cc.anchor_a = middle - bodies[ia].body.position;
-        cc.anchor_b = middle - bodies[ib].body.position;
+        cc.anchor_a = middle - ra.body.position;
+        cc.anchor_b = middle - rb.body.position;
         // The slip at the middle of the patch chooses the tangents.
         const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
@@ -136,8 +144,8 @@ struct body_solve {
         for (int p = 0; p < manifold.count; ++p) {
           const contact_point<T>& point = manifold.points[std::size_t(p)];
           contact_constraint_point<T>& cp = cc.points[p];
-          cp.offset_a = point.position - bodies[ia].body.position;
-          cp.offset_b = point.position - bodies[ib].body.position;
+          cp.offset_a = point.position - ra.body.position;
+          cp.offset_b = point.position - rb.body.position;
           cp.depth = point.depth;
           cp.normal_impulse = carried.normal[std::size_t(p)];
         }
@@ -150,15 +158,19 @@ struct body_solve {
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
-    for (std::uint32_t k = 0; k < state.joints.size(); ++k) {
+    for (const std::uint32_t k : state.awake_joints) {
       const joint_record<T>& r = state.joints.values()[k];
-      if (r.broken) continue;
-      const std::uint32_t ia = state.dense(r.a), ib = state.dense(r.b);
-      if (scratch.is_held(ia) || scratch.is_held(ib) || (!is_solved(bodies[ia]) && !is_solved(bodies[ib]))) continue;
+      if (r.broken || (!is_solved(state.bodies[r.a]) && !is_solved(state.bodies[r.b]))) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(r.a)], ib = scratch.solver_place[state.dense(r.b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
       scratch.joints.push_back(r.constraint);
       scratch.joints.back().body_a = ia, scratch.joints.back().body_b = ib;
       scratch.joint_sources.push_back(k);
     }
+    state.counts.active_bodies = state.awake_bodies.size();
+    state.counts.solver_bodies = count;
+    state.counts.solved_manifolds = scratch.constraints.size();
+    state.counts.solved_joints = scratch.joints.size();
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -170,8 +182,8 @@ struct body_solve {
       kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
       kept.twist = cc.twist_impulse;
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      body_record<T>& r = bodies[i];
+    for (std::size_t i = 0; i < count; ++i) {
+      body_record<T>& r = bodies[scratch.solver_dense[i]];
       rigid_body<T>& b = r.body;
       r.previous = b.pose();
       if (scratch.is_held(std::uint32_t(i))) {
@@ -234,6 +246,48 @@ struct body_solve {
   }
 
  private:
+  /// Bodies that fell asleep in the last step have stood still since: the
+  /// pose at this step's start is where they are.
+  void settle_sleepers() {
+    for (const body_id id : state.fell_asleep)
+      if (state.bodies.contains(id) && !state.bodies[id].awake) state.bodies[id].previous = state.bodies[id].body.pose();
+    state.fell_asleep.clear();
+  }
+
+  /// The bodies the solver sees, in dense order: the active ones, and the
+  /// static ones that their solved contacts and joints reach. A sleeping
+  /// body is none of these (it would have woken, islands.hpp), so the
+  /// solver and the write-back never visit one.
+  void gather_bodies() {
+    const std::size_t n = state.bodies.size();
+    scratch.solver_place.resize(n);
+    scratch.gathered.resize(n);
+    if (++scratch.gather == 0) {  // the stamps wrapped: forget them all
+      std::fill(scratch.gathered.begin(), scratch.gathered.end(), 0u);
+      scratch.gather = 1;
+    }
+    for (const std::uint32_t i : state.awake_bodies) scratch.gathered[i] = scratch.gather;
+    scratch.reached.clear();
+    const auto reach = [&](body_id a, body_id b) {
+      if (!is_solved(state.bodies[a]) && !is_solved(state.bodies[b])) return;
+      for (const body_id id : {a, b}) {
+        const std::uint32_t i = state.dense(id);
+        if (scratch.gathered[i] == scratch.gather) continue;
+        scratch.gathered[i] = scratch.gather;
+        scratch.reached.push_back(i);
+      }
+    };
+    for (const std::uint32_t k : state.awake_contacts)
+      if (state.contacts[k].touching) reach(state.contacts[k].a, state.contacts[k].b);
+    for (const std::uint32_t k : state.awake_joints)
+      if (!state.joints.values()[k].broken) reach(state.joints.values()[k].a, state.joints.values()[k].b);
+    std::sort(scratch.reached.begin(), scratch.reached.end());
+    scratch.solver_dense.resize(state.awake_bodies.size() + scratch.reached.size());
+    std::merge(state.awake_bodies.begin(), state.awake_bodies.end(), scratch.reached.begin(), scratch.reached.end(),
+               scratch.solver_dense.begin());
+    for (std::uint32_t i = 0; i < scratch.solver_dense.size(); ++i) scratch.solver_place[scratch.solver_dense[i]] = i;
+  }
+
   /// For a solver that moves the bodies itself, holding ω over each
   /// substep: the change of ω over the step that keeps L = I_w·ω as the
   /// body turns (ω × I·ω, the gyroscopic term), taken implicitly by one
@@ -255,21 +309,22 @@ struct body_solve {
   /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      scratch.solver_bodies[i].position = bodies[i].body.position;
-      scratch.solver_bodies[i].orientation = bodies[i].body.orientation;
+    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+      scratch.solver_bodies[i].position = bodies[scratch.solver_dense[i]].body.position;
+      scratch.solver_bodies[i].orientation = bodies[scratch.solver_dense[i]].body.orientation;
     }
     scratch.solver.project_joints(scratch.solver_bodies, scratch.joints, state.settings.solver);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (!is_solved(bodies[i]) || scratch.is_held(std::uint32_t(i))) continue;
+    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+      body_record<T>& r = bodies[scratch.solver_dense[i]];
+      if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
       const solver_body<T>& s = scratch.solver_bodies[i];
       if (state.within_bounds(s.position) && is_finite(s.orientation) && length_squared(s.orientation) > T(0)) {
-        bodies[i].body.position = s.position;
-        bodies[i].body.orientation = normalize(s.orientation);
+        r.body.position = s.position;
+        r.body.orientation = normalize(s.orientation);
       } else {
-        rigid_body<T>& b = bodies[i].body;
-        b.position = bodies[i].previous.position;
-        b.orientation = bodies[i].previous.rotation;
+        rigid_body<T>& b = r.body;
+        b.position = r.previous.position;
+        b.orientation = r.previous.rotation;
         b.linear_momentum = {};
         b.angular_momentum = {};
         scratch.hold(state, i);

@@ -41,6 +41,10 @@ namespace impulse::detail {
 /// distinct normal against a mesh (a box in a corner of it: two or three).
 inline constexpr int max_manifolds = 4;
 
+/// The sleep_set of a body in no sleeping island: awake, or made asleep
+/// (body_def::awake false) and not yet grouped.
+inline constexpr std::uint32_t no_sleep_set = 0xffffffffu;
+
 /// Where a kinematic body is with its set_target_pose: none, moving there
 /// in the coming step, or arrived (its velocities kept until the next step
 /// begins, then zeroed unless a new target came).
@@ -56,6 +60,7 @@ struct body_record {
   transform<T> previous;  ///< the center-of-mass pose at the start of the last step
   T sleep_timer = T(0);   ///< s spent below the sleep speeds
   bool awake = true;
+  std::uint32_t sleep_set = no_sleep_set;  ///< asleep: its island (world_state::sleep_sets)
   std::uint64_t user_data = 0;
   target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
   bool bullet = false;
@@ -109,11 +114,6 @@ template <scalar_type T>
 [[nodiscard]] transform<T> shape_pose_of(const body_record<T>& r) noexcept {
   return {r.body.position - rotate(r.body.orientation, r.center), r.body.orientation};
 }
-template <scalar_type T>
-void wake_record(body_record<T>& r) noexcept {
-  r.awake = true;
-  r.sleep_timer = T(0);
-}
 /// Whether the body moves this step: dynamic and awake, or kinematic with a
 /// velocity.
 template <scalar_type T>
@@ -122,6 +122,12 @@ template <scalar_type T>
   if (r.body.type == body_type::kinematic)
     return r.body.kinematic_velocity != vec3<T>{} || r.body.kinematic_angular_velocity != vec3<T>{};
   return false;
+}
+/// Whether a step works on the body (world_state::awake_bodies): dynamic
+/// and awake, or kinematic, moving or not.
+template <scalar_type T>
+[[nodiscard]] bool is_active(const body_record<T>& r) noexcept {
+  return r.body.type == body_type::kinematic || (r.body.type == body_type::dynamic && r.awake);
 }
 /// Whether the solver moves the body: dynamic and awake.
 template <scalar_type T>
@@ -198,8 +204,35 @@ struct world_state {
   std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
   std::size_t pairs_over_limit = 0;          ///< in the last step: see world::pairs_over_limit
   std::vector<contact_event> begun, ended;
+  step_counts counts{};  ///< the last step's
   T time = T(0), accumulator = T(0), last_dt = T(0);
   std::uint64_t step_count = 0;
+
+  // ---- the awake set: what a step works on ----
+
+  /// The dense places of the active bodies (is_active: awake dynamic ones
+  /// and every kinematic one), ascending; and the places of the contacts
+  /// (in `contacts`) and joints (in joints.values()) with an active body,
+  /// ascending. A step visits these and nothing else, so a sleeping body
+  /// costs it nothing. Rebuilt by refresh_awake() once awake_stale says a
+  /// body woke or slept, or a record came or went.
+  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints;
+  bool awake_stale = true;
+  /// The contact records must be merged with the broad phase's pairs at
+  /// the next step though the pairs did not change: a record was dropped,
+  /// or a joint that kept two bodies apart went (contact_update.hpp).
+  bool pairs_stale = true;
+  /// The sleeping islands, each as the bodies it had when it fell asleep
+  /// (a body's sleep_set names its own): touching one body wakes them all,
+  /// at once. Sets go to free_sleep_sets when they wake.
+  std::vector<std::vector<body_id>> sleep_sets;
+  std::vector<std::uint32_t> free_sleep_sets;
+  /// Bodies were made asleep (body_def::awake false) and are in no island
+  /// yet: the next step groups every sleeping body afresh (islands.hpp).
+  bool ungrouped_sleepers = false;
+  /// The bodies that fell asleep in the last step: their `previous` is
+  /// still that step's start, and becomes their pose at the next.
+  std::vector<body_id> fell_asleep;
 
   // ---- bodies ----
 
@@ -221,8 +254,55 @@ struct world_state {
   [[nodiscard]] typename dispatcher::shape_ref shape_ref_of(const body_record<T>& r) const noexcept {
     return {shape_store.address(r.shape), r.shape.type};
   }
-  void wake_all() noexcept {
-    for (body_record<T>& r : bodies.values()) wake_record(r);
+  /// Wakes a body, and every body of its sleeping island with it.
+  void wake(body_record<T>& r) {
+    r.sleep_timer = T(0);
+    if (r.awake) return;
+    r.awake = true;
+    awake_stale = true;
+    if (r.sleep_set != no_sleep_set) wake_set(r.sleep_set);
+  }
+  /// Wakes the bodies of a sleeping island that are still in it.
+  void wake_set(std::uint32_t set) {
+    for (const body_id id : sleep_sets[set]) {
+      if (!bodies.contains(id)) continue;
+      body_record<T>& r = bodies[id];
+      if (r.sleep_set != set) continue;
+      r.awake = true;
+      r.sleep_timer = T(0);
+      r.sleep_set = no_sleep_set;
+    }
+    sleep_sets[set].clear();
+    free_sleep_sets.push_back(set);
+    awake_stale = true;
+  }
+  void wake_all() {
+    for (body_record<T>& r : bodies.values()) {
+      r.awake = true;
+      r.sleep_timer = T(0);
+      r.sleep_set = no_sleep_set;
+    }
+    sleep_sets.clear();
+    free_sleep_sets.clear();
+    fell_asleep.clear();
+    ungrouped_sleepers = false;
+    awake_stale = true;
+  }
+  /// Brings awake_bodies, awake_contacts and awake_joints up to date.
+  void refresh_awake() {
+    if (!awake_stale) return;
+    awake_stale = false;
+    const std::vector<body_record<T>>& all = bodies.values();
+    awake_bodies.clear();
+    for (std::uint32_t i = 0; i < all.size(); ++i)
+      if (is_active(all[i])) awake_bodies.push_back(i);
+    awake_contacts.clear();
+    for (std::uint32_t k = 0; k < contacts.size(); ++k)
+      if (is_active(bodies[contacts[k].a]) || is_active(bodies[contacts[k].b])) awake_contacts.push_back(k);
+    awake_joints.clear();
+    const std::vector<joint_record<T>>& js = joints.values();
+    for (std::uint32_t k = 0; k < js.size(); ++k)
+      if (is_active(bodies[js[k].a]) || is_active(bodies[js[k].b])) awake_joints.push_back(k);
   }
   /// Whether a point is within max_coordinate of the origin on every axis
   /// (false for NaN).
@@ -269,6 +349,7 @@ struct world_state {
   }
   /// A record that is dropped: its pair ends, its manifolds are freed.
   void end_contact(const contact_record<T>& c) {
+    awake_stale = true;
     if (c.touching) ended.push_back({c.a, c.b});
     for (int m = 0; m < c.manifold_count; ++m) free_manifolds.push_back(c.slots[std::size_t(m)]);
   }
@@ -284,10 +365,11 @@ struct world_state {
     if (r.def.collide_connected) return;
     const auto at = std::lower_bound(joined.begin(), joined.end(), pair_key(r.a, r.b));
     if (at != joined.end() && *at == pair_key(r.a, r.b)) joined.erase(at);
+    pairs_stale = true;  // the pair makes contact again
   }
   void wake_joint(const joint_record<T>& r) {
-    wake_record(bodies[r.a]);
-    wake_record(bodies[r.b]);
+    wake(bodies[r.a]);
+    wake(bodies[r.b]);
   }
   /// The joint's parts and errors at the bodies' present poses.
   [[nodiscard]] joint_constraint<T> measure(const joint_record<T>& r) const {
@@ -325,7 +407,14 @@ struct step_scratch {
 
   solver_type solver{};
   std::vector<contact_record<T>> next_contacts;
-  std::vector<solver_body<T>> solver_bodies;  ///< per dense body
+  /// The bodies the solver sees (solve.hpp): the active ones and the static
+  /// ones their solved contacts and joints reach, in dense order.
+  std::vector<solver_body<T>> solver_bodies;
+  std::vector<std::uint32_t> solver_dense;  ///< each solver body's dense place
+  std::vector<std::uint32_t> solver_place;  ///< per dense body: its solver place, if it has one
+  std::vector<std::uint32_t> reached;       ///< the static bodies among them
+  std::vector<std::uint32_t> gathered;      ///< per dense body: the gather that last took it
+  std::uint32_t gather = 0;                 ///< this step's gather
   std::vector<contact_constraint<T>> constraints;
   std::vector<constraint_source> sources;
   std::vector<joint_constraint<T>> joints;
@@ -333,12 +422,14 @@ struct step_scratch {
   std::vector<joint_id> doomed_joints;       ///< world::destroy_body's
   std::vector<support> supports;
   std::vector<T> load;
-  union_find islands;
+  union_find islands;  ///< over awake_bodies' places (islands.hpp)
+  std::vector<std::uint32_t> awake_place;  ///< per dense body: its place in awake_bodies, if it has one
   std::vector<std::uint8_t> island_flag;
   std::vector<T> island_timer;
-  std::vector<std::uint8_t> held;  ///< per dense body: held in this step (hold)
+  std::vector<std::uint32_t> island_set;
+  std::vector<std::uint8_t> held;  ///< per solver body: held in this step (hold)
 
-  /// Holds dense body i for this step: it keeps its pose, loses its
+  /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).
   void hold(world_state<Config>& state, std::size_t i) {
     held[i] = 1;
@@ -346,7 +437,7 @@ struct step_scratch {
     s.inverse_mass = T(0);
     s.inverse_inertia = mat3<T>{};
     s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
-    state.held.push_back(state.bodies.ids()[i]);
+    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
   }
   [[nodiscard]] bool is_held(std::uint32_t i) const noexcept { return held[i] != 0; }
 };
