@@ -119,7 +119,7 @@ result run_ragdolls_impulse(const ragdoll_pile_spec& spec, bool exact = true) {
   using config = awake_config<Solver>;
   using vec = impulse::vec3<T>;
   impulse::world<config> w;
-  impulse::world_settings<T> settings = w.settings();
+  auto settings = w.settings();
   settings.solver.exact_joint_trees = exact;
   w.set_settings(settings);
   {

@@ -88,7 +88,11 @@ class impulse_engine {
     constexpr bool substepping = sleeping_world::solver_type::moves_bodies;
     const int count = std::visit(
         [](const auto& w) {
-          return substepping ? settings_of(w).solver.substeps : settings_of(w).solver.velocity_iterations;
+          if constexpr (substepping) {
+            return settings_of(w).solver.substeps;
+          } else {
+            return settings_of(w).solver.velocity_iterations;
+          }
         },
         world_);
     return std::string(detail::solver_name<sleeping_world>()) + (substepping ? " substeps=" : " iterations=") +
@@ -99,7 +103,7 @@ class impulse_engine {
 
   void build(const scene_spec& spec) {
     dt_ = static_cast<T>(spec.dt);
-    impulse::world_settings<T> settings;
+    settings_type settings;
     settings.gravity = to_impulse(spec.gravity);
     if (spec.sleeping)
       build_into(world_.template emplace<sleeping_world>(settings), spec);
@@ -133,18 +137,19 @@ class impulse_engine {
   };
   using sleeping_world = impulse::world<sleeping_config>;
   using awake_world = impulse::world<awake_config>;
+  using settings_type = typename sleeping_world::settings_type;  // the awake world's too: the same solver
 
   static impulse::vec3<T> to_impulse(const vec3& v) { return {T(v.x), T(v.y), T(v.z)}; }
   static vec3 from_impulse(const impulse::vec3<T>& v) { return {v.x, v.y, v.z}; }
 
   // Before build() there is no world; config() then reports the defaults
   // a world would be made with.
-  static const impulse::world_settings<T>& settings_of(const std::monostate&) {
-    static const impulse::world_settings<T> defaults{};
+  static const settings_type& settings_of(const std::monostate&) {
+    static const settings_type defaults{};
     return defaults;
   }
   template <class World>
-  static const impulse::world_settings<T>& settings_of(const World& w) {
+  static const settings_type& settings_of(const World& w) {
     return w.settings();
   }
 

@@ -5849,6 +5849,9 @@ template <scalar_type T> struct body_spring;
 enum class joint_type : std::uint8_t;
 template <scalar_type T> struct joint_def;
 template <scalar_type T> struct joint_constraint;
+template <scalar_type T> struct solver_settings;
+template <scalar_type T> struct sequential_impulse_settings;
+template <scalar_type T> struct soft_step_settings;
 
 struct body_tag;
 struct spring_tag;
@@ -9313,13 +9316,18 @@ class joint_tree {
 }  // namespace impulse::detail
 // ---- end impulse/dynamics/detail/joint_tree.hpp ----
 // ---- begin impulse/dynamics/solver_settings.hpp ----
-// impulse/dynamics/solver_settings.hpp — the contact solver's numbers, in one
-// place, each with its unit and the reason for its value.
+// impulse/dynamics/solver_settings.hpp — the contact solvers' numbers, each
+// with its unit and the reason for its value: solver_settings, the ones the
+// world and every solver read, and each shipped solver's own type, which
+// adds what only that solver reads (sequential_impulse_settings,
+// soft_step_settings). A solver names its type as `settings_type`
+// (contact_solver.hpp), and a world's settings hold that type
+// (world_settings.hpp), so a world has exactly the knobs its solver turns.
 //
 // These are runtime values (docs/architecture.md: iteration counts,
-// restitution and tolerances stay runtime knobs); a world holds one solver_settings and hands
-// it to its solver every step. The defaults are what the hard-case tests
-// (tests/world/) are run with.
+// restitution and tolerances stay runtime knobs); a world holds its
+// solver's settings and hands them to the solver every step. The defaults
+// are what the hard-case tests (tests/world/) are run with.
 
 
 
@@ -9351,21 +9359,6 @@ struct solver_settings {
   /// with one. sequential_impulse runs the passes on the rows' speeds
   /// (contact_batch.hpp), at little cost.
   int manifold_sweeps = 4;
-  /// Substeps of soft_step (Box2D v3 takes 4).
-  int substeps = 4;
-  /// soft_step: sweeps of the soft rows, and then of the rigid ones (the
-  /// relax pass), per substep. Box2D v3 takes one of each: the substeps,
-  /// not the sweeps, carry the convergence.
-  int substep_iterations = 1;
-  int relax_iterations = 1;
-  /// soft_step: stiffness of the soft contact rows, Hz, capped at a quarter
-  /// of the substep rate (a spring stiffer than that is not resolved by the
-  /// substeps); static contacts take twice it. Box2D v3's 30 Hz.
-  T contact_hertz = T(30);
-  /// soft_step: damping ratio of the soft contact rows. 10 (Box2D v3's)
-  /// is far past critical: a pushed-in contact creeps out without
-  /// overshoot instead of springing out.
-  T contact_damping_ratio = T(10);
 
   /// Penetration left uncorrected, m. Contacts rest this deep, so that a
   /// touching pair keeps its manifold (and its warm-started impulses)
@@ -9373,12 +9366,6 @@ struct solver_settings {
   /// and Jolt 2 cm; a 10-box tower then stands 5 cm (or 19 cm in Jolt)
   /// lower than its height. 0.5 mm keeps a 20-high stack within a centimetre.
   T linear_slop = T(0.0005);
-  /// Fraction of the penetration beyond the slop removed per step by the
-  /// split-impulse pass (1/s after division by dt). It moves positions
-  /// without adding velocity, so it adds no energy: larger only corrects
-  /// faster. 0.2 corrects 90 % of an error in 10 steps without the
-  /// overshoot a larger fraction shows in deep piles.
-  T position_correction = T(0.2);
   /// Largest correction speed of the position pass (soft_step: of the soft
   /// rows' push), m/s: bodies created
   /// deep inside each other separate over several steps instead of
@@ -9389,19 +9376,6 @@ struct solver_settings {
   /// Catto, GDC 2014): a body meets the ground on the step it arrives,
   /// with no penetration to correct and no bounce from correcting it.
   T speculative_distance = T(0.02);
-  /// Depth a resting contact is let sink to, m (sequential_impulse): the
-  /// velocity rows let a point approach until it lies this deep (a gap
-  /// closes to it, not to zero). At depth zero a face is on the edge
-  /// between pressing and not, and float rounding of the positions
-  /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
-  /// 10-box tower swayed on that noise, and over 80 s fell at 12, 16 or 26
-  /// iterations and drifted 15 mm at 20, depending on the build. Pressed
-  /// 3 µm in, its top stays within 0.05 mm at 6 to 30 iterations in every
-  /// build (0.016 mm at 10 to 30), and within 0.07 mm standing on a floor
-  /// 60 m up (rounding 3.8 µm there). Deeper costs a tall heavy stack: the
-  /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
-  /// 6.1 mm at zero, 10.7 mm at 10 µm.
-  T rest_depth = T(0.000003);
   /// Approach speed below which a contact is treated as resting and does
   /// not bounce, m/s. Resting contacts approach at about g·dt/2 = 0.08 m/s
   /// under gravity at 60 Hz; bouncing them would make stacks with
@@ -9435,30 +9409,96 @@ struct solver_settings {
   /// a long chain whips: 2.2 on average at 100 links), linear in the
   /// joints.
   bool exact_joint_trees = true;
+  /// Whether each step starts from the last step's impulses.
+  bool warm_starting = true;
+
+  void validate() const {
+    if (velocity_iterations < 1 || position_iterations < 0 || manifold_sweeps < 1)
+      detail::report_error(error_code::invalid_parameter,
+                           "solver_settings: velocity_iterations and manifold_sweeps must be >= 1, "
+                           "position_iterations >= 0");
+    const T values[] = {linear_slop,     max_correction_speed, speculative_distance, restitution_threshold,
+                        rest_slip_speed, joint_correction};
+    for (const T v : values)
+      if (!std::isfinite(v) || v < T(0))
+        detail::report_error(error_code::invalid_parameter,
+                             "solver_settings: slop, correction, speeds and distances must be finite and >= 0");
+    if (joint_correction > T(1))
+      detail::report_error(error_code::invalid_parameter, "solver_settings: joint_correction must lie in [0, 1]");
+  }
+};
+
+/// sequential_impulse's settings: the shared numbers, and those of its
+/// split-impulse position pass and its resting depth.
+template <scalar_type T>
+struct sequential_impulse_settings : solver_settings<T> {
+  /// Fraction of the penetration beyond the slop removed per step by the
+  /// split-impulse pass (1/s after division by dt). It moves positions
+  /// without adding velocity, so it adds no energy: larger only corrects
+  /// faster. 0.2 corrects 90 % of an error in 10 steps without the
+  /// overshoot a larger fraction shows in deep piles.
+  T position_correction = T(0.2);
+  /// Depth a resting contact is let sink to, m (sequential_impulse): the
+  /// velocity rows let a point approach until it lies this deep (a gap
+  /// closes to it, not to zero). At depth zero a face is on the edge
+  /// between pressing and not, and float rounding of the positions
+  /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
+  /// 10-box tower swayed on that noise, and over 80 s fell at 12, 16 or 26
+  /// iterations and drifted 15 mm at 20, depending on the build. Pressed
+  /// 3 µm in, its top stays within 0.05 mm at 6 to 30 iterations in every
+  /// build (0.016 mm at 10 to 30), and within 0.07 mm standing on a floor
+  /// 60 m up (rounding 3.8 µm there). Deeper costs a tall heavy stack: the
+  /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
+  /// 6.1 mm at zero, 10.7 mm at 10 µm.
+  T rest_depth = T(0.000003);
+
+  void validate() const {
+    solver_settings<T>::validate();
+    if (!std::isfinite(position_correction) || !std::isfinite(rest_depth) || position_correction < T(0) ||
+        position_correction > T(1) || rest_depth < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "sequential_impulse_settings: position_correction must lie in [0, 1], rest_depth be "
+                           "finite and >= 0");
+  }
+};
+
+/// soft_step's settings: the shared numbers, and its substeps and the
+/// softness of its rows. velocity_iterations counts the sweeps of its
+/// restitution pass only: the substeps, not the iterations, carry its
+/// convergence (substep_iterations counts its sweeps per substep).
+template <scalar_type T>
+struct soft_step_settings : solver_settings<T> {
+  /// Substeps of soft_step (Box2D v3 takes 4).
+  int substeps = 4;
+  /// soft_step: sweeps of the soft rows, and then of the rigid ones (the
+  /// relax pass), per substep. Box2D v3 takes one of each: the substeps,
+  /// not the sweeps, carry the convergence.
+  int substep_iterations = 1;
+  int relax_iterations = 1;
+  /// soft_step: stiffness of the soft contact rows, Hz, capped at a quarter
+  /// of the substep rate (a spring stiffer than that is not resolved by the
+  /// substeps); static contacts take twice it. Box2D v3's 30 Hz.
+  T contact_hertz = T(30);
+  /// soft_step: damping ratio of the soft contact rows. 10 (Box2D v3's)
+  /// is far past critical: a pushed-in contact creeps out without
+  /// overshoot instead of springing out.
+  T contact_damping_ratio = T(10);
   /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
   /// the substep rate like contact_hertz, and their damping ratio (Box2D
   /// v3's joint softness: 60 Hz and 2, i.e. twice its contact stiffness).
   T joint_hertz = T(60);
   T joint_damping_ratio = T(2);
-  /// Whether each step starts from the last step's impulses.
-  bool warm_starting = true;
 
   void validate() const {
-    if (velocity_iterations < 1 || position_iterations < 0 || substeps < 1 || manifold_sweeps < 1 ||
-        substep_iterations < 1 || relax_iterations < 0)
+    solver_settings<T>::validate();
+    if (substeps < 1 || substep_iterations < 1 || relax_iterations < 0)
       detail::report_error(error_code::invalid_parameter,
-                           "solver_settings: velocity_iterations, manifold_sweeps, substeps and "
-                           "substep_iterations must be >= 1, position_iterations and relax_iterations >= 0");
-    const T values[] = {linear_slop,           position_correction, max_correction_speed, speculative_distance,
-                        restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio,
-                        rest_depth,            joint_correction,    joint_hertz,          joint_damping_ratio};
+                           "soft_step_settings: substeps and substep_iterations must be >= 1, relax_iterations >= 0");
+    const T values[] = {contact_hertz, contact_damping_ratio, joint_hertz, joint_damping_ratio};
     for (const T v : values)
       if (!std::isfinite(v) || v < T(0))
         detail::report_error(error_code::invalid_parameter,
-                             "solver_settings: slop, correction, speeds and distances must be finite and >= 0");
-    if (position_correction > T(1) || joint_correction > T(1))
-      detail::report_error(error_code::invalid_parameter,
-                           "solver_settings: position_correction and joint_correction must lie in [0, 1]");
+                             "soft_step_settings: stiffnesses and damping ratios must be finite and >= 0");
   }
 };
 
@@ -9470,10 +9510,12 @@ namespace impulse {
 template <scalar_type T>
 class basic_sequential_impulse {
  public:
+  /// Its numbers: the shared ones and its own (solver_settings.hpp).
+  using settings_type = sequential_impulse_settings<T>;
   /// The world moves the bodies after the solve (contact_solver.hpp).
   static constexpr bool moves_bodies = false;
   /// Its impulses act over the whole step.
-  static T impulse_step(const solver_settings<T>&, T dt) noexcept { return dt; }
+  static T impulse_step(const settings_type&, T dt) noexcept { return dt; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -9487,7 +9529,7 @@ class basic_sequential_impulse {
   /// the contacts of each; project_joints removes their drift once the
   /// bodies have moved.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const T inverse_dt = T(1) / dt;
     for (solver_body<T>& b : bodies) {
       b.linear_velocity += b.force_linear;
@@ -9558,7 +9600,7 @@ class basic_sequential_impulse {
   /// project_joint), each with a Newton step on the joint trees
   /// (joint_tree.hpp).
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const solver_settings<T>& settings) {
+                      const settings_type& settings) {
     tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
   }
 
@@ -9579,7 +9621,7 @@ class basic_sequential_impulse {
   /// One manifold's rows, one after another: the manifolds the coloring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings) noexcept {
+                             const settings_type& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     // Friction first, as in the batches (solve above).
@@ -9597,7 +9639,7 @@ class basic_sequential_impulse {
   /// it within the step but no further. The position pass: to separate at
   /// a fraction of the penetration beyond the slop per step; < 0 when the
   /// point lies within the slop and takes no part.
-  static void row_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+  static void row_targets(contact_constraint<T>& c, const settings_type& settings, T inverse_dt) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
       p.gap_speed = p.depth < settings.rest_depth ? (settings.rest_depth - p.depth) * inverse_dt : T(0);
@@ -9609,7 +9651,7 @@ class basic_sequential_impulse {
   }
 
   static void solve_position(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings) noexcept {
+                             const settings_type& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)
@@ -9664,10 +9706,12 @@ namespace impulse {
 template <scalar_type T>
 class basic_soft_step {
  public:
+  /// Its numbers: the shared ones and its own (solver_settings.hpp).
+  using settings_type = soft_step_settings<T>;
   /// It moves the bodies itself, substep by substep (contact_solver.hpp).
   static constexpr bool moves_bodies = true;
   /// Its impulses are per substep.
-  static T impulse_step(const solver_settings<T>& settings, T dt) noexcept { return dt / T(settings.substeps); }
+  static T impulse_step(const settings_type& settings, T dt) noexcept { return dt / T(settings.substeps); }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -9691,7 +9735,7 @@ class basic_soft_step {
   /// Velocities are left as solved; world::project_joints then calls
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int n = settings.substeps;
     const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
     const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
@@ -9749,12 +9793,12 @@ class basic_soft_step {
   /// as contacts are: pushed back here too, a hinge resting on its limit
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const solver_settings<T>& settings) {
+                      const settings_type& settings) {
     tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
   }
 
  private:
-  void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const solver_settings<T>& settings,
+  void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const settings_type& settings,
                      const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
@@ -16886,7 +16930,7 @@ concept debug_drawer = requires(D& d, const vec3<T>& p, const debug_color& c) {
 namespace impulse {
 
 template <scalar_type T> struct body_def;
-template <scalar_type T> struct world_settings;
+template <scalar_type T, class SolverSettings = sequential_impulse_settings<T>> struct world_settings;
 template <scalar_type T> struct world_ray_hit;
 struct contact_event;
 template <scalar_type T> struct joint_broken_event;
@@ -16982,7 +17026,7 @@ struct world_ray_hit {
 // ---- end impulse/world/world_ray_hit.hpp ----
 // ---- begin impulse/world/world_settings.hpp ----
 // impulse/world/world_settings.hpp — a world's runtime settings (the
-// compile-time ones are in its config): gravity, the solver's settings, the
+// compile-time ones are in its config): gravity, its solver's settings, the
 // fixed step, sleeping, contact reuse, continuous collision, and the limits
 // bad input is refused at.
 
@@ -16990,11 +17034,12 @@ struct world_ray_hit {
 
 namespace impulse {
 
-/// The world's runtime settings (the compile-time ones are in its config).
+namespace detail {
+
+/// Every runtime setting of a world but its solver's: world_settings below.
 template <scalar_type T>
-struct world_settings {
+struct world_settings_base {
   vec3<T> gravity{T(0), T(-9.81), T(0)};  ///< m/s²
-  solver_settings<T> solver{};
   /// The step advance() takes, s: physics at a fixed rate whatever the
   /// frame rate, so that a scene behaves the same on every machine.
   T fixed_dt = T(1) / T(60);
@@ -17067,7 +17112,6 @@ struct world_settings {
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
-    solver.validate();
     if (!(fixed_dt > T(0) && fixed_dt <= T(1)))
       detail::report_error(error_code::invalid_parameter, "world_settings: fixed_dt must be positive and at most 1 s");
     if (max_steps_per_advance < 1)
@@ -17101,6 +17145,25 @@ struct world_settings {
     if (!(length_squared(gravity) <= max_linear_speed * max_linear_speed))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: gravity must be at most max_linear_speed per second");
+  }
+};
+
+}  // namespace detail
+
+/// The world's runtime settings (the compile-time ones are in its config):
+/// those above, and its solver's (solver_settings.hpp): a world<Config>
+/// holds world_settings<T, its solver's settings_type>, its settings_type,
+/// so a soft_step world has soft_step's knobs and a sequential_impulse
+/// world has its own. The default is sequential_impulse's, the default
+/// config's solver.
+template <scalar_type T, class SolverSettings>
+struct world_settings : detail::world_settings_base<T> {
+  using solver_settings_type = SolverSettings;
+  SolverSettings solver{};
+
+  void validate() const {
+    detail::world_settings_base<T>::validate();
+    solver.validate();
   }
 };
 
@@ -17261,8 +17324,13 @@ class shape_store<shape_list<Shapes...>, T> {
 //                                      after the bodies have moved: their
 //                                      poses put back onto their joints
 //
-// and reads two constants of its type:
+// and reads three members of its type:
 //
+//   settings_type       its numbers: solver_settings<T> (those the world
+//                       reads too: the speculative distance, the slop,
+//                       warm starting) or a type derived from it with the
+//                       solver's own (solver_settings.hpp); a world's
+//                       settings hold one (world_settings<T, settings_type>)
 //   moves_bodies        false: the world moves the bodies with the solved
 //                       velocities plus bias_linear and bias_angular (the
 //                       position pass's pseudo-velocities), by the
@@ -17284,29 +17352,39 @@ namespace impulse {
 // one that is missing.
 namespace detail {
 template <class S, class T>
+concept solver_has_settings = requires { typename S::settings_type; } &&
+                              std::derived_from<typename S::settings_type, solver_settings<T>> &&
+                              std::copyable<typename S::settings_type> &&
+                              std::default_initializable<typename S::settings_type> &&
+                              requires(const typename S::settings_type& s) { s.validate(); };
+template <class S, class T>
 concept solver_prepares = requires(S& s, std::span<const solver_body<T>> bodies,
                                    std::span<contact_constraint<T>> contacts) { s.prepare(bodies, contacts); };
 template <class S, class T>
 concept solver_solves = requires(S& s, std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-                                 std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+                                 std::span<joint_constraint<T>> joints, const typename S::settings_type& settings,
+                                 T dt) {
   s.solve(bodies, contacts, joints, settings, dt);
 };
 template <class S, class T>
 concept solver_projects = requires(S& s, std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                                   const solver_settings<T>& settings) { s.project_joints(bodies, joints, settings); };
+                                   const typename S::settings_type& settings) {
+  s.project_joints(bodies, joints, settings);
+};
 template <class S>
 concept solver_says_who_moves = requires {
   { S::moves_bodies } -> std::convertible_to<bool>;
 };
 template <class S, class T>
-concept solver_has_impulse_step = requires(const solver_settings<T>& settings, T dt) {
+concept solver_has_impulse_step = requires(const typename S::settings_type& settings, T dt) {
   { S::impulse_step(settings, dt) } -> std::same_as<T>;
 };
 }  // namespace detail
 
 /// Quiet form: true when S is a contact solver over scalar T.
 template <class S, class T>
-concept contact_solver = std::default_initializable<S> && std::copyable<S> && detail::solver_prepares<S, T> &&
+concept contact_solver = std::default_initializable<S> && std::copyable<S> && detail::solver_has_settings<S, T> &&
+                         detail::solver_prepares<S, T> &&
                          detail::solver_solves<S, T> && detail::solver_projects<S, T> &&
                          detail::solver_says_who_moves<S> && detail::solver_has_impulse_step<S, T>;
 
@@ -17316,17 +17394,22 @@ template <class S, class T>
 consteval bool check_contact_solver() {
   static_assert(std::default_initializable<S> && std::copyable<S>,
                 "impulse solver: must be default constructible and copyable (a world is a value)");
-  static_assert(detail::solver_prepares<S, T>,
-                "impulse solver: missing `prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>)`");
-  static_assert(detail::solver_solves<S, T>,
-                "impulse solver: missing `solve(std::span<solver_body<T>>, std::span<contact_constraint<T>>, "
-                "std::span<joint_constraint<T>>, const solver_settings<T>&, T dt)`");
-  static_assert(detail::solver_projects<S, T>,
-                "impulse solver: missing `project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, "
-                "const solver_settings<T>&)`");
-  static_assert(detail::solver_says_who_moves<S>, "impulse solver: missing `static constexpr bool moves_bodies`");
-  static_assert(detail::solver_has_impulse_step<S, T>,
-                "impulse solver: missing `static T impulse_step(const solver_settings<T>&, T dt)`");
+  static_assert(detail::solver_has_settings<S, T>,
+                "impulse solver: missing `using settings_type = ...`: solver_settings<T>, or a type derived from it "
+                "with a validate() of its own");
+  if constexpr (detail::solver_has_settings<S, T>) {
+    static_assert(detail::solver_prepares<S, T>,
+                  "impulse solver: missing `prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>)`");
+    static_assert(detail::solver_solves<S, T>,
+                  "impulse solver: missing `solve(std::span<solver_body<T>>, std::span<contact_constraint<T>>, "
+                  "std::span<joint_constraint<T>>, const settings_type&, T dt)`");
+    static_assert(detail::solver_projects<S, T>,
+                  "impulse solver: missing `project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, "
+                  "const settings_type&)`");
+    static_assert(detail::solver_says_who_moves<S>, "impulse solver: missing `static constexpr bool moves_bodies`");
+    static_assert(detail::solver_has_impulse_step<S, T>,
+                  "impulse solver: missing `static T impulse_step(const settings_type&, T dt)`");
+  }
   return contact_solver<S, T>;
 }
 
@@ -17382,6 +17465,22 @@ consteval bool world_ccd() {
     return false;
   }
 }
+
+/// The settings a world holds: world_settings with its solver's
+/// settings_type (solver_settings<T> while the config check reports a
+/// solver without one, so that only its message is shown).
+template <class C>
+struct world_solver_settings {
+  using T = typename C::scalar;
+  using solver = typename world_solver<C>::type::template type<T>;
+  using type = world_settings<T, solver_settings<T>>;
+};
+template <class C>
+  requires requires { typename world_solver<C>::type::template type<typename C::scalar>::settings_type; }
+struct world_solver_settings<C> {
+  using T = typename C::scalar;
+  using type = world_settings<T, typename world_solver<C>::type::template type<T>::settings_type>;
+};
 
 /// A body standing still: the system a world's integrator is checked on.
 template <scalar_type T>
@@ -17589,7 +17688,8 @@ struct world_state {
   using broad_phase_type = typename world_broadphase<Config>::type::template type<T>;
   using dispatcher = narrowphase::dispatcher<shapes, T>;
 
-  world_settings<T> settings{};
+  using settings_type = typename world_solver_settings<Config>::type;
+  settings_type settings{};
   slot_map<body_record<T>, body_id> bodies;
   slot_map<joint_record<T>, joint_id> joints;
   /// The body pairs joined without collide_connected (pair_key), sorted,
@@ -17886,7 +17986,7 @@ struct contact_update {
   void update_contacts() {
     const std::span<const proxy_pair> pairs = state.broad.pairs();
     std::vector<contact_record<T>>& old = state.contacts;
-    const world_settings<T>& s = state.settings;
+    const auto& s = state.settings;
     const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
                               std::cos(s.contact_reuse_angle / T(2))};
     // With the broad phase's pairs as they were, the records are too (but
@@ -18343,7 +18443,7 @@ struct island_update {
   /// for sleep_time goes to sleep.
   void sleep(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    const world_settings<T>& s = state.settings;
+    const auto& s = state.settings;
     for (const std::uint32_t i : state.awake_bodies) {
       body_record<T>& r = bodies[i];
       if (r.body.type != body_type::dynamic) continue;
@@ -18932,6 +19032,7 @@ class world {
   using broad_phase_type = typename state_type::broad_phase_type;
   using solver_policy = typename detail::world_solver<Config>::type;
   using solver_type = typename solver_policy::template type<T>;
+  using settings_type = typename state_type::settings_type;  ///< world_settings with its solver's
   using integrator = typename Config::integrator;
   static constexpr bool sleeping = detail::world_sleeping<Config>();
   /// Whether fast bodies and bullets are swept (continuous collision); off,
@@ -18944,7 +19045,7 @@ class world {
   static constexpr T max_dt = T(1);
 
 
-  explicit world(const world_settings<T>& settings = {});
+  explicit world(const settings_type& settings = {});
   // Declared here and defaulted after the class, so that an explicit
   // instantiation declaration (IMPULSE_DECLARE_WORLD) keeps them, and all
   // that the members' destructors instantiate, out of other translation units.
@@ -18956,8 +19057,8 @@ class world {
 
   // ---- settings ----
 
-  [[nodiscard]] const world_settings<T>& settings() const noexcept { return state_.settings; }
-  void set_settings(const world_settings<T>& settings) {
+  [[nodiscard]] const settings_type& settings() const noexcept { return state_.settings; }
+  void set_settings(const settings_type& settings) {
     settings.validate();
     state_.settings = settings;
   }
@@ -18965,7 +19066,7 @@ class world {
   /// max_linear_speed per second (world_settings::validate).
   void set_gravity(const vec3<T>& g) {
     if (!is_finite(g)) detail::report_error(error_code::non_finite, "world::set_gravity: gravity is not finite");
-    world_settings<T> changed = state_.settings;
+    settings_type changed = state_.settings;
     changed.gravity = g;
     changed.validate();
     state_.settings = changed;
@@ -19366,7 +19467,7 @@ class world {
 // only parses. Those kept in the class are short accessors.
 
 template <class Config>
-world<Config>::world(const world_settings<T>& settings) {
+world<Config>::world(const settings_type& settings) {
   settings.validate();
   state_.settings = settings;
 }

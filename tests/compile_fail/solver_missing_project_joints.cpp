@@ -7,6 +7,7 @@
 
 template <impulse::scalar_type T>
 struct no_projection {
+  using settings_type = impulse::solver_settings<T>;
   static constexpr bool moves_bodies = false;
   static T impulse_step(const impulse::solver_settings<T>&, T dt) { return dt; }
   void prepare(std::span<const impulse::solver_body<T>>, std::span<impulse::contact_constraint<T>>) {}

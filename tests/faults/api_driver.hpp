@@ -59,7 +59,7 @@ std::uint64_t state_hash(const World& w) {
     mix(id.index), mix(id.generation), mix(w.is_broken(id)), mix(d.enable_motor), mix(d.motor_speed);
     mix(d.max_motor_force), mix(d.enable_limit), mix(d.lower), mix(d.upper);
   }
-  const impulse::world_settings<T>& s = w.settings();
+  const auto& s = w.settings();
   mix_vec(s.gravity), mix(s.fixed_dt), mix(s.max_linear_speed), mix(s.max_angular_speed);
   mix(s.max_contact_pairs), mix(s.solver.velocity_iterations), mix(s.solver.speculative_distance);
   mix(w.time()), mix(w.step_count());
@@ -419,7 +419,7 @@ class api_driver {
 
   template <class Next>
   void settings(Next& next) {
-    impulse::world_settings<T> s = world_.settings();
+    auto s = world_.settings();
     switch (next() % 7) {
       case 0: world_.set_gravity(vector(next, T(20))); return;
       case 1: s.max_linear_speed = hostile_ ? real(next, T(100)) : T(30) + std::abs(real(next, T(1e4))); break;

@@ -89,7 +89,7 @@ template <class World>
 typename World::scalar widest_gap(int links, masses kind, bool exact, int steps, bool hinges) {
   using T = typename World::scalar;
   World w;
-  world_settings<T> settings = w.settings();
+  auto settings = w.settings();
   settings.solver.exact_joint_trees = exact;
   w.set_settings(settings);
   body_def<T> pivot;

@@ -85,7 +85,7 @@ struct joined_pair {
   joint_id joint;
 
   joined_pair(joint_type type, bool exact_trees) {
-    world_settings<T> settings;
+    typename World::settings_type settings;
     settings.solver.exact_joint_trees = exact_trees;
     w.set_settings(settings);
     a = add_box(w, vec3<T>{0, 5, 0});

@@ -119,9 +119,12 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   };
   CHECK(s.has_settings);
   CHECK(s.duration == 5);
-  CHECK(s.settings.solver.velocity_iterations == 20);
-  CHECK(s.settings.solver.rest_depth == doctest::Approx(0.000003));
-  CHECK(s.settings.solver.exact_joint_trees);
+  CHECK(s.settings.solver.sequential_impulse.velocity_iterations == 20);
+  CHECK(s.settings.solver.soft_step.velocity_iterations == 20);
+  CHECK(s.settings.solver.sequential_impulse.rest_depth == doctest::Approx(0.000003));
+  CHECK(s.settings.solver.soft_step.substeps == 4);
+  CHECK(s.settings.solver.soft_step.contact_hertz == 30);
+  CHECK(s.settings.solver.sequential_impulse.exact_joint_trees);
   CHECK(s.bodies.size() == 36);
   CHECK(std::holds_alternative<plane<double>>(*body("ground").shape));
   CHECK(std::get<triangle_mesh<double>>(*body("ramp").shape).triangle_count() == 2);
@@ -261,6 +264,25 @@ TEST_CASE("each broken scene document is refused naming the JSON path and what w
     CAPTURE(message);
     CHECK(message.find(c.message) != std::string::npos);
   }
+}
+
+TEST_CASE("a scene's solver numbers reach the world of either solver: the shared ones both, each solver's own its own") {
+  const io::scene<float> scene = io::parse_scene<float>(R"({
+    "impulse_scene": 1,
+    "settings": { "solver": { "velocity_iterations": 7, "substeps": 8, "rest_depth": 0.00001 } },
+    "bodies": [] })",
+                                                         "solver.json");
+  world<awake> sequential;
+  (void)io::add_scene(sequential, scene);
+  CHECK(sequential.settings().solver.velocity_iterations == 7);
+  CHECK(sequential.settings().solver.rest_depth == doctest::Approx(0.00001f));
+  struct soft : awake {
+    using solver = solver::soft_step;
+  };
+  world<soft> substepping;
+  (void)io::add_scene(substepping, scene);
+  CHECK(substepping.settings().solver.velocity_iterations == 7);
+  CHECK(substepping.settings().solver.substeps == 8);
 }
 
 TEST_CASE("a scene the world refuses leaves the world as it was") {

@@ -98,7 +98,7 @@ template <class World>
 typename World::scalar chain_gap(bool held_out, int steps, bool exact = true) {
   using T = typename World::scalar;
   World w;
-  world_settings<T> settings = w.settings();
+  auto settings = w.settings();
   settings.solver.exact_joint_trees = exact;
   w.set_settings(settings);
   body_id above = add_pivot(w, {0, 20, 0});
@@ -247,7 +247,8 @@ TEST_CASE_TEMPLATE("a body on a vertical slider falls at g along it and does not
   for (int i = 0; i < 60; ++i) w.step(::test::step_dt<T>);
   // The free fall of symplectic Euler over n steps (soft_step: substeps)
   // of h: y = −g·h²·n(n+1)/2.
-  const T n = T(60) * (World::solver_type::moves_bodies ? T(w.settings().solver.substeps) : T(1));
+  T n = T(60);
+  if constexpr (World::solver_type::moves_bodies) n *= T(w.settings().solver.substeps);
   const T fallen = T(-9.81) / (n * n) * n * (n + 1) / T(2);
   CHECK(std::abs(w.joint_position(slider) - fallen) < T(2e-3));
   const vec3<T> at = w.body(block).position;

@@ -94,7 +94,7 @@ TEST_CASE("soft step: a box spun about its intermediate axis never gains energy 
     using solver = impulse::solver::soft_step;
   };
   const auto energy_lost = [](double dt) {
-    world_settings<double> settings;
+    world<double_soft>::settings_type settings;
     settings.gravity = {0, 0, 0};
     world<double_soft> w(settings);
     body_def<double> d;

@@ -1,31 +1,50 @@
 // A solver written outside the library plugs into the world through the
 // contact_solver concept (dynamics/contact_solver.hpp): a plain projected
 // Gauss–Seidel over the contacts' normal rows and friction at each patch,
-// with Baumgarte position correction, no warm start and no joints. The world builds its
-// bodies and contacts, calls it, and moves the bodies by the integrator;
-// nothing in the world knows which solver it runs.
+// with Baumgarte position correction, no warm start and no joints. Its
+// settings type adds the correction's two numbers to the shared ones, and
+// a world of it holds them. The world builds its bodies and contacts,
+// calls it, and moves the bodies by the integrator; nothing in the world
+// knows which solver it runs.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <type_traits>
 
+#include "../error_code_of.hpp"
 #include "scenes.hpp"
 
 using namespace impulse;
+using impulse::test::error_code_of;
 
 namespace {
+
+/// Its settings: the shared numbers, and the Baumgarte term's.
+template <scalar_type T>
+struct baumgarte_settings : solver_settings<T> {
+  T fraction = T(0.2);  ///< of the depth past the slop pushed out per step
+  T slop = T(0.005);    ///< m of depth left alone
+
+  void validate() const {
+    solver_settings<T>::validate();
+    if (!(fraction >= T(0) && fraction <= T(1)) || !(slop >= T(0)))
+      impulse::detail::report_error(error_code::invalid_parameter, "baumgarte_settings: fraction in [0, 1], slop >= 0");
+  }
+};
 
 /// Projected Gauss–Seidel, as a user would write it from the public types.
 template <scalar_type T>
 struct plain_gauss_seidel {
+  using settings_type = baumgarte_settings<T>;
   static constexpr bool moves_bodies = false;
-  static T impulse_step(const solver_settings<T>&, T dt) noexcept { return dt; }
+  static T impulse_step(const settings_type&, T dt) noexcept { return dt; }
 
   void prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>) const noexcept {}
 
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>>, const solver_settings<T>& settings, T dt) const noexcept {
+             std::span<joint_constraint<T>>, const settings_type& settings, T dt) const noexcept {
     for (solver_body<T>& b : bodies) {
       b.linear_velocity += b.force_linear;
       b.angular_velocity += b.force_angular;
@@ -40,8 +59,8 @@ struct plain_gauss_seidel {
         solver_body<T>& b = bodies[c.body_b];
         for (int p = 0; p < c.count; ++p) {
           contact_constraint_point<T>& point = c.points[p];
-          // Push out a fifth of the depth past 5 mm each step.
-          const T push = T(0.2) * std::max(point.depth - T(0.005), T(0)) / dt;
+          // Push out a fraction of the depth past the slop each step.
+          const T push = settings.fraction * std::max(point.depth - settings.slop, T(0)) / dt;
           const T lambda = row(a, b, point.offset_a, point.offset_b, c.normal, push);
           const T total = std::max(point.normal_impulse + lambda, T(0));
           apply(a, b, point.offset_a, point.offset_b, c.normal, total - point.normal_impulse);
@@ -63,7 +82,7 @@ struct plain_gauss_seidel {
       }
   }
 
-  void project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, const solver_settings<T>&) const noexcept {}
+  void project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, const settings_type&) const noexcept {}
 
  private:
   /// The impulse along `d` that brings the points' relative velocity along
@@ -156,4 +175,27 @@ TEST_CASE_TEMPLATE("a user's own solver holds a box on a 30 degree incline where
       CHECK(std::abs(gained - a) < T(0.001) * a);
     }
   }
+}
+
+TEST_CASE("a user's solver's own settings are the world's: validated with them, and read by the solver") {
+  using World = world<user_config>;
+  static_assert(std::is_same_v<World::settings_type::solver_settings_type, baumgarte_settings<float>>);
+  // A box resting 3 cm deep: with the slop at 5 cm the solver leaves it
+  // there, at the default 5 mm it pushes the box out.
+  const auto rest_after = [](float slop) {
+    World::settings_type settings;
+    settings.solver.slop = slop;
+    World w(settings);
+    ::test::add_ground(w);
+    const body_id box = ::test::add_cube(w, {0, 0.47f, 0});
+    ::test::run(w, 60);
+    return w.body(box).position.y;
+  };
+  CHECK(rest_after(0.05f) < 0.475f);
+  CHECK(rest_after(0.005f) > 0.49f);
+  World w;
+  World::settings_type bad;
+  bad.solver.fraction = 2;
+  CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  CHECK(w.settings().solver.fraction == 0.2f);
 }

@@ -22,8 +22,13 @@
 //                                      after the bodies have moved: their
 //                                      poses put back onto their joints
 //
-// and reads two constants of its type:
+// and reads three members of its type:
 //
+//   settings_type       its numbers: solver_settings<T> (those the world
+//                       reads too: the speculative distance, the slop,
+//                       warm starting) or a type derived from it with the
+//                       solver's own (solver_settings.hpp); a world's
+//                       settings hold one (world_settings<T, settings_type>)
 //   moves_bodies        false: the world moves the bodies with the solved
 //                       velocities plus bias_linear and bias_angular (the
 //                       position pass's pseudo-velocities), by the
@@ -52,29 +57,39 @@ namespace impulse {
 // one that is missing.
 namespace detail {
 template <class S, class T>
+concept solver_has_settings = requires { typename S::settings_type; } &&
+                              std::derived_from<typename S::settings_type, solver_settings<T>> &&
+                              std::copyable<typename S::settings_type> &&
+                              std::default_initializable<typename S::settings_type> &&
+                              requires(const typename S::settings_type& s) { s.validate(); };
+template <class S, class T>
 concept solver_prepares = requires(S& s, std::span<const solver_body<T>> bodies,
                                    std::span<contact_constraint<T>> contacts) { s.prepare(bodies, contacts); };
 template <class S, class T>
 concept solver_solves = requires(S& s, std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-                                 std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+                                 std::span<joint_constraint<T>> joints, const typename S::settings_type& settings,
+                                 T dt) {
   s.solve(bodies, contacts, joints, settings, dt);
 };
 template <class S, class T>
 concept solver_projects = requires(S& s, std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                                   const solver_settings<T>& settings) { s.project_joints(bodies, joints, settings); };
+                                   const typename S::settings_type& settings) {
+  s.project_joints(bodies, joints, settings);
+};
 template <class S>
 concept solver_says_who_moves = requires {
   { S::moves_bodies } -> std::convertible_to<bool>;
 };
 template <class S, class T>
-concept solver_has_impulse_step = requires(const solver_settings<T>& settings, T dt) {
+concept solver_has_impulse_step = requires(const typename S::settings_type& settings, T dt) {
   { S::impulse_step(settings, dt) } -> std::same_as<T>;
 };
 }  // namespace detail
 
 /// Quiet form: true when S is a contact solver over scalar T.
 template <class S, class T>
-concept contact_solver = std::default_initializable<S> && std::copyable<S> && detail::solver_prepares<S, T> &&
+concept contact_solver = std::default_initializable<S> && std::copyable<S> && detail::solver_has_settings<S, T> &&
+                         detail::solver_prepares<S, T> &&
                          detail::solver_solves<S, T> && detail::solver_projects<S, T> &&
                          detail::solver_says_who_moves<S> && detail::solver_has_impulse_step<S, T>;
 
@@ -84,17 +99,22 @@ template <class S, class T>
 consteval bool check_contact_solver() {
   static_assert(std::default_initializable<S> && std::copyable<S>,
                 "impulse solver: must be default constructible and copyable (a world is a value)");
-  static_assert(detail::solver_prepares<S, T>,
-                "impulse solver: missing `prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>)`");
-  static_assert(detail::solver_solves<S, T>,
-                "impulse solver: missing `solve(std::span<solver_body<T>>, std::span<contact_constraint<T>>, "
-                "std::span<joint_constraint<T>>, const solver_settings<T>&, T dt)`");
-  static_assert(detail::solver_projects<S, T>,
-                "impulse solver: missing `project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, "
-                "const solver_settings<T>&)`");
-  static_assert(detail::solver_says_who_moves<S>, "impulse solver: missing `static constexpr bool moves_bodies`");
-  static_assert(detail::solver_has_impulse_step<S, T>,
-                "impulse solver: missing `static T impulse_step(const solver_settings<T>&, T dt)`");
+  static_assert(detail::solver_has_settings<S, T>,
+                "impulse solver: missing `using settings_type = ...`: solver_settings<T>, or a type derived from it "
+                "with a validate() of its own");
+  if constexpr (detail::solver_has_settings<S, T>) {
+    static_assert(detail::solver_prepares<S, T>,
+                  "impulse solver: missing `prepare(std::span<const solver_body<T>>, std::span<contact_constraint<T>>)`");
+    static_assert(detail::solver_solves<S, T>,
+                  "impulse solver: missing `solve(std::span<solver_body<T>>, std::span<contact_constraint<T>>, "
+                  "std::span<joint_constraint<T>>, const settings_type&, T dt)`");
+    static_assert(detail::solver_projects<S, T>,
+                  "impulse solver: missing `project_joints(std::span<solver_body<T>>, std::span<joint_constraint<T>>, "
+                  "const settings_type&)`");
+    static_assert(detail::solver_says_who_moves<S>, "impulse solver: missing `static constexpr bool moves_bodies`");
+    static_assert(detail::solver_has_impulse_step<S, T>,
+                  "impulse solver: missing `static T impulse_step(const settings_type&, T dt)`");
+  }
   return contact_solver<S, T>;
 }
 

@@ -18,6 +18,9 @@ template <scalar_type T> struct body_spring;
 enum class joint_type : std::uint8_t;
 template <scalar_type T> struct joint_def;
 template <scalar_type T> struct joint_constraint;
+template <scalar_type T> struct solver_settings;
+template <scalar_type T> struct sequential_impulse_settings;
+template <scalar_type T> struct soft_step_settings;
 
 struct body_tag;
 struct spring_tag;

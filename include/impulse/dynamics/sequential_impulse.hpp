@@ -62,10 +62,12 @@ namespace impulse {
 template <scalar_type T>
 class basic_sequential_impulse {
  public:
+  /// Its numbers: the shared ones and its own (solver_settings.hpp).
+  using settings_type = sequential_impulse_settings<T>;
   /// The world moves the bodies after the solve (contact_solver.hpp).
   static constexpr bool moves_bodies = false;
   /// Its impulses act over the whole step.
-  static T impulse_step(const solver_settings<T>&, T dt) noexcept { return dt; }
+  static T impulse_step(const settings_type&, T dt) noexcept { return dt; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -79,7 +81,7 @@ class basic_sequential_impulse {
   /// the contacts of each; project_joints removes their drift once the
   /// bodies have moved.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const T inverse_dt = T(1) / dt;
     for (solver_body<T>& b : bodies) {
       b.linear_velocity += b.force_linear;
@@ -150,7 +152,7 @@ class basic_sequential_impulse {
   /// project_joint), each with a Newton step on the joint trees
   /// (joint_tree.hpp).
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const solver_settings<T>& settings) {
+                      const settings_type& settings) {
     tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
   }
 
@@ -171,7 +173,7 @@ class basic_sequential_impulse {
   /// One manifold's rows, one after another: the manifolds the coloring
   /// left over.
   static void solve_velocity(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings) noexcept {
+                             const settings_type& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     // Friction first, as in the batches (solve above).
@@ -189,7 +191,7 @@ class basic_sequential_impulse {
   /// it within the step but no further. The position pass: to separate at
   /// a fraction of the penetration beyond the slop per step; < 0 when the
   /// point lies within the slop and takes no part.
-  static void row_targets(contact_constraint<T>& c, const solver_settings<T>& settings, T inverse_dt) noexcept {
+  static void row_targets(contact_constraint<T>& c, const settings_type& settings, T inverse_dt) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
       p.gap_speed = p.depth < settings.rest_depth ? (settings.rest_depth - p.depth) * inverse_dt : T(0);
@@ -201,7 +203,7 @@ class basic_sequential_impulse {
   }
 
   static void solve_position(std::span<solver_body<T>> bodies, contact_constraint<T>& c,
-                             const solver_settings<T>& settings) noexcept {
+                             const settings_type& settings) noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];
     for (int sweep = 0; sweep < settings.manifold_sweeps; ++sweep)

@@ -40,10 +40,12 @@ namespace impulse {
 template <scalar_type T>
 class basic_soft_step {
  public:
+  /// Its numbers: the shared ones and its own (solver_settings.hpp).
+  using settings_type = soft_step_settings<T>;
   /// It moves the bodies itself, substep by substep (contact_solver.hpp).
   static constexpr bool moves_bodies = true;
   /// Its impulses are per substep.
-  static T impulse_step(const solver_settings<T>& settings, T dt) noexcept { return dt / T(settings.substeps); }
+  static T impulse_step(const settings_type& settings, T dt) noexcept { return dt / T(settings.substeps); }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -67,7 +69,7 @@ class basic_soft_step {
   /// Velocities are left as solved; world::project_joints then calls
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const solver_settings<T>& settings, T dt) {
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int n = settings.substeps;
     const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
     const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
@@ -125,12 +127,12 @@ class basic_soft_step {
   /// as contacts are: pushed back here too, a hinge resting on its limit
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const solver_settings<T>& settings) {
+                      const settings_type& settings) {
     tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
   }
 
  private:
-  void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const solver_settings<T>& settings,
+  void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const settings_type& settings,
                      const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
     solver_body<T>& b = bodies[c.body_b];

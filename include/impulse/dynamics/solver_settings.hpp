@@ -1,10 +1,15 @@
-// impulse/dynamics/solver_settings.hpp — the contact solver's numbers, in one
-// place, each with its unit and the reason for its value.
+// impulse/dynamics/solver_settings.hpp — the contact solvers' numbers, each
+// with its unit and the reason for its value: solver_settings, the ones the
+// world and every solver read, and each shipped solver's own type, which
+// adds what only that solver reads (sequential_impulse_settings,
+// soft_step_settings). A solver names its type as `settings_type`
+// (contact_solver.hpp), and a world's settings hold that type
+// (world_settings.hpp), so a world has exactly the knobs its solver turns.
 //
 // These are runtime values (docs/architecture.md: iteration counts,
-// restitution and tolerances stay runtime knobs); a world holds one solver_settings and hands
-// it to its solver every step. The defaults are what the hard-case tests
-// (tests/world/) are run with.
+// restitution and tolerances stay runtime knobs); a world holds its
+// solver's settings and hands them to the solver every step. The defaults
+// are what the hard-case tests (tests/world/) are run with.
 #pragma once
 
 #include <cmath>
@@ -40,21 +45,6 @@ struct solver_settings {
   /// with one. sequential_impulse runs the passes on the rows' speeds
   /// (contact_batch.hpp), at little cost.
   int manifold_sweeps = 4;
-  /// Substeps of soft_step (Box2D v3 takes 4).
-  int substeps = 4;
-  /// soft_step: sweeps of the soft rows, and then of the rigid ones (the
-  /// relax pass), per substep. Box2D v3 takes one of each: the substeps,
-  /// not the sweeps, carry the convergence.
-  int substep_iterations = 1;
-  int relax_iterations = 1;
-  /// soft_step: stiffness of the soft contact rows, Hz, capped at a quarter
-  /// of the substep rate (a spring stiffer than that is not resolved by the
-  /// substeps); static contacts take twice it. Box2D v3's 30 Hz.
-  T contact_hertz = T(30);
-  /// soft_step: damping ratio of the soft contact rows. 10 (Box2D v3's)
-  /// is far past critical: a pushed-in contact creeps out without
-  /// overshoot instead of springing out.
-  T contact_damping_ratio = T(10);
 
   /// Penetration left uncorrected, m. Contacts rest this deep, so that a
   /// touching pair keeps its manifold (and its warm-started impulses)
@@ -62,12 +52,6 @@ struct solver_settings {
   /// and Jolt 2 cm; a 10-box tower then stands 5 cm (or 19 cm in Jolt)
   /// lower than its height. 0.5 mm keeps a 20-high stack within a centimetre.
   T linear_slop = T(0.0005);
-  /// Fraction of the penetration beyond the slop removed per step by the
-  /// split-impulse pass (1/s after division by dt). It moves positions
-  /// without adding velocity, so it adds no energy: larger only corrects
-  /// faster. 0.2 corrects 90 % of an error in 10 steps without the
-  /// overshoot a larger fraction shows in deep piles.
-  T position_correction = T(0.2);
   /// Largest correction speed of the position pass (soft_step: of the soft
   /// rows' push), m/s: bodies created
   /// deep inside each other separate over several steps instead of
@@ -78,19 +62,6 @@ struct solver_settings {
   /// Catto, GDC 2014): a body meets the ground on the step it arrives,
   /// with no penetration to correct and no bounce from correcting it.
   T speculative_distance = T(0.02);
-  /// Depth a resting contact is let sink to, m (sequential_impulse): the
-  /// velocity rows let a point approach until it lies this deep (a gap
-  /// closes to it, not to zero). At depth zero a face is on the edge
-  /// between pressing and not, and float rounding of the positions
-  /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
-  /// 10-box tower swayed on that noise, and over 80 s fell at 12, 16 or 26
-  /// iterations and drifted 15 mm at 20, depending on the build. Pressed
-  /// 3 µm in, its top stays within 0.05 mm at 6 to 30 iterations in every
-  /// build (0.016 mm at 10 to 30), and within 0.07 mm standing on a floor
-  /// 60 m up (rounding 3.8 µm there). Deeper costs a tall heavy stack: the
-  /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
-  /// 6.1 mm at zero, 10.7 mm at 10 µm.
-  T rest_depth = T(0.000003);
   /// Approach speed below which a contact is treated as resting and does
   /// not bounce, m/s. Resting contacts approach at about g·dt/2 = 0.08 m/s
   /// under gravity at 60 Hz; bouncing them would make stacks with
@@ -124,30 +95,96 @@ struct solver_settings {
   /// a long chain whips: 2.2 on average at 100 links), linear in the
   /// joints.
   bool exact_joint_trees = true;
+  /// Whether each step starts from the last step's impulses.
+  bool warm_starting = true;
+
+  void validate() const {
+    if (velocity_iterations < 1 || position_iterations < 0 || manifold_sweeps < 1)
+      detail::report_error(error_code::invalid_parameter,
+                           "solver_settings: velocity_iterations and manifold_sweeps must be >= 1, "
+                           "position_iterations >= 0");
+    const T values[] = {linear_slop,     max_correction_speed, speculative_distance, restitution_threshold,
+                        rest_slip_speed, joint_correction};
+    for (const T v : values)
+      if (!std::isfinite(v) || v < T(0))
+        detail::report_error(error_code::invalid_parameter,
+                             "solver_settings: slop, correction, speeds and distances must be finite and >= 0");
+    if (joint_correction > T(1))
+      detail::report_error(error_code::invalid_parameter, "solver_settings: joint_correction must lie in [0, 1]");
+  }
+};
+
+/// sequential_impulse's settings: the shared numbers, and those of its
+/// split-impulse position pass and its resting depth.
+template <scalar_type T>
+struct sequential_impulse_settings : solver_settings<T> {
+  /// Fraction of the penetration beyond the slop removed per step by the
+  /// split-impulse pass (1/s after division by dt). It moves positions
+  /// without adding velocity, so it adds no energy: larger only corrects
+  /// faster. 0.2 corrects 90 % of an error in 10 steps without the
+  /// overshoot a larger fraction shows in deep piles.
+  T position_correction = T(0.2);
+  /// Depth a resting contact is let sink to, m (sequential_impulse): the
+  /// velocity rows let a point approach until it lies this deep (a gap
+  /// closes to it, not to zero). At depth zero a face is on the edge
+  /// between pressing and not, and float rounding of the positions
+  /// (0.5 µm at 5 m) chose each step which of its points bore the load: a
+  /// 10-box tower swayed on that noise, and over 80 s fell at 12, 16 or 26
+  /// iterations and drifted 15 mm at 20, depending on the build. Pressed
+  /// 3 µm in, its top stays within 0.05 mm at 6 to 30 iterations in every
+  /// build (0.016 mm at 10 to 30), and within 0.07 mm standing on a floor
+  /// 60 m up (rounding 3.8 µm there). Deeper costs a tall heavy stack: the
+  /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
+  /// 6.1 mm at zero, 10.7 mm at 10 µm.
+  T rest_depth = T(0.000003);
+
+  void validate() const {
+    solver_settings<T>::validate();
+    if (!std::isfinite(position_correction) || !std::isfinite(rest_depth) || position_correction < T(0) ||
+        position_correction > T(1) || rest_depth < T(0))
+      detail::report_error(error_code::invalid_parameter,
+                           "sequential_impulse_settings: position_correction must lie in [0, 1], rest_depth be "
+                           "finite and >= 0");
+  }
+};
+
+/// soft_step's settings: the shared numbers, and its substeps and the
+/// softness of its rows. velocity_iterations counts the sweeps of its
+/// restitution pass only: the substeps, not the iterations, carry its
+/// convergence (substep_iterations counts its sweeps per substep).
+template <scalar_type T>
+struct soft_step_settings : solver_settings<T> {
+  /// Substeps of soft_step (Box2D v3 takes 4).
+  int substeps = 4;
+  /// soft_step: sweeps of the soft rows, and then of the rigid ones (the
+  /// relax pass), per substep. Box2D v3 takes one of each: the substeps,
+  /// not the sweeps, carry the convergence.
+  int substep_iterations = 1;
+  int relax_iterations = 1;
+  /// soft_step: stiffness of the soft contact rows, Hz, capped at a quarter
+  /// of the substep rate (a spring stiffer than that is not resolved by the
+  /// substeps); static contacts take twice it. Box2D v3's 30 Hz.
+  T contact_hertz = T(30);
+  /// soft_step: damping ratio of the soft contact rows. 10 (Box2D v3's)
+  /// is far past critical: a pushed-in contact creeps out without
+  /// overshoot instead of springing out.
+  T contact_damping_ratio = T(10);
   /// soft_step: stiffness of the joints' rows, Hz, capped at a quarter of
   /// the substep rate like contact_hertz, and their damping ratio (Box2D
   /// v3's joint softness: 60 Hz and 2, i.e. twice its contact stiffness).
   T joint_hertz = T(60);
   T joint_damping_ratio = T(2);
-  /// Whether each step starts from the last step's impulses.
-  bool warm_starting = true;
 
   void validate() const {
-    if (velocity_iterations < 1 || position_iterations < 0 || substeps < 1 || manifold_sweeps < 1 ||
-        substep_iterations < 1 || relax_iterations < 0)
+    solver_settings<T>::validate();
+    if (substeps < 1 || substep_iterations < 1 || relax_iterations < 0)
       detail::report_error(error_code::invalid_parameter,
-                           "solver_settings: velocity_iterations, manifold_sweeps, substeps and "
-                           "substep_iterations must be >= 1, position_iterations and relax_iterations >= 0");
-    const T values[] = {linear_slop,           position_correction, max_correction_speed, speculative_distance,
-                        restitution_threshold, rest_slip_speed,     contact_hertz,        contact_damping_ratio,
-                        rest_depth,            joint_correction,    joint_hertz,          joint_damping_ratio};
+                           "soft_step_settings: substeps and substep_iterations must be >= 1, relax_iterations >= 0");
+    const T values[] = {contact_hertz, contact_damping_ratio, joint_hertz, joint_damping_ratio};
     for (const T v : values)
       if (!std::isfinite(v) || v < T(0))
         detail::report_error(error_code::invalid_parameter,
-                             "solver_settings: slop, correction, speeds and distances must be finite and >= 0");
-    if (position_correction > T(1) || joint_correction > T(1))
-      detail::report_error(error_code::invalid_parameter,
-                           "solver_settings: position_correction and joint_correction must lie in [0, 1]");
+                             "soft_step_settings: stiffnesses and damping ratios must be finite and >= 0");
   }
 };
 

@@ -151,7 +151,12 @@ scene_ids add_scene(World& world, const scene<typename World::scalar>& s) {
       ids.joints.push_back(id);
       if (!j.name.empty()) ids.joint_names.emplace(j.name, id);
     }
-    if (s.has_settings) world.set_settings(s.settings);
+    if (s.has_settings) {
+      typename World::settings_type settings;
+      static_cast<impulse::detail::world_settings_base<T>&>(settings) = s.settings;
+      settings.solver = s.settings.solver.template for_solver<typename World::settings_type::solver_settings_type>();
+      world.set_settings(settings);
+    }
   } catch (const invalid_argument& e) {
     world.restore(before);
     throw scene_error(s.file, at ? *at : std::string(), e.what(), e.code());

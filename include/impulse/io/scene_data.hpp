@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -131,12 +132,40 @@ struct particle_scene {
   std::vector<particle> initial;
 };
 
+/// A scene's solver numbers, for whichever solver its world will have: a
+/// file may set the shared ones (solver_settings) and any shipped solver's
+/// own, and add_scene hands the world those of its solver (for_solver).
+template <scalar_type T>
+struct scene_solver_settings {
+  sequential_impulse_settings<T> sequential_impulse{};
+  soft_step_settings<T> soft_step{};
+
+  void validate() const {
+    sequential_impulse.validate();
+    soft_step.validate();
+  }
+  /// The numbers for a world whose solver reads S: the shipped solvers'
+  /// own; for another solver's type, the shared numbers in its defaults.
+  template <class S>
+  [[nodiscard]] S for_solver() const {
+    if constexpr (std::is_same_v<S, sequential_impulse_settings<T>>) {
+      return sequential_impulse;
+    } else if constexpr (std::is_same_v<S, soft_step_settings<T>>) {
+      return soft_step;
+    } else {
+      S out{};
+      static_cast<solver_settings<T>&>(out) = sequential_impulse;
+      return out;
+    }
+  }
+};
+
 /// A scene read from a file: checked, and not yet in any world.
 template <scalar_type T>
 struct scene {
   std::string file;
   /// The world's settings: the defaults, with what the file's "settings" set.
-  world_settings<T> settings{};
+  world_settings<T, scene_solver_settings<T>> settings{};
   bool has_settings = false;
   /// How long the scene is meant to run, s (0: the file does not say).
   T duration = T(0);

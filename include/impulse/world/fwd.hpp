@@ -7,7 +7,7 @@
 namespace impulse {
 
 template <scalar_type T> struct body_def;
-template <scalar_type T> struct world_settings;
+template <scalar_type T, class SolverSettings = sequential_impulse_settings<T>> struct world_settings;
 template <scalar_type T> struct world_ray_hit;
 struct contact_event;
 template <scalar_type T> struct joint_broken_event;

@@ -60,6 +60,7 @@ class world {
   using broad_phase_type = typename state_type::broad_phase_type;
   using solver_policy = typename detail::world_solver<Config>::type;
   using solver_type = typename solver_policy::template type<T>;
+  using settings_type = typename state_type::settings_type;  ///< world_settings with its solver's
   using integrator = typename Config::integrator;
   static constexpr bool sleeping = detail::world_sleeping<Config>();
   /// Whether fast bodies and bullets are swept (continuous collision); off,
@@ -72,7 +73,7 @@ class world {
   static constexpr T max_dt = T(1);
 
 
-  explicit world(const world_settings<T>& settings = {});
+  explicit world(const settings_type& settings = {});
   // Declared here and defaulted after the class, so that an explicit
   // instantiation declaration (IMPULSE_DECLARE_WORLD) keeps them, and all
   // that the members' destructors instantiate, out of other translation units.
@@ -84,8 +85,8 @@ class world {
 
   // ---- settings ----
 
-  [[nodiscard]] const world_settings<T>& settings() const noexcept { return state_.settings; }
-  void set_settings(const world_settings<T>& settings) {
+  [[nodiscard]] const settings_type& settings() const noexcept { return state_.settings; }
+  void set_settings(const settings_type& settings) {
     settings.validate();
     state_.settings = settings;
   }
@@ -93,7 +94,7 @@ class world {
   /// max_linear_speed per second (world_settings::validate).
   void set_gravity(const vec3<T>& g) {
     if (!is_finite(g)) detail::report_error(error_code::non_finite, "world::set_gravity: gravity is not finite");
-    world_settings<T> changed = state_.settings;
+    settings_type changed = state_.settings;
     changed.gravity = g;
     changed.validate();
     state_.settings = changed;
@@ -494,7 +495,7 @@ class world {
 // only parses. Those kept in the class are short accessors.
 
 template <class Config>
-world<Config>::world(const world_settings<T>& settings) {
+world<Config>::world(const settings_type& settings) {
   settings.validate();
   state_.settings = settings;
 }

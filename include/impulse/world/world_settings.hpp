@@ -1,5 +1,5 @@
 // impulse/world/world_settings.hpp — a world's runtime settings (the
-// compile-time ones are in its config): gravity, the solver's settings, the
+// compile-time ones are in its config): gravity, its solver's settings, the
 // fixed step, sleeping, contact reuse, continuous collision, and the limits
 // bad input is refused at.
 #pragma once
@@ -12,14 +12,16 @@
 #include "../core/error.hpp"
 #include "../dynamics/solver_settings.hpp"
 #include "../math/vec3.hpp"
+#include "fwd.hpp"
 
 namespace impulse {
 
-/// The world's runtime settings (the compile-time ones are in its config).
+namespace detail {
+
+/// Every runtime setting of a world but its solver's: world_settings below.
 template <scalar_type T>
-struct world_settings {
+struct world_settings_base {
   vec3<T> gravity{T(0), T(-9.81), T(0)};  ///< m/s²
-  solver_settings<T> solver{};
   /// The step advance() takes, s: physics at a fixed rate whatever the
   /// frame rate, so that a scene behaves the same on every machine.
   T fixed_dt = T(1) / T(60);
@@ -92,7 +94,6 @@ struct world_settings {
 
   void validate() const {
     if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "world_settings: gravity is not finite");
-    solver.validate();
     if (!(fixed_dt > T(0) && fixed_dt <= T(1)))
       detail::report_error(error_code::invalid_parameter, "world_settings: fixed_dt must be positive and at most 1 s");
     if (max_steps_per_advance < 1)
@@ -126,6 +127,25 @@ struct world_settings {
     if (!(length_squared(gravity) <= max_linear_speed * max_linear_speed))
       detail::report_error(error_code::invalid_parameter,
                            "world_settings: gravity must be at most max_linear_speed per second");
+  }
+};
+
+}  // namespace detail
+
+/// The world's runtime settings (the compile-time ones are in its config):
+/// those above, and its solver's (solver_settings.hpp): a world<Config>
+/// holds world_settings<T, its solver's settings_type>, its settings_type,
+/// so a soft_step world has soft_step's knobs and a sequential_impulse
+/// world has its own. The default is sequential_impulse's, the default
+/// config's solver.
+template <scalar_type T, class SolverSettings>
+struct world_settings : detail::world_settings_base<T> {
+  using solver_settings_type = SolverSettings;
+  SolverSettings solver{};
+
+  void validate() const {
+    detail::world_settings_base<T>::validate();
+    solver.validate();
   }
 };
 

@@ -113,29 +113,29 @@ class scene_parser {
 
   // ---- settings ----
 
-  world_settings<T> settings(const json_at& at) {
+  world_settings<T, scene_solver_settings<T>> settings(const json_at& at) {
     r_.object(at, {"gravity", "time_step", "max_steps_per_advance", "sleep_linear_speed", "sleep_angular_speed",
                    "sleep_time", "contact_reuse_distance", "contact_reuse_angle", "ccd_motion_fraction", "ccd_gap",
                    "max_linear_speed", "max_angular_speed", "max_coordinate", "max_joint_lever", "max_contact_pairs",
                    "solver"});
-    world_settings<T> s;
+    world_settings<T, scene_solver_settings<T>> s;
     if (at.has("gravity")) s.gravity = r_.vector(at["gravity"]);
     if (at.has("time_step")) s.fixed_dt = r_.positive(at["time_step"]);
     if (at.has("max_steps_per_advance")) s.max_steps_per_advance = int(r_.integer(at["max_steps_per_advance"], 1, 1000));
     if (at.has("max_contact_pairs"))
       s.max_contact_pairs = std::uint32_t(r_.integer(at["max_contact_pairs"], 1, std::int64_t(0xffffffff)));
-    const std::pair<const char*, T world_settings<T>::*> numbers[] = {
-        {"sleep_linear_speed", &world_settings<T>::sleep_linear_speed},
-        {"sleep_angular_speed", &world_settings<T>::sleep_angular_speed},
-        {"sleep_time", &world_settings<T>::sleep_time},
-        {"contact_reuse_distance", &world_settings<T>::contact_reuse_distance},
-        {"contact_reuse_angle", &world_settings<T>::contact_reuse_angle},
-        {"ccd_motion_fraction", &world_settings<T>::ccd_motion_fraction},
-        {"ccd_gap", &world_settings<T>::ccd_gap},
-        {"max_linear_speed", &world_settings<T>::max_linear_speed},
-        {"max_angular_speed", &world_settings<T>::max_angular_speed},
-        {"max_coordinate", &world_settings<T>::max_coordinate},
-        {"max_joint_lever", &world_settings<T>::max_joint_lever}};
+    const std::pair<const char*, T impulse::detail::world_settings_base<T>::*> numbers[] = {
+        {"sleep_linear_speed", &impulse::detail::world_settings_base<T>::sleep_linear_speed},
+        {"sleep_angular_speed", &impulse::detail::world_settings_base<T>::sleep_angular_speed},
+        {"sleep_time", &impulse::detail::world_settings_base<T>::sleep_time},
+        {"contact_reuse_distance", &impulse::detail::world_settings_base<T>::contact_reuse_distance},
+        {"contact_reuse_angle", &impulse::detail::world_settings_base<T>::contact_reuse_angle},
+        {"ccd_motion_fraction", &impulse::detail::world_settings_base<T>::ccd_motion_fraction},
+        {"ccd_gap", &impulse::detail::world_settings_base<T>::ccd_gap},
+        {"max_linear_speed", &impulse::detail::world_settings_base<T>::max_linear_speed},
+        {"max_angular_speed", &impulse::detail::world_settings_base<T>::max_angular_speed},
+        {"max_coordinate", &impulse::detail::world_settings_base<T>::max_coordinate},
+        {"max_joint_lever", &impulse::detail::world_settings_base<T>::max_joint_lever}};
     for (const auto& [key, member] : numbers)
       if (at.has(key)) s.*member = r_.non_negative(at[key]);
     if (at.has("solver")) s.solver = solver(at["solver"]);
@@ -143,41 +143,56 @@ class scene_parser {
     return s;
   }
 
-  solver_settings<T> solver(const json_at& at) {
+  /// The "solver" object: the shared numbers go to every shipped solver's
+  /// settings, each solver's own to its settings alone.
+  scene_solver_settings<T> solver(const json_at& at) {
     using S = solver_settings<T>;
-    const std::pair<const char*, int S::*> integers[] = {
-        {"velocity_iterations", &S::velocity_iterations}, {"position_iterations", &S::position_iterations},
-        {"manifold_sweeps", &S::manifold_sweeps},         {"substeps", &S::substeps},
-        {"substep_iterations", &S::substep_iterations},   {"relax_iterations", &S::relax_iterations}};
-    const std::pair<const char*, T S::*> numbers[] = {
-        {"contact_hertz", &S::contact_hertz},
-        {"contact_damping_ratio", &S::contact_damping_ratio},
-        {"linear_slop", &S::linear_slop},
-        {"position_correction", &S::position_correction},
-        {"max_correction_speed", &S::max_correction_speed},
-        {"speculative_distance", &S::speculative_distance},
-        {"rest_depth", &S::rest_depth},
-        {"restitution_threshold", &S::restitution_threshold},
-        {"rest_slip_speed", &S::rest_slip_speed},
-        {"joint_correction", &S::joint_correction},
-        {"joint_hertz", &S::joint_hertz},
-        {"joint_damping_ratio", &S::joint_damping_ratio}};
+    using SI = sequential_impulse_settings<T>;
+    using SS = soft_step_settings<T>;
+    scene_solver_settings<T> out{};
+    const auto shared = [&](auto member, auto value) {
+      out.sequential_impulse.*member = value;
+      out.soft_step.*member = value;
+    };
+    const std::pair<const char*, int S::*> integers[] = {{"velocity_iterations", &S::velocity_iterations},
+                                                         {"position_iterations", &S::position_iterations},
+                                                         {"manifold_sweeps", &S::manifold_sweeps}};
+    const std::pair<const char*, int SS::*> soft_integers[] = {{"substeps", &SS::substeps},
+                                                               {"substep_iterations", &SS::substep_iterations},
+                                                               {"relax_iterations", &SS::relax_iterations}};
+    const std::pair<const char*, T S::*> numbers[] = {{"linear_slop", &S::linear_slop},
+                                                      {"max_correction_speed", &S::max_correction_speed},
+                                                      {"speculative_distance", &S::speculative_distance},
+                                                      {"restitution_threshold", &S::restitution_threshold},
+                                                      {"rest_slip_speed", &S::rest_slip_speed},
+                                                      {"joint_correction", &S::joint_correction}};
+    const std::pair<const char*, T SI::*> sequential_numbers[] = {{"position_correction", &SI::position_correction},
+                                                                  {"rest_depth", &SI::rest_depth}};
+    const std::pair<const char*, T SS::*> soft_numbers[] = {{"contact_hertz", &SS::contact_hertz},
+                                                            {"contact_damping_ratio", &SS::contact_damping_ratio},
+                                                            {"joint_hertz", &SS::joint_hertz},
+                                                            {"joint_damping_ratio", &SS::joint_damping_ratio}};
     const std::pair<const char*, bool S::*> flags[] = {{"exact_joint_trees", &S::exact_joint_trees},
                                                        {"warm_starting", &S::warm_starting}};
     if (!at.value.is_object()) r_.fail_expected(at, "an object");
-    S s{};
     for (const auto& item : at.value.items()) {
       const json_at v = at[item.key()];
       bool known = false;
       for (const auto& [key, member] : integers)
-        if (item.key() == key) s.*member = int(r_.integer(v, 0, 1000)), known = true;
+        if (item.key() == key) shared(member, int(r_.integer(v, 0, 1000))), known = true;
+      for (const auto& [key, member] : soft_integers)
+        if (item.key() == key) out.soft_step.*member = int(r_.integer(v, 0, 1000)), known = true;
       for (const auto& [key, member] : numbers)
-        if (item.key() == key) s.*member = r_.non_negative(v), known = true;
+        if (item.key() == key) shared(member, r_.non_negative(v)), known = true;
+      for (const auto& [key, member] : sequential_numbers)
+        if (item.key() == key) out.sequential_impulse.*member = r_.non_negative(v), known = true;
+      for (const auto& [key, member] : soft_numbers)
+        if (item.key() == key) out.soft_step.*member = r_.non_negative(v), known = true;
       for (const auto& [key, member] : flags)
-        if (item.key() == key) s.*member = r_.boolean(v), known = true;
+        if (item.key() == key) shared(member, r_.boolean(v)), known = true;
       if (!known) r_.fail(v, "unknown solver setting \"" + item.key() + "\" (docs/scenes.md lists them)");
     }
-    return s;
+    return out;
   }
 
   // ---- materials and shapes ----

@@ -60,7 +60,7 @@ struct contact_update {
   void update_contacts() {
     const std::span<const proxy_pair> pairs = state.broad.pairs();
     std::vector<contact_record<T>>& old = state.contacts;
-    const world_settings<T>& s = state.settings;
+    const auto& s = state.settings;
     const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
                               std::cos(s.contact_reuse_angle / T(2))};
     // With the broad phase's pairs as they were, the records are too (but

@@ -49,7 +49,7 @@ struct island_update {
   /// for sleep_time goes to sleep.
   void sleep(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    const world_settings<T>& s = state.settings;
+    const auto& s = state.settings;
     for (const std::uint32_t i : state.awake_bodies) {
       body_record<T>& r = bodies[i];
       if (r.body.type != body_type::dynamic) continue;

@@ -187,7 +187,8 @@ struct world_state {
   using broad_phase_type = typename world_broadphase<Config>::type::template type<T>;
   using dispatcher = narrowphase::dispatcher<shapes, T>;
 
-  world_settings<T> settings{};
+  using settings_type = typename world_solver_settings<Config>::type;
+  settings_type settings{};
   slot_map<body_record<T>, body_id> bodies;
   slot_map<joint_record<T>, joint_id> joints;
   /// The body pairs joined without collide_connected (pair_key), sorted,

@@ -20,6 +20,7 @@
 #include "../../shapes/plane.hpp"
 #include "../../shapes/sphere.hpp"
 #include "../../shapes/triangle_mesh.hpp"
+#include "../world_settings.hpp"
 
 namespace impulse::detail {
 
@@ -70,6 +71,22 @@ consteval bool world_ccd() {
     return false;
   }
 }
+
+/// The settings a world holds: world_settings with its solver's
+/// settings_type (solver_settings<T> while the config check reports a
+/// solver without one, so that only its message is shown).
+template <class C>
+struct world_solver_settings {
+  using T = typename C::scalar;
+  using solver = typename world_solver<C>::type::template type<T>;
+  using type = world_settings<T, solver_settings<T>>;
+};
+template <class C>
+  requires requires { typename world_solver<C>::type::template type<typename C::scalar>::settings_type; }
+struct world_solver_settings<C> {
+  using T = typename C::scalar;
+  using type = world_settings<T, typename world_solver<C>::type::template type<T>::settings_type>;
+};
 
 /// A body standing still: the system a world's integrator is checked on.
 template <scalar_type T>
