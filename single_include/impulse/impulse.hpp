@@ -6468,6 +6468,24 @@ template <scalar_type T>
   return {omega / a1, a2 * a3, a3};
 }
 
+/// The softness of a spring of stiffness k (N/m, or N·m/rad) and damping c
+/// (N·s/m) on a row of effective mass m over a step h: soften() with
+/// ω² = k/m and 2ζω = c/m, which gives
+///
+///   bias_rate = k/(c + h·k),  a₂ = h·(c + h·k)/m,
+///
+/// and the implicit Euler step of m·ẍ = −k·x − c·ẋ exactly: one update from
+/// rest gives v₁ = (m·v₀ − h·k·x₀)/(m + h·c + h²·k). A row with k = c = 0
+/// does nothing and must be skipped; one no body can move (m = 0) takes no
+/// impulse.
+template <scalar_type T>
+[[nodiscard]] softness<T> soften_absolute(T k, T c, T m, T h) noexcept {
+  const T kc = c + h * k;
+  if (!(m > T(0)) || !(kc > T(0))) return {T(0), T(0), T(1)};
+  const T a2 = h * kc / m, a3 = T(1) / (T(1) + a2);
+  return {k / kc, a2 * a3, a3};
+}
+
 }  // namespace impulse
 // ---- end impulse/dynamics/softness.hpp ----
 
@@ -6989,6 +7007,15 @@ struct joint_constraint {
   T lower = T(0), upper = T(0);
   T motor_speed = T(0), max_motor_force = T(0);
   T length = T(0), spring_hertz = T(0), spring_damping_ratio = T(0);
+  /// A spring of absolute stiffness (N/m) and damping (N·s/m) rather than
+  /// of a frequency: the world's springs (world::create_spring), whose
+  /// stiffness must not change with the masses they pull.
+  T spring_stiffness = T(0), spring_damping = T(0);
+
+  /// Whether the distance row is a spring (soft) rather than a rod.
+  [[nodiscard]] bool is_spring() const noexcept {
+    return spring_hertz > T(0) || spring_stiffness > T(0) || spring_damping > T(0);
+  }
 
   // ---- accumulated, carried to the next step ----
   vec3<T> point_impulse{};     ///< N·s on B, world (ball, hinge, fixed)
@@ -7184,7 +7211,9 @@ void solve_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, const
       break;
     case joint_type::distance: {
       const T stretch = j.position - j.length;
-      const softness<T> row = j.spring_hertz > T(0) ? soften(j.spring_hertz, j.spring_damping_ratio, pass.h) : hold;
+      const softness<T> row = j.spring_hertz > T(0) ? soften(j.spring_hertz, j.spring_damping_ratio, pass.h)
+                              : j.is_spring()     ? soften_absolute(j.spring_stiffness, j.spring_damping, j.axial.mass, pass.h)
+                                                  : hold;
       j.axial.solve(v, a, b, j.axial_impulse, row.bias_rate * stretch, row, -unbounded, unbounded);
       break;
     }
@@ -7267,7 +7296,7 @@ void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T f
       break;
     case joint_type::distance:
       // A spring has no error to remove: stretching is what it does.
-      if (j.spring_hertz == T(0)) {
+      if (!j.is_spring()) {
         T along = T(0);
         j.axial.solve(v, a, b, along, fraction * (j.position - j.length), rigid, -unbounded, unbounded);
       }
@@ -8582,7 +8611,7 @@ template <scalar_type T>
     case joint_type::fixed:
       return 6;
     case joint_type::distance:
-      return j.spring_hertz > T(0) ? 0 : 1;
+      return j.is_spring() ? 0 : 1;
   }
   return 0;
 }
@@ -8620,7 +8649,7 @@ struct holding_rows {
         add_rotation();
         break;
       case joint_type::distance:
-        if (j.spring_hertz == T(0)) add_row(j.axial);
+        if (!j.is_spring()) add_row(j.axial);
         break;
     }
   }
@@ -17000,6 +17029,7 @@ struct step_counts {
   std::size_t updated_contacts = 0;  ///< contact records the narrow phase updated (tested, or carried with their bodies)
   std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
   std::size_t solved_joints = 0;
+  std::size_t solved_springs = 0;
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };
@@ -17609,6 +17639,16 @@ struct joint_record {
   bool broken = false;
 };
 
+/// A spring of the world (world::create_spring): what it was made as, and
+/// what it carries between steps.
+template <scalar_type T>
+struct spring_record {
+  body_spring<T> def;    ///< end b none: point_b is a world anchor
+  T impulse = T(0);      ///< along it, N·s: the last step's, its warm start
+  T tension = T(0);      ///< N pulling its ends together in the last step
+  [[nodiscard]] bool anchored() const noexcept { return def.body_b.is_none(); }
+};
+
 // ---- what every stage asks of a record ----
 
 template <scalar_type T>
@@ -17692,6 +17732,7 @@ struct world_state {
   settings_type settings{};
   slot_map<body_record<T>, body_id> bodies;
   slot_map<joint_record<T>, joint_id> joints;
+  slot_map<spring_record<T>, spring_id> springs;
   /// The body pairs joined without collide_connected (pair_key), sorted,
   /// once per such joint: their proxies' pairs make no contact.
   std::vector<std::uint64_t> joined;
@@ -17714,11 +17755,11 @@ struct world_state {
 
   /// The dense places of the active bodies (is_active: awake dynamic ones
   /// and every kinematic one), ascending; and the places of the contacts
-  /// (in `contacts`) and joints (in joints.values()) with an active body,
+  /// (in `contacts`), joints and springs (in their values()) with an active body,
   /// ascending. A step visits these and nothing else, so a sleeping body
   /// costs it nothing. Rebuilt by refresh_awake() once awake_stale says a
   /// body woke or slept, or a record came or went.
-  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints;
+  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints, awake_springs;
   bool awake_stale = true;
   /// The contact records must be merged with the broad phase's pairs at
   /// the next step though the pairs did not change: a record was dropped,
@@ -17805,6 +17846,22 @@ struct world_state {
     const std::vector<joint_record<T>>& js = joints.values();
     for (std::uint32_t k = 0; k < js.size(); ++k)
       if (is_active(bodies[js[k].a]) || is_active(bodies[js[k].b])) awake_joints.push_back(k);
+    awake_springs.clear();
+    const std::vector<spring_record<T>>& ss = springs.values();
+    for (std::uint32_t k = 0; k < ss.size(); ++k)
+      if (is_active(bodies[ss[k].def.body_a]) || (!ss[k].anchored() && is_active(bodies[ss[k].def.body_b])))
+        awake_springs.push_back(k);
+  }
+  /// Calls f(a, b) for every awake contact touching, unbroken joint and
+  /// spring between two bodies: what joins bodies into an island.
+  template <class F>
+  void for_each_awake_link(F&& f) const {
+    for (const std::uint32_t k : awake_contacts)
+      if (contacts[k].touching) f(contacts[k].a, contacts[k].b);
+    for (const std::uint32_t k : awake_joints)
+      if (!joints.values()[k].broken) f(joints.values()[k].a, joints.values()[k].b);
+    for (const std::uint32_t k : awake_springs)
+      if (!springs.values()[k].anchored()) f(springs.values()[k].def.body_a, springs.values()[k].def.body_b);
   }
   /// Whether a point is within max_coordinate of the origin on every axis
   /// (false for NaN).
@@ -17921,7 +17978,16 @@ struct step_scratch {
   std::vector<constraint_source> sources;
   std::vector<joint_constraint<T>> joints;
   std::vector<std::uint32_t> joint_sources;  ///< each solved joint's dense place
+  std::vector<std::uint32_t> spring_sources;  ///< each solved spring's dense place (its row follows the joints')
+  bool anchored = false;                      ///< a solved spring has a world anchor: the solver body past the others
   std::vector<joint_id> doomed_joints;       ///< world::destroy_body's
+  std::vector<spring_id> doomed_springs;     ///< world::destroy_body's
+  /// step(dt, field)'s loads, checked before any is applied.
+  struct field_load {
+    std::uint32_t body;
+    wrench<T> load;
+  };
+  std::vector<field_load> field_loads;
   std::vector<support> supports;
   std::vector<T> load;
   union_find islands;  ///< over awake_bodies' places (islands.hpp)
@@ -18402,14 +18468,14 @@ void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& 
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config). Before the solve, a sleeping body touching
 // or joined to a moving one wakes, with its whole island, and the awake
-// bodies are joined into islands by their touching contacts and joints;
+// bodies are joined into islands by their touching contacts, joints and springs;
 // after the bodies have moved, an island whose every body has been slow
 // for sleep_time falls asleep: no forces, no contacts solved, no narrow
 // phase, until something wakes it.
 //
 // A sleeping island keeps its bodies (world_state::sleep_sets), as Box2D's
 // solver sets do, so that waking it needs no search, and the step visits
-// only the awake set (world_state::awake_bodies and the contacts and joints
+// only the awake set (world_state::awake_bodies and the contacts, joints and springs
 // that have an awake body): with everything asleep, it visits nothing.
 // An island falls asleep whole, with every body touching its bodies, so a
 // sleeping island touches only itself and static bodies, and wakes only
@@ -18466,10 +18532,7 @@ struct island_update {
       if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
       if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) carried(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) carried(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(carried);
     const std::size_t n = state.awake_bodies.size();
     scratch.island_timer.assign(n, std::numeric_limits<T>::infinity());
     for (std::uint32_t p = 0; p < n; ++p) {
@@ -18505,10 +18568,7 @@ struct island_update {
       wake_by(state.bodies[a], state.bodies[b]);
       wake_by(state.bodies[b], state.bodies[a]);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(link);
     return woke;
   }
 
@@ -18522,10 +18582,7 @@ struct island_update {
       if (state.bodies[a].body.type == body_type::dynamic && state.bodies[b].body.type == body_type::dynamic)
         scratch.islands.unite(scratch.awake_place[state.dense(a)], scratch.awake_place[state.dense(b)]);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(link);
   }
 
   /// Every body's island found afresh over all touching contacts and
@@ -18554,6 +18611,8 @@ struct island_update {
       if (c.touching) link(state.dense(c.a), state.dense(c.b));
     for (const joint_record<T>& j : state.joints.values())
       if (!j.broken) link(state.dense(j.a), state.dense(j.b));
+    for (const spring_record<T>& r : state.springs.values())
+      if (!r.anchored()) link(state.dense(r.def.body_a), state.dense(r.def.body_b));
     for (std::uint32_t i = 0; i < bodies.size(); ++i)
       if (bodies[i].body.type == body_type::dynamic && (bodies[i].awake || scratch.island_flag[i]))
         scratch.island_flag[scratch.islands.find(i)] = 1;
@@ -18646,9 +18705,12 @@ struct body_solve {
     settle_sleepers();
     gather_bodies();
     const vec3<T> gravity_step = state.settings.gravity * dt;
+    // The bodies' solver places, then the world anchor of springs that have
+    // one: a static body at the origin, so that an anchor is its own point.
     const std::size_t count = scratch.solver_dense.size();
-    scratch.solver_bodies.resize(count);
-    scratch.held.assign(count, 0);
+    scratch.solver_bodies.resize(count + (scratch.anchored ? 1 : 0));
+    scratch.held.assign(scratch.solver_bodies.size(), 0);
+    if (scratch.anchored) scratch.solver_bodies[count] = solver_body<T>{};
     for (std::size_t i = 0; i < count; ++i) {
       const body_record<T>& r = bodies[scratch.solver_dense[i]];
       const rigid_body<T>& b = r.body;
@@ -18748,6 +18810,7 @@ struct body_solve {
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
+    scratch.spring_sources.clear();
     for (const std::uint32_t k : state.awake_joints) {
       const joint_record<T>& r = state.joints.values()[k];
       if (r.broken || (!is_solved(state.bodies[r.a]) && !is_solved(state.bodies[r.b]))) continue;
@@ -18757,10 +18820,12 @@ struct body_solve {
       scratch.joints.back().body_a = ia, scratch.joints.back().body_b = ib;
       scratch.joint_sources.push_back(k);
     }
+    add_springs(count);
     state.counts.active_bodies = state.awake_bodies.size();
     state.counts.solver_bodies = count;
     state.counts.solved_manifolds = scratch.constraints.size();
-    state.counts.solved_joints = scratch.joints.size();
+    state.counts.solved_joints = scratch.joint_sources.size();
+    state.counts.solved_springs = scratch.spring_sources.size();
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -18836,6 +18901,32 @@ struct body_solve {
   }
 
  private:
+  /// The springs with a solved body, after the joints: each a distance row
+  /// of its stiffness and damping (joint.hpp, soften_absolute), from its
+  /// point on A to its point on B or, anchored, to the anchor on the
+  /// static body at `anchor`, the origin.
+  void add_springs(std::size_t anchor) {
+    for (const std::uint32_t k : state.awake_springs) {
+      const spring_record<T>& r = state.springs.values()[k];
+      const bool solved_b = !r.anchored() && is_solved(state.bodies[r.def.body_b]);
+      if (!is_solved(state.bodies[r.def.body_a]) && !solved_b) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(r.def.body_a)];
+      const std::uint32_t ib = r.anchored() ? std::uint32_t(anchor) : scratch.solver_place[state.dense(r.def.body_b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
+      joint_constraint<T> c{};
+      c.type = joint_type::distance;
+      c.body_a = ia, c.body_b = ib;
+      c.local_anchor_a = r.def.point_a;
+      c.local_anchor_b = r.def.point_b;
+      c.length = r.def.rest_length;
+      c.spring_stiffness = r.def.stiffness;
+      c.spring_damping = r.def.damping;
+      c.axial_impulse = r.impulse;
+      scratch.joints.push_back(c);
+      scratch.spring_sources.push_back(k);
+    }
+  }
+
   /// Bodies that fell asleep in the last step have stood still since: the
   /// pose at this step's start is where they are.
   void settle_sleepers() {
@@ -18871,6 +18962,12 @@ struct body_solve {
       if (state.contacts[k].touching) reach(state.contacts[k].a, state.contacts[k].b);
     for (const std::uint32_t k : state.awake_joints)
       if (!state.joints.values()[k].broken) reach(state.joints.values()[k].a, state.joints.values()[k].b);
+    scratch.anchored = false;
+    for (const std::uint32_t k : state.awake_springs) {
+      const spring_record<T>& r = state.springs.values()[k];
+      if (!r.anchored()) reach(r.def.body_a, r.def.body_b);
+      else scratch.anchored = scratch.anchored || is_solved(state.bodies[r.def.body_a]);
+    }
     std::sort(scratch.reached.begin(), scratch.reached.end());
     scratch.solver_dense.resize(state.awake_bodies.size() + scratch.reached.size());
     std::merge(state.awake_bodies.begin(), state.awake_bodies.end(), scratch.reached.begin(), scratch.reached.end(),
@@ -18899,12 +18996,12 @@ struct body_solve {
   /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+    for (std::size_t i = 0; i < scratch.solver_dense.size(); ++i) {
       scratch.solver_bodies[i].position = bodies[scratch.solver_dense[i]].body.position;
       scratch.solver_bodies[i].orientation = bodies[scratch.solver_dense[i]].body.orientation;
     }
     scratch.solver.project_joints(scratch.solver_bodies, scratch.joints, state.settings.solver);
-    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+    for (std::size_t i = 0; i < scratch.solver_dense.size(); ++i) {
       body_record<T>& r = bodies[scratch.solver_dense[i]];
       if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
       const solver_body<T>& s = scratch.solver_bodies[i];
@@ -18927,7 +19024,12 @@ struct body_solve {
   /// impulses are per substep) exceeded their thresholds.
   void keep_joint_impulses(T dt) {
     const T h = solver_type::impulse_step(state.settings.solver, dt);
-    for (std::size_t n = 0; n < scratch.joints.size(); ++n) {
+    for (std::size_t n = 0; n < scratch.spring_sources.size(); ++n) {
+      spring_record<T>& r = state.springs.values()[scratch.spring_sources[n]];
+      r.impulse = scratch.joints[scratch.joint_sources.size() + n].axial_impulse;
+      r.tension = -r.impulse * (T(1) / h);  // a positive impulse pushes B away from A
+    }
+    for (std::size_t n = 0; n < scratch.joint_sources.size(); ++n) {
       joint_record<T>& r = state.joints.values()[scratch.joint_sources[n]];
       r.constraint = scratch.joints[n];
       const joint_reaction<T> applied = reaction_of(scratch.joints[n]);
@@ -19081,29 +19183,7 @@ class world {
   /// shape, a non-finite or non-unit pose, a dynamic plane or mesh, an
   /// infinite or negative mass) is refused and the world is unchanged.
   template <class Shape>
-  body_id create_body(const body_def<T>& def, const Shape& shape) {
-    static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
-                  "impulse world: this shape is not in the config's shape_list");
-    refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
-                       "visit_shape, draw); make the change after it returns");
-    // Every shape is checked here; a hull or mesh only for being empty
-    // (moved from), since their factories checked the rest.
-    if constexpr (requires { shape.validate(); }) shape.validate();
-    def.material.validate();
-    const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
-    const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
-    body_record record = prepare_body(def, body, center);  // checks the velocities
-    if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
-      const aabb<T> box = shape.world_aabb(def.pose);
-      if (!state_.within_bounds(box.lower) || !state_.within_bounds(box.upper))
-        detail::report_error(error_code::invalid_parameter,
-                             "world::create_body: the shape reaches farther than max_coordinate from the origin");
-    }
-    // Nothing below can fail on the input.
-    record.shape = state_.shape_store.add(shape);
-    record.thinnest = detail::thinnest_half_extent<T>(shape);
-    return insert_body(record);
-  }
+  body_id create_body(const body_def<T>& def, const Shape& shape);
 
   /// Removes a body, its contacts and its joints; the bodies it touched or
   /// was joined to wake. A stale or destroyed id is refused.
@@ -19267,30 +19347,34 @@ class world {
   /// Drives a hinge or slider at `speed` (rad/s or m/s) with at most
   /// `max_force` (N·m or N); enable false turns the motor off. Wakes the
   /// bodies.
-  void set_joint_motor(joint_id id, bool enable, T speed, T max_force) {
-    require(id, "world::set_joint_motor: no such joint");
-    joint_record& r = state_.joints[id];
-    joint_def<T> def = r.def;
-    def.enable_motor = enable, def.motor_speed = speed, def.max_motor_force = max_force;
-    def.validate();
-    r.def = def;
-    r.constraint.enable_motor = enable, r.constraint.motor_speed = speed, r.constraint.max_motor_force = max_force;
-    if (!enable) r.constraint.motor_impulse = T(0);
-    state_.wake_joint(r);
-  }
+  void set_joint_motor(joint_id id, bool enable, T speed, T max_force);
   /// Keeps a hinge's angle or a slider's translation within [lower, upper];
   /// enable false frees it. Wakes the bodies.
-  void set_joint_limits(joint_id id, bool enable, T lower, T upper) {
-    require(id, "world::set_joint_limits: no such joint");
-    joint_record& r = state_.joints[id];
-    joint_def<T> def = r.def;
-    def.enable_limit = enable, def.lower = lower, def.upper = upper;
-    def.validate();
-    r.def = def;
-    r.constraint.enable_limit = enable, r.constraint.lower = lower, r.constraint.upper = upper;
-    if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
-    state_.wake_joint(r);
+  void set_joint_limits(joint_id id, bool enable, T lower, T upper);
+  // ---- springs (world_forces.hpp) ----
+
+  /// Adds a damped spring (body_spring.hpp) from a point of one body to a
+  /// point of another or to a world anchor (end b none), solved with the
+  /// contacts and joints as a soft row of its stiffness and damping:
+  /// stable at any stiffness, and the bodies still collide. Refused, the
+  /// world unchanged: a missing body, both ends on one body, no end on a
+  /// dynamic body, a value not finite or negative. Its bodies wake.
+  spring_id create_spring(const body_spring<T>& def);
+  /// Removes a spring; its bodies wake. destroy_body removes its springs.
+  void destroy_spring(spring_id id);
+  [[nodiscard]] bool contains(spring_id id) const noexcept { return state_.springs.contains(id); }
+  [[nodiscard]] std::size_t spring_count() const noexcept { return state_.springs.size(); }
+  [[nodiscard]] std::span<const spring_id> spring_ids() const noexcept { return state_.springs.ids(); }
+  [[nodiscard]] const body_spring<T>& spring(spring_id id) const {
+    require(id, "world::spring: no such spring");
+    return state_.springs[id].def;
   }
+  /// N the spring pulled its ends together with in the last step (< 0: pushed apart).
+  [[nodiscard]] T spring_tension(spring_id id) const {
+    require(id, "world::spring_tension: no such spring");
+    return state_.springs[id].tension;
+  }
+
   /// Bodies held in the last step (see step()), in storage order.
   [[nodiscard]] std::span<const body_id> held_bodies() const noexcept { return state_.held; }
   /// Joints that broke in the last step.
@@ -19309,6 +19393,11 @@ class world {
   /// impulse::invalid_argument (non_finite) naming the first held body; held_bodies()
   /// lists them all.
   void step(T dt);
+  /// A step with a force field: field(body_id, body_kinematics) -> wrench
+  /// (force through the center of mass, torque), added to each awake
+  /// dynamic body's loads for this step (world_forces.hpp). It wakes none.
+  template <class Field>
+  void step(T dt, Field&& field);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
   /// what was left over from the last call allow, at most
@@ -19413,6 +19502,9 @@ class world {
   }
   void require(joint_id id, const char* message) const {
     if (!state_.joints.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+  void require(spring_id id, const char* message) const {
+    if (!state_.springs.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
   }
   body_record& dynamic_record(body_id id, const char* message) {
     require(id, message);
@@ -19573,6 +19665,32 @@ class world_snapshot {
 namespace impulse {
 
 template <class Config>
+template <class Shape>
+body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
+  static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
+                "impulse world: this shape is not in the config's shape_list");
+  refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  // Every shape is checked here; a hull or mesh only for being empty
+  // (moved from), since their factories checked the rest.
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  def.material.validate();
+  const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
+  const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
+  body_record record = prepare_body(def, body, center);  // checks the velocities
+  if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
+    const aabb<T> box = shape.world_aabb(def.pose);
+    if (!state_.within_bounds(box.lower) || !state_.within_bounds(box.upper))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_body: the shape reaches farther than max_coordinate from the origin");
+  }
+  // Nothing below can fail on the input.
+  record.shape = state_.shape_store.add(shape);
+  record.thinnest = detail::thinnest_half_extent<T>(shape);
+  return insert_body(record);
+}
+
+template <class Config>
 auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const
     -> body_record {
   if (def.type == body_type::dynamic) body.position = apply(def.pose, center);
@@ -19616,6 +19734,12 @@ void world<Config>::destroy_body(body_id id) {
     if (j.a == id || j.b == id) scratch_.doomed_joints.push_back(state_.joints.ids()[k]);
   }
   for (const joint_id j : scratch_.doomed_joints) destroy_joint(j);
+  scratch_.doomed_springs.clear();
+  for (std::size_t k = 0; k < state_.springs.size(); ++k) {
+    const body_spring<T>& d = state_.springs.values()[k].def;
+    if (d.body_a == id || d.body_b == id) scratch_.doomed_springs.push_back(state_.springs.ids()[k]);
+  }
+  for (const spring_id s : scratch_.doomed_springs) destroy_spring(s);
   std::erase_if(state_.contacts, [&](const contact_record& c) {
     if (c.a != id && c.b != id) return false;
     state_.end_contact(c);
@@ -19689,6 +19813,95 @@ void world<Config>::expire_targets() {
 
 }  // namespace impulse
 // ---- end impulse/world/world_bodies.hpp ----
+// ---- begin impulse/world/world_forces.hpp ----
+// impulse/world/world_forces.hpp — world<Config>'s springs and force
+// fields, defined outside the class (world.hpp says why they are not
+// inline).
+//
+// A spring (dynamics/body_spring.hpp) is solved with the contacts and
+// joints, as a distance row of its own stiffness and damping
+// (softness.hpp, soften_absolute): the implicit Euler step of the spring,
+// stable at any stiffness and step, and coupled to every contact and joint
+// of its bodies in the same iterations. A force field is a load: evaluated
+// once at the start of a step, on every awake dynamic body, and held over
+// the step like every other force.
+
+
+
+namespace impulse {
+
+template <class Config>
+spring_id world<Config>::create_spring(const body_spring<T>& def) {
+  refuse_in_callback("world::create_spring: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  require(def.body_a, "world::create_spring: no such body at end a");
+  const bool anchored = def.body_b.is_none();
+  if (!anchored) require(def.body_b, "world::create_spring: no such body at end b");
+  if (def.body_a == def.body_b)
+    detail::report_error(error_code::invalid_parameter, "world::create_spring: both ends on one body", def.body_a.index);
+  if (state_.bodies[def.body_a].body.type != body_type::dynamic &&
+      (anchored || state_.bodies[def.body_b].body.type != body_type::dynamic))
+    detail::report_error(error_code::invalid_parameter, "world::create_spring: neither end is on a dynamic body",
+                         def.body_a.index);
+  if (!is_finite(def.point_a) || !is_finite(def.point_b) || !std::isfinite(def.stiffness) ||
+      !std::isfinite(def.damping) || !std::isfinite(def.rest_length))
+    detail::report_error(error_code::non_finite, "world::create_spring: a point or a number is not finite");
+  if (def.stiffness < T(0) || def.damping < T(0) || def.rest_length < T(0))
+    detail::report_error(error_code::invalid_parameter,
+                         "world::create_spring: stiffness, damping and rest length must be >= 0");
+  if (anchored) state_.require_within_bounds(def.point_b, "world::create_spring: the anchor is farther than max_coordinate");
+  detail::spring_record<T> record{};
+  record.def = def;
+  const spring_id id = state_.springs.insert(record);
+  state_.wake(state_.bodies[def.body_a]);
+  if (!anchored) state_.wake(state_.bodies[def.body_b]);
+  state_.awake_stale = true;
+  return id;
+}
+
+template <class Config>
+void world<Config>::destroy_spring(spring_id id) {
+  refuse_in_callback("world::destroy_spring: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  require(id, "world::destroy_spring: no such spring (destroyed already?)");
+  const body_spring<T>& def = state_.springs[id].def;
+  state_.wake(state_.bodies[def.body_a]);
+  if (!def.body_b.is_none()) state_.wake(state_.bodies[def.body_b]);
+  state_.springs.erase(id);
+  state_.awake_stale = true;
+}
+
+template <class Config>
+template <class Field>
+void world<Config>::step(T dt, Field&& field) {
+  refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  // Every load first, checked: a field that gives one body a force that is
+  // not finite (or overflows what it bears already) is refused before any
+  // body has been given anything.
+  state_.refresh_awake();
+  scratch_.field_loads.clear();
+  for (const std::uint32_t i : state_.awake_bodies) {
+    const rigid_body<T>& b = state_.bodies.values()[i].body;
+    if (b.type != body_type::dynamic) continue;
+    const body_id id = state_.bodies.ids()[i];
+    const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
+                                                body_momentum<T>{b.linear_momentum, b.angular_momentum}));
+    if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
+      detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
+                           id.index);
+    scratch_.field_loads.push_back({i, w});
+  }
+  for (const auto& [i, w] : scratch_.field_loads) {
+    rigid_body<T>& b = state_.bodies.values()[i].body;
+    b.apply_force(w.force);
+    b.apply_torque(w.torque);
+  }
+  step(dt);
+}
+
+}  // namespace impulse
+// ---- end impulse/world/world_forces.hpp ----
 // ---- begin impulse/world/world_joints.hpp ----
 // impulse/world/world_joints.hpp — world<Config>'s members that make and
 // destroy joints, defined outside the class (world.hpp says why they are
@@ -19769,6 +19982,32 @@ void world<Config>::end_contacts_between(body_id a, body_id b) {
     state_.end_contact(c);
     return true;
   });
+}
+
+template <class Config>
+void world<Config>::set_joint_motor(joint_id id, bool enable, T speed, T max_force) {
+  require(id, "world::set_joint_motor: no such joint");
+  joint_record& r = state_.joints[id];
+  joint_def<T> def = r.def;
+  def.enable_motor = enable, def.motor_speed = speed, def.max_motor_force = max_force;
+  def.validate();
+  r.def = def;
+  r.constraint.enable_motor = enable, r.constraint.motor_speed = speed, r.constraint.max_motor_force = max_force;
+  if (!enable) r.constraint.motor_impulse = T(0);
+  state_.wake_joint(r);
+}
+
+template <class Config>
+void world<Config>::set_joint_limits(joint_id id, bool enable, T lower, T upper) {
+  require(id, "world::set_joint_limits: no such joint");
+  joint_record& r = state_.joints[id];
+  joint_def<T> def = r.def;
+  def.enable_limit = enable, def.lower = lower, def.upper = upper;
+  def.validate();
+  r.def = def;
+  r.constraint.enable_limit = enable, r.constraint.lower = lower, r.constraint.upper = upper;
+  if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
+  state_.wake_joint(r);
 }
 
 }  // namespace impulse

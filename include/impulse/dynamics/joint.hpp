@@ -159,6 +159,15 @@ struct joint_constraint {
   T lower = T(0), upper = T(0);
   T motor_speed = T(0), max_motor_force = T(0);
   T length = T(0), spring_hertz = T(0), spring_damping_ratio = T(0);
+  /// A spring of absolute stiffness (N/m) and damping (N·s/m) rather than
+  /// of a frequency: the world's springs (world::create_spring), whose
+  /// stiffness must not change with the masses they pull.
+  T spring_stiffness = T(0), spring_damping = T(0);
+
+  /// Whether the distance row is a spring (soft) rather than a rod.
+  [[nodiscard]] bool is_spring() const noexcept {
+    return spring_hertz > T(0) || spring_stiffness > T(0) || spring_damping > T(0);
+  }
 
   // ---- accumulated, carried to the next step ----
   vec3<T> point_impulse{};     ///< N·s on B, world (ball, hinge, fixed)
@@ -354,7 +363,9 @@ void solve_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, const
       break;
     case joint_type::distance: {
       const T stretch = j.position - j.length;
-      const softness<T> row = j.spring_hertz > T(0) ? soften(j.spring_hertz, j.spring_damping_ratio, pass.h) : hold;
+      const softness<T> row = j.spring_hertz > T(0) ? soften(j.spring_hertz, j.spring_damping_ratio, pass.h)
+                              : j.is_spring()     ? soften_absolute(j.spring_stiffness, j.spring_damping, j.axial.mass, pass.h)
+                                                  : hold;
       j.axial.solve(v, a, b, j.axial_impulse, row.bias_rate * stretch, row, -unbounded, unbounded);
       break;
     }
@@ -437,7 +448,7 @@ void project_joint(std::span<solver_body<T>> bodies, joint_constraint<T>& j, T f
       break;
     case joint_type::distance:
       // A spring has no error to remove: stretching is what it does.
-      if (j.spring_hertz == T(0)) {
+      if (!j.is_spring()) {
         T along = T(0);
         j.axial.solve(v, a, b, along, fraction * (j.position - j.length), rigid, -unbounded, unbounded);
       }

@@ -38,4 +38,22 @@ template <scalar_type T>
   return {omega / a1, a2 * a3, a3};
 }
 
+/// The softness of a spring of stiffness k (N/m, or N·m/rad) and damping c
+/// (N·s/m) on a row of effective mass m over a step h: soften() with
+/// ω² = k/m and 2ζω = c/m, which gives
+///
+///   bias_rate = k/(c + h·k),  a₂ = h·(c + h·k)/m,
+///
+/// and the implicit Euler step of m·ẍ = −k·x − c·ẋ exactly: one update from
+/// rest gives v₁ = (m·v₀ − h·k·x₀)/(m + h·c + h²·k). A row with k = c = 0
+/// does nothing and must be skipped; one no body can move (m = 0) takes no
+/// impulse.
+template <scalar_type T>
+[[nodiscard]] softness<T> soften_absolute(T k, T c, T m, T h) noexcept {
+  const T kc = c + h * k;
+  if (!(m > T(0)) || !(kc > T(0))) return {T(0), T(0), T(1)};
+  const T a2 = h * kc / m, a3 = T(1) / (T(1) + a2);
+  return {k / kc, a2 * a3, a3};
+}
+
 }  // namespace impulse

@@ -109,29 +109,7 @@ class world {
   /// shape, a non-finite or non-unit pose, a dynamic plane or mesh, an
   /// infinite or negative mass) is refused and the world is unchanged.
   template <class Shape>
-  body_id create_body(const body_def<T>& def, const Shape& shape) {
-    static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
-                  "impulse world: this shape is not in the config's shape_list");
-    refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
-                       "visit_shape, draw); make the change after it returns");
-    // Every shape is checked here; a hull or mesh only for being empty
-    // (moved from), since their factories checked the rest.
-    if constexpr (requires { shape.validate(); }) shape.validate();
-    def.material.validate();
-    const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
-    const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
-    body_record record = prepare_body(def, body, center);  // checks the velocities
-    if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
-      const aabb<T> box = shape.world_aabb(def.pose);
-      if (!state_.within_bounds(box.lower) || !state_.within_bounds(box.upper))
-        detail::report_error(error_code::invalid_parameter,
-                             "world::create_body: the shape reaches farther than max_coordinate from the origin");
-    }
-    // Nothing below can fail on the input.
-    record.shape = state_.shape_store.add(shape);
-    record.thinnest = detail::thinnest_half_extent<T>(shape);
-    return insert_body(record);
-  }
+  body_id create_body(const body_def<T>& def, const Shape& shape);
 
   /// Removes a body, its contacts and its joints; the bodies it touched or
   /// was joined to wake. A stale or destroyed id is refused.
@@ -295,30 +273,34 @@ class world {
   /// Drives a hinge or slider at `speed` (rad/s or m/s) with at most
   /// `max_force` (N·m or N); enable false turns the motor off. Wakes the
   /// bodies.
-  void set_joint_motor(joint_id id, bool enable, T speed, T max_force) {
-    require(id, "world::set_joint_motor: no such joint");
-    joint_record& r = state_.joints[id];
-    joint_def<T> def = r.def;
-    def.enable_motor = enable, def.motor_speed = speed, def.max_motor_force = max_force;
-    def.validate();
-    r.def = def;
-    r.constraint.enable_motor = enable, r.constraint.motor_speed = speed, r.constraint.max_motor_force = max_force;
-    if (!enable) r.constraint.motor_impulse = T(0);
-    state_.wake_joint(r);
-  }
+  void set_joint_motor(joint_id id, bool enable, T speed, T max_force);
   /// Keeps a hinge's angle or a slider's translation within [lower, upper];
   /// enable false frees it. Wakes the bodies.
-  void set_joint_limits(joint_id id, bool enable, T lower, T upper) {
-    require(id, "world::set_joint_limits: no such joint");
-    joint_record& r = state_.joints[id];
-    joint_def<T> def = r.def;
-    def.enable_limit = enable, def.lower = lower, def.upper = upper;
-    def.validate();
-    r.def = def;
-    r.constraint.enable_limit = enable, r.constraint.lower = lower, r.constraint.upper = upper;
-    if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
-    state_.wake_joint(r);
+  void set_joint_limits(joint_id id, bool enable, T lower, T upper);
+  // ---- springs (world_forces.hpp) ----
+
+  /// Adds a damped spring (body_spring.hpp) from a point of one body to a
+  /// point of another or to a world anchor (end b none), solved with the
+  /// contacts and joints as a soft row of its stiffness and damping:
+  /// stable at any stiffness, and the bodies still collide. Refused, the
+  /// world unchanged: a missing body, both ends on one body, no end on a
+  /// dynamic body, a value not finite or negative. Its bodies wake.
+  spring_id create_spring(const body_spring<T>& def);
+  /// Removes a spring; its bodies wake. destroy_body removes its springs.
+  void destroy_spring(spring_id id);
+  [[nodiscard]] bool contains(spring_id id) const noexcept { return state_.springs.contains(id); }
+  [[nodiscard]] std::size_t spring_count() const noexcept { return state_.springs.size(); }
+  [[nodiscard]] std::span<const spring_id> spring_ids() const noexcept { return state_.springs.ids(); }
+  [[nodiscard]] const body_spring<T>& spring(spring_id id) const {
+    require(id, "world::spring: no such spring");
+    return state_.springs[id].def;
   }
+  /// N the spring pulled its ends together with in the last step (< 0: pushed apart).
+  [[nodiscard]] T spring_tension(spring_id id) const {
+    require(id, "world::spring_tension: no such spring");
+    return state_.springs[id].tension;
+  }
+
   /// Bodies held in the last step (see step()), in storage order.
   [[nodiscard]] std::span<const body_id> held_bodies() const noexcept { return state_.held; }
   /// Joints that broke in the last step.
@@ -337,6 +319,11 @@ class world {
   /// impulse::invalid_argument (non_finite) naming the first held body; held_bodies()
   /// lists them all.
   void step(T dt);
+  /// A step with a force field: field(body_id, body_kinematics) -> wrench
+  /// (force through the center of mass, torque), added to each awake
+  /// dynamic body's loads for this step (world_forces.hpp). It wakes none.
+  template <class Field>
+  void step(T dt, Field&& field);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
   /// what was left over from the last call allow, at most
@@ -441,6 +428,9 @@ class world {
   }
   void require(joint_id id, const char* message) const {
     if (!state_.joints.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
+  }
+  void require(spring_id id, const char* message) const {
+    if (!state_.springs.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
   }
   body_record& dynamic_record(body_id id, const char* message) {
     require(id, message);
@@ -592,6 +582,7 @@ class world_snapshot {
 }  // namespace impulse
 
 #include "world_bodies.hpp"
+#include "world_forces.hpp"
 #include "world_joints.hpp"
 
 #if IMPULSE_EXTERN_TEMPLATES

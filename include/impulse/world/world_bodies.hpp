@@ -4,11 +4,38 @@
 #pragma once
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "world.hpp"
 
 namespace impulse {
+
+template <class Config>
+template <class Shape>
+body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
+  static_assert(detail::shape_store<shapes, T>::template index_of<Shape>() < shapes::size,
+                "impulse world: this shape is not in the config's shape_list");
+  refuse_in_callback("world::create_body: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  // Every shape is checked here; a hull or mesh only for being empty
+  // (moved from), since their factories checked the rest.
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  def.material.validate();
+  const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
+  const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};
+  body_record record = prepare_body(def, body, center);  // checks the velocities
+  if constexpr (!std::is_same_v<Shape, plane<T>>) {  // a plane is unbounded by nature
+    const aabb<T> box = shape.world_aabb(def.pose);
+    if (!state_.within_bounds(box.lower) || !state_.within_bounds(box.upper))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_body: the shape reaches farther than max_coordinate from the origin");
+  }
+  // Nothing below can fail on the input.
+  record.shape = state_.shape_store.add(shape);
+  record.thinnest = detail::thinnest_half_extent<T>(shape);
+  return insert_body(record);
+}
 
 template <class Config>
 auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, const vec3<T>& center) const
@@ -54,6 +81,12 @@ void world<Config>::destroy_body(body_id id) {
     if (j.a == id || j.b == id) scratch_.doomed_joints.push_back(state_.joints.ids()[k]);
   }
   for (const joint_id j : scratch_.doomed_joints) destroy_joint(j);
+  scratch_.doomed_springs.clear();
+  for (std::size_t k = 0; k < state_.springs.size(); ++k) {
+    const body_spring<T>& d = state_.springs.values()[k].def;
+    if (d.body_a == id || d.body_b == id) scratch_.doomed_springs.push_back(state_.springs.ids()[k]);
+  }
+  for (const spring_id s : scratch_.doomed_springs) destroy_spring(s);
   std::erase_if(state_.contacts, [&](const contact_record& c) {
     if (c.a != id && c.b != id) return false;
     state_.end_contact(c);

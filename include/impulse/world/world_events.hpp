@@ -38,6 +38,7 @@ struct step_counts {
   std::size_t updated_contacts = 0;  ///< contact records the narrow phase updated (tested, or carried with their bodies)
   std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
   std::size_t solved_joints = 0;
+  std::size_t solved_springs = 0;
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };

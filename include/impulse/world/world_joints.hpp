@@ -84,4 +84,30 @@ void world<Config>::end_contacts_between(body_id a, body_id b) {
   });
 }
 
+template <class Config>
+void world<Config>::set_joint_motor(joint_id id, bool enable, T speed, T max_force) {
+  require(id, "world::set_joint_motor: no such joint");
+  joint_record& r = state_.joints[id];
+  joint_def<T> def = r.def;
+  def.enable_motor = enable, def.motor_speed = speed, def.max_motor_force = max_force;
+  def.validate();
+  r.def = def;
+  r.constraint.enable_motor = enable, r.constraint.motor_speed = speed, r.constraint.max_motor_force = max_force;
+  if (!enable) r.constraint.motor_impulse = T(0);
+  state_.wake_joint(r);
+}
+
+template <class Config>
+void world<Config>::set_joint_limits(joint_id id, bool enable, T lower, T upper) {
+  require(id, "world::set_joint_limits: no such joint");
+  joint_record& r = state_.joints[id];
+  joint_def<T> def = r.def;
+  def.enable_limit = enable, def.lower = lower, def.upper = upper;
+  def.validate();
+  r.def = def;
+  r.constraint.enable_limit = enable, r.constraint.lower = lower, r.constraint.upper = upper;
+  if (!enable) r.constraint.lower_impulse = r.constraint.upper_impulse = T(0);
+  state_.wake_joint(r);
+}
+
 }  // namespace impulse

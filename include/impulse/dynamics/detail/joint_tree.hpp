@@ -65,7 +65,7 @@ template <scalar_type T>
     case joint_type::fixed:
       return 6;
     case joint_type::distance:
-      return j.spring_hertz > T(0) ? 0 : 1;
+      return j.is_spring() ? 0 : 1;
   }
   return 0;
 }
@@ -103,7 +103,7 @@ struct holding_rows {
         add_rotation();
         break;
       case joint_type::distance:
-        if (j.spring_hertz == T(0)) add_row(j.axial);
+        if (!j.is_spring()) add_row(j.axial);
         break;
     }
   }

@@ -1,14 +1,14 @@
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config). Before the solve, a sleeping body touching
 // or joined to a moving one wakes, with its whole island, and the awake
-// bodies are joined into islands by their touching contacts and joints;
+// bodies are joined into islands by their touching contacts, joints and springs;
 // after the bodies have moved, an island whose every body has been slow
 // for sleep_time falls asleep: no forces, no contacts solved, no narrow
 // phase, until something wakes it.
 //
 // A sleeping island keeps its bodies (world_state::sleep_sets), as Box2D's
 // solver sets do, so that waking it needs no search, and the step visits
-// only the awake set (world_state::awake_bodies and the contacts and joints
+// only the awake set (world_state::awake_bodies and the contacts, joints and springs
 // that have an awake body): with everything asleep, it visits nothing.
 // An island falls asleep whole, with every body touching its bodies, so a
 // sleeping island touches only itself and static bodies, and wakes only
@@ -72,10 +72,7 @@ struct island_update {
       if (a.body.type == body_type::kinematic && is_moving(a)) b.sleep_timer = T(0);
       if (b.body.type == body_type::kinematic && is_moving(b)) a.sleep_timer = T(0);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) carried(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) carried(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(carried);
     const std::size_t n = state.awake_bodies.size();
     scratch.island_timer.assign(n, std::numeric_limits<T>::infinity());
     for (std::uint32_t p = 0; p < n; ++p) {
@@ -111,10 +108,7 @@ struct island_update {
       wake_by(state.bodies[a], state.bodies[b]);
       wake_by(state.bodies[b], state.bodies[a]);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(link);
     return woke;
   }
 
@@ -128,10 +122,7 @@ struct island_update {
       if (state.bodies[a].body.type == body_type::dynamic && state.bodies[b].body.type == body_type::dynamic)
         scratch.islands.unite(scratch.awake_place[state.dense(a)], scratch.awake_place[state.dense(b)]);
     };
-    for (const std::uint32_t k : state.awake_contacts)
-      if (state.contacts[k].touching) link(state.contacts[k].a, state.contacts[k].b);
-    for (const std::uint32_t k : state.awake_joints)
-      if (!state.joints.values()[k].broken) link(state.joints.values()[k].a, state.joints.values()[k].b);
+    state.for_each_awake_link(link);
   }
 
   /// Every body's island found afresh over all touching contacts and
@@ -160,6 +151,8 @@ struct island_update {
       if (c.touching) link(state.dense(c.a), state.dense(c.b));
     for (const joint_record<T>& j : state.joints.values())
       if (!j.broken) link(state.dense(j.a), state.dense(j.b));
+    for (const spring_record<T>& r : state.springs.values())
+      if (!r.anchored()) link(state.dense(r.def.body_a), state.dense(r.def.body_b));
     for (std::uint32_t i = 0; i < bodies.size(); ++i)
       if (bodies[i].body.type == body_type::dynamic && (bodies[i].awake || scratch.island_flag[i]))
         scratch.island_flag[scratch.islands.find(i)] = 1;

@@ -56,9 +56,12 @@ struct body_solve {
     settle_sleepers();
     gather_bodies();
     const vec3<T> gravity_step = state.settings.gravity * dt;
+    // The bodies' solver places, then the world anchor of springs that have
+    // one: a static body at the origin, so that an anchor is its own point.
     const std::size_t count = scratch.solver_dense.size();
-    scratch.solver_bodies.resize(count);
-    scratch.held.assign(count, 0);
+    scratch.solver_bodies.resize(count + (scratch.anchored ? 1 : 0));
+    scratch.held.assign(scratch.solver_bodies.size(), 0);
+    if (scratch.anchored) scratch.solver_bodies[count] = solver_body<T>{};
     for (std::size_t i = 0; i < count; ++i) {
       const body_record<T>& r = bodies[scratch.solver_dense[i]];
       const rigid_body<T>& b = r.body;
@@ -158,6 +161,7 @@ struct body_solve {
     }
     scratch.joints.clear();
     scratch.joint_sources.clear();
+    scratch.spring_sources.clear();
     for (const std::uint32_t k : state.awake_joints) {
       const joint_record<T>& r = state.joints.values()[k];
       if (r.broken || (!is_solved(state.bodies[r.a]) && !is_solved(state.bodies[r.b]))) continue;
@@ -167,10 +171,12 @@ struct body_solve {
       scratch.joints.back().body_a = ia, scratch.joints.back().body_b = ib;
       scratch.joint_sources.push_back(k);
     }
+    add_springs(count);
     state.counts.active_bodies = state.awake_bodies.size();
     state.counts.solver_bodies = count;
     state.counts.solved_manifolds = scratch.constraints.size();
-    state.counts.solved_joints = scratch.joints.size();
+    state.counts.solved_joints = scratch.joint_sources.size();
+    state.counts.solved_springs = scratch.spring_sources.size();
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -246,6 +252,32 @@ struct body_solve {
   }
 
  private:
+  /// The springs with a solved body, after the joints: each a distance row
+  /// of its stiffness and damping (joint.hpp, soften_absolute), from its
+  /// point on A to its point on B or, anchored, to the anchor on the
+  /// static body at `anchor`, the origin.
+  void add_springs(std::size_t anchor) {
+    for (const std::uint32_t k : state.awake_springs) {
+      const spring_record<T>& r = state.springs.values()[k];
+      const bool solved_b = !r.anchored() && is_solved(state.bodies[r.def.body_b]);
+      if (!is_solved(state.bodies[r.def.body_a]) && !solved_b) continue;
+      const std::uint32_t ia = scratch.solver_place[state.dense(r.def.body_a)];
+      const std::uint32_t ib = r.anchored() ? std::uint32_t(anchor) : scratch.solver_place[state.dense(r.def.body_b)];
+      if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
+      joint_constraint<T> c{};
+      c.type = joint_type::distance;
+      c.body_a = ia, c.body_b = ib;
+      c.local_anchor_a = r.def.point_a;
+      c.local_anchor_b = r.def.point_b;
+      c.length = r.def.rest_length;
+      c.spring_stiffness = r.def.stiffness;
+      c.spring_damping = r.def.damping;
+      c.axial_impulse = r.impulse;
+      scratch.joints.push_back(c);
+      scratch.spring_sources.push_back(k);
+    }
+  }
+
   /// Bodies that fell asleep in the last step have stood still since: the
   /// pose at this step's start is where they are.
   void settle_sleepers() {
@@ -281,6 +313,12 @@ struct body_solve {
       if (state.contacts[k].touching) reach(state.contacts[k].a, state.contacts[k].b);
     for (const std::uint32_t k : state.awake_joints)
       if (!state.joints.values()[k].broken) reach(state.joints.values()[k].a, state.joints.values()[k].b);
+    scratch.anchored = false;
+    for (const std::uint32_t k : state.awake_springs) {
+      const spring_record<T>& r = state.springs.values()[k];
+      if (!r.anchored()) reach(r.def.body_a, r.def.body_b);
+      else scratch.anchored = scratch.anchored || is_solved(state.bodies[r.def.body_a]);
+    }
     std::sort(scratch.reached.begin(), scratch.reached.end());
     scratch.solver_dense.resize(state.awake_bodies.size() + scratch.reached.size());
     std::merge(state.awake_bodies.begin(), state.awake_bodies.end(), scratch.reached.begin(), scratch.reached.end(),
@@ -309,12 +347,12 @@ struct body_solve {
   /// and a projection that would leave a body non-finite is undone for it.
   void project_joints() {
     std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+    for (std::size_t i = 0; i < scratch.solver_dense.size(); ++i) {
       scratch.solver_bodies[i].position = bodies[scratch.solver_dense[i]].body.position;
       scratch.solver_bodies[i].orientation = bodies[scratch.solver_dense[i]].body.orientation;
     }
     scratch.solver.project_joints(scratch.solver_bodies, scratch.joints, state.settings.solver);
-    for (std::size_t i = 0; i < scratch.solver_bodies.size(); ++i) {
+    for (std::size_t i = 0; i < scratch.solver_dense.size(); ++i) {
       body_record<T>& r = bodies[scratch.solver_dense[i]];
       if (!is_solved(r) || scratch.is_held(std::uint32_t(i))) continue;
       const solver_body<T>& s = scratch.solver_bodies[i];
@@ -337,7 +375,12 @@ struct body_solve {
   /// impulses are per substep) exceeded their thresholds.
   void keep_joint_impulses(T dt) {
     const T h = solver_type::impulse_step(state.settings.solver, dt);
-    for (std::size_t n = 0; n < scratch.joints.size(); ++n) {
+    for (std::size_t n = 0; n < scratch.spring_sources.size(); ++n) {
+      spring_record<T>& r = state.springs.values()[scratch.spring_sources[n]];
+      r.impulse = scratch.joints[scratch.joint_sources.size() + n].axial_impulse;
+      r.tension = -r.impulse * (T(1) / h);  // a positive impulse pushes B away from A
+    }
+    for (std::size_t n = 0; n < scratch.joint_sources.size(); ++n) {
       joint_record<T>& r = state.joints.values()[scratch.joint_sources[n]];
       r.constraint = scratch.joints[n];
       const joint_reaction<T> applied = reaction_of(scratch.joints[n]);

@@ -26,6 +26,7 @@
 #include "../../core/slot_map.hpp"
 #include "../../dynamics/contact_constraint.hpp"
 #include "../../dynamics/detail/island.hpp"
+#include "../../dynamics/body_spring.hpp"
 #include "../../dynamics/joint.hpp"
 #include "../../dynamics/rigid_body.hpp"
 #include "../../narrowphase/dispatch.hpp"
@@ -106,6 +107,16 @@ struct joint_record {
   body_id a, b;
   vec3<T> force{}, torque{};  ///< on B in the last step, N and N·m
   bool broken = false;
+};
+
+/// A spring of the world (world::create_spring): what it was made as, and
+/// what it carries between steps.
+template <scalar_type T>
+struct spring_record {
+  body_spring<T> def;    ///< end b none: point_b is a world anchor
+  T impulse = T(0);      ///< along it, N·s: the last step's, its warm start
+  T tension = T(0);      ///< N pulling its ends together in the last step
+  [[nodiscard]] bool anchored() const noexcept { return def.body_b.is_none(); }
 };
 
 // ---- what every stage asks of a record ----
@@ -191,6 +202,7 @@ struct world_state {
   settings_type settings{};
   slot_map<body_record<T>, body_id> bodies;
   slot_map<joint_record<T>, joint_id> joints;
+  slot_map<spring_record<T>, spring_id> springs;
   /// The body pairs joined without collide_connected (pair_key), sorted,
   /// once per such joint: their proxies' pairs make no contact.
   std::vector<std::uint64_t> joined;
@@ -213,11 +225,11 @@ struct world_state {
 
   /// The dense places of the active bodies (is_active: awake dynamic ones
   /// and every kinematic one), ascending; and the places of the contacts
-  /// (in `contacts`) and joints (in joints.values()) with an active body,
+  /// (in `contacts`), joints and springs (in their values()) with an active body,
   /// ascending. A step visits these and nothing else, so a sleeping body
   /// costs it nothing. Rebuilt by refresh_awake() once awake_stale says a
   /// body woke or slept, or a record came or went.
-  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints;
+  std::vector<std::uint32_t> awake_bodies, awake_contacts, awake_joints, awake_springs;
   bool awake_stale = true;
   /// The contact records must be merged with the broad phase's pairs at
   /// the next step though the pairs did not change: a record was dropped,
@@ -304,6 +316,22 @@ struct world_state {
     const std::vector<joint_record<T>>& js = joints.values();
     for (std::uint32_t k = 0; k < js.size(); ++k)
       if (is_active(bodies[js[k].a]) || is_active(bodies[js[k].b])) awake_joints.push_back(k);
+    awake_springs.clear();
+    const std::vector<spring_record<T>>& ss = springs.values();
+    for (std::uint32_t k = 0; k < ss.size(); ++k)
+      if (is_active(bodies[ss[k].def.body_a]) || (!ss[k].anchored() && is_active(bodies[ss[k].def.body_b])))
+        awake_springs.push_back(k);
+  }
+  /// Calls f(a, b) for every awake contact touching, unbroken joint and
+  /// spring between two bodies: what joins bodies into an island.
+  template <class F>
+  void for_each_awake_link(F&& f) const {
+    for (const std::uint32_t k : awake_contacts)
+      if (contacts[k].touching) f(contacts[k].a, contacts[k].b);
+    for (const std::uint32_t k : awake_joints)
+      if (!joints.values()[k].broken) f(joints.values()[k].a, joints.values()[k].b);
+    for (const std::uint32_t k : awake_springs)
+      if (!springs.values()[k].anchored()) f(springs.values()[k].def.body_a, springs.values()[k].def.body_b);
   }
   /// Whether a point is within max_coordinate of the origin on every axis
   /// (false for NaN).
@@ -420,7 +448,16 @@ struct step_scratch {
   std::vector<constraint_source> sources;
   std::vector<joint_constraint<T>> joints;
   std::vector<std::uint32_t> joint_sources;  ///< each solved joint's dense place
+  std::vector<std::uint32_t> spring_sources;  ///< each solved spring's dense place (its row follows the joints')
+  bool anchored = false;                      ///< a solved spring has a world anchor: the solver body past the others
   std::vector<joint_id> doomed_joints;       ///< world::destroy_body's
+  std::vector<spring_id> doomed_springs;     ///< world::destroy_body's
+  /// step(dt, field)'s loads, checked before any is applied.
+  struct field_load {
+    std::uint32_t body;
+    wrench<T> load;
+  };
+  std::vector<field_load> field_loads;
   std::vector<support> supports;
   std::vector<T> load;
   union_find islands;  ///< over awake_bodies' places (islands.hpp)
