@@ -5856,9 +5856,9 @@ template <scalar_type T> struct soft_step_settings;
 struct body_tag;
 struct spring_tag;
 struct joint_tag;
-/// Names a body of a rigid_body_system (later, of a world).
+/// Names a body of a world or of a rigid_body_system.
 using body_id = object_id<body_tag>;
-/// Names a spring of a rigid_body_system.
+/// Names a spring of a world or of a rigid_body_system.
 using spring_id = object_id<spring_tag>;
 /// Names a joint of a world.
 using joint_id = object_id<joint_tag>;
@@ -18468,20 +18468,21 @@ void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& 
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config). Before the solve, a sleeping body touching
 // or joined to a moving one wakes, with its whole island, and the awake
-// bodies are joined into islands by their touching contacts, joints and springs;
-// after the bodies have moved, an island whose every body has been slow
-// for sleep_time falls asleep: no forces, no contacts solved, no narrow
-// phase, until something wakes it.
+// bodies are joined into islands by their touching contacts, joints and
+// springs; after the bodies have moved, an island whose every body has
+// been slow for sleep_time falls asleep: no forces, no contacts solved, no
+// narrow phase, until something wakes it.
 //
 // A sleeping island keeps its bodies (world_state::sleep_sets), as Box2D's
 // solver sets do, so that waking it needs no search, and the step visits
-// only the awake set (world_state::awake_bodies and the contacts, joints and springs
-// that have an awake body): with everything asleep, it visits nothing.
-// An island falls asleep whole, with every body touching its bodies, so a
-// sleeping island touches only itself and static bodies, and wakes only
-// from outside it: by a moving body's contact or joint, or by the world's
-// API (world_state::wake). Bodies made asleep (body_def::awake false) are
-// in no island until the next step groups every sleeping body afresh.
+// only the awake set (world_state::awake_bodies, and the contacts, joints
+// and springs that have an awake body): with everything asleep, it visits
+// nothing. An island falls asleep whole, with every body touching its
+// bodies, so a sleeping island touches only itself and static bodies, and
+// wakes only from outside it: by a moving body's contact, joint or spring,
+// or by the world's API (world_state::wake). Bodies made asleep
+// (body_def::awake false) are in no island until the next step groups
+// every sleeping body afresh.
 
 
 
@@ -19881,16 +19882,20 @@ void world<Config>::step(T dt, Field&& field) {
   // body has been given anything.
   state_.refresh_awake();
   scratch_.field_loads.clear();
-  for (const std::uint32_t i : state_.awake_bodies) {
-    const rigid_body<T>& b = state_.bodies.values()[i].body;
-    if (b.type != body_type::dynamic) continue;
-    const body_id id = state_.bodies.ids()[i];
-    const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
-                                                body_momentum<T>{b.linear_momentum, b.angular_momentum}));
-    if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
-      detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
-                           id.index);
-    scratch_.field_loads.push_back({i, w});
+  {
+    // The field may read the world, and not change what this walks (world::for_each_contact's rules).
+    const in_callback scope(*this);
+    for (const std::uint32_t i : state_.awake_bodies) {
+      const rigid_body<T>& b = state_.bodies.values()[i].body;
+      if (b.type != body_type::dynamic) continue;
+      const body_id id = state_.bodies.ids()[i];
+      const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
+                                                  body_momentum<T>{b.linear_momentum, b.angular_momentum}));
+      if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
+        detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
+                             id.index);
+      scratch_.field_loads.push_back({i, w});
+    }
   }
   for (const auto& [i, w] : scratch_.field_loads) {
     rigid_body<T>& b = state_.bodies.values()[i].body;

@@ -201,7 +201,7 @@ TEST_CASE("a force field acts on the awake bodies for one step: one that cancels
   CHECK(w.body(floating).linear_velocity().y == doctest::Approx(-9.81 / 60).epsilon(1e-9));
 }
 
-TEST_CASE("a force field that gives a body a force that is not finite is refused before any body moves") {
+TEST_CASE("a force field that gives a body a force that is not finite, or makes a body, is refused before any body moves") {
   awake_world w;
   const body_id a = ::test::add_cube(w, {0, 5, 0});
   const body_id b = ::test::add_cube(w, {3, 5, 0});
@@ -213,6 +213,13 @@ TEST_CASE("a force field that gives a body a force that is not finite is refused
   CHECK(error_code_of([&] { w.step(::test::step_dt<float>, bad); }) == error_code::non_finite);
   CHECK(w.step_count() == 0);
   CHECK(w.body(a).force == vec3<float>{});
+  // Nor may a field change what the step walks: a body made inside it is refused.
+  const auto greedy = [&](body_id, const body_kinematics<float>&) {
+    (void)::test::add_cube(w, {9, 9, 9});
+    return wrench<float>{};
+  };
+  CHECK(error_code_of([&] { w.step(::test::step_dt<float>, greedy); }) == error_code::invalid_parameter);
+  CHECK(w.body_count() == 2);
   w.step(::test::step_dt<float>);  // the world steps on as before
   CHECK(w.body(a).position.y < 5);
 }

@@ -25,9 +25,9 @@ template <scalar_type T> struct soft_step_settings;
 struct body_tag;
 struct spring_tag;
 struct joint_tag;
-/// Names a body of a rigid_body_system (later, of a world).
+/// Names a body of a world or of a rigid_body_system.
 using body_id = object_id<body_tag>;
-/// Names a spring of a rigid_body_system.
+/// Names a spring of a world or of a rigid_body_system.
 using spring_id = object_id<spring_tag>;
 /// Names a joint of a world.
 using joint_id = object_id<joint_tag>;

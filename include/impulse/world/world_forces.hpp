@@ -68,16 +68,20 @@ void world<Config>::step(T dt, Field&& field) {
   // body has been given anything.
   state_.refresh_awake();
   scratch_.field_loads.clear();
-  for (const std::uint32_t i : state_.awake_bodies) {
-    const rigid_body<T>& b = state_.bodies.values()[i].body;
-    if (b.type != body_type::dynamic) continue;
-    const body_id id = state_.bodies.ids()[i];
-    const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
-                                                body_momentum<T>{b.linear_momentum, b.angular_momentum}));
-    if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
-      detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
-                           id.index);
-    scratch_.field_loads.push_back({i, w});
+  {
+    // The field may read the world, and not change what this walks (world::for_each_contact's rules).
+    const in_callback scope(*this);
+    for (const std::uint32_t i : state_.awake_bodies) {
+      const rigid_body<T>& b = state_.bodies.values()[i].body;
+      if (b.type != body_type::dynamic) continue;
+      const body_id id = state_.bodies.ids()[i];
+      const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
+                                                  body_momentum<T>{b.linear_momentum, b.angular_momentum}));
+      if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
+        detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
+                             id.index);
+      scratch_.field_loads.push_back({i, w});
+    }
   }
   for (const auto& [i, w] : scratch_.field_loads) {
     rigid_body<T>& b = state_.bodies.values()[i].body;

@@ -1,20 +1,21 @@
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config). Before the solve, a sleeping body touching
 // or joined to a moving one wakes, with its whole island, and the awake
-// bodies are joined into islands by their touching contacts, joints and springs;
-// after the bodies have moved, an island whose every body has been slow
-// for sleep_time falls asleep: no forces, no contacts solved, no narrow
-// phase, until something wakes it.
+// bodies are joined into islands by their touching contacts, joints and
+// springs; after the bodies have moved, an island whose every body has
+// been slow for sleep_time falls asleep: no forces, no contacts solved, no
+// narrow phase, until something wakes it.
 //
 // A sleeping island keeps its bodies (world_state::sleep_sets), as Box2D's
 // solver sets do, so that waking it needs no search, and the step visits
-// only the awake set (world_state::awake_bodies and the contacts, joints and springs
-// that have an awake body): with everything asleep, it visits nothing.
-// An island falls asleep whole, with every body touching its bodies, so a
-// sleeping island touches only itself and static bodies, and wakes only
-// from outside it: by a moving body's contact or joint, or by the world's
-// API (world_state::wake). Bodies made asleep (body_def::awake false) are
-// in no island until the next step groups every sleeping body afresh.
+// only the awake set (world_state::awake_bodies, and the contacts, joints
+// and springs that have an awake body): with everything asleep, it visits
+// nothing. An island falls asleep whole, with every body touching its
+// bodies, so a sleeping island touches only itself and static bodies, and
+// wakes only from outside it: by a moving body's contact, joint or spring,
+// or by the world's API (world_state::wake). Bodies made asleep
+// (body_def::awake false) are in no island until the next step groups
+// every sleeping body afresh.
 #pragma once
 
 #include <algorithm>
