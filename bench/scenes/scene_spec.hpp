@@ -253,11 +253,11 @@ inline scene_spec make_incline(std::string_view name, double friction, int steps
 
 /// Ten unit boxes stacked exactly touching, centers y = 0.5 + k: a tall
 /// stack tests drift under many iterations' worth of accumulated error.
-inline scene_spec make_tower10() {
+inline scene_spec make_tower(std::string_view name, int boxes, int steps) {
   const material m{0.6, 0};
-  scene_spec s = make_scene_base("tower10", 1200, false, metric_set::tower);
+  scene_spec s = make_scene_base(name, steps, false, metric_set::tower);
   s.bodies.push_back(make_ground(m));
-  for (int k = 0; k < 10; ++k) s.bodies.push_back(make_box({0.5, 0.5, 0.5}, {0, 0.5 + k, 0}, 1, m));
+  for (int k = 0; k < boxes; ++k) s.bodies.push_back(make_box({0.5, 0.5, 0.5}, {0, 0.5 + k, 0}, 1, m));
   return s;
 }
 
@@ -294,7 +294,7 @@ inline const std::vector<std::string_view>& scene_names() {
   static const std::vector<std::string_view> names{
       "pile",    "pile_nosleep",   "pyramid",        "pyramid_nosleep", "spheres", "spheres_nosleep", "large_pyramid",
       "bounce",  "incline",        "incline_static", "tower10",         "heavy_on_light", "cradle",
-      "pile_asleep", "pyramid_asleep"};
+      "pile_asleep", "pyramid_asleep", "tower20", "tower30"};
   return names;
 }
 
@@ -312,7 +312,10 @@ inline scene_spec make_scene(std::string_view name) {
   // incline measures v(2 s) − v(1 s); incline_static the drift after 5 s.
   if (name == "incline") return make_incline(name, 0.5, 120, metric_set::incline_sliding);
   if (name == "incline_static") return make_incline(name, 0.7, 300, metric_set::incline_static);
-  if (name == "tower10") return make_tower10();
+  if (name == "tower10") return make_tower(name, 10, 1200);
+  // tower20 and tower30: the same, 60 s (docs/standard_scenes.md).
+  if (name == "tower20") return make_tower(name, 20, 3600);
+  if (name == "tower30") return make_tower(name, 30, 3600);
   if (name == "heavy_on_light") return make_heavy_on_light();
   if (name == "cradle") return make_cradle();
   if (name == "pile_asleep") return make_asleep(make_pile(name, true), name);
