@@ -6,15 +6,17 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "../error_code_of.hpp"
 #include "scenes.hpp"
 
 using namespace impulse;
 
 namespace {
 
-struct soft_config : test::awake_config {
+struct soft_config : ::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
 using soft_world = world<soft_config>;
@@ -30,10 +32,10 @@ TEST_CASE("soft step: a box on a 30 degree incline at friction 0.5 slides at g(s
   ramp.pose.rotation = turn;
   ramp.material.friction = 0.5f;
   w.create_body(ramp, box<float>::make({15, 0.5f, 5}));
-  const body_id cube = test::add_cube(w, rotate(turn, vec3<float>{5, 1, 0}), 1.0f, 0.5f, turn);
-  test::run(w, 60);
+  const body_id cube = ::test::add_cube(w, rotate(turn, vec3<float>{5, 1, 0}), 1.0f, 0.5f, turn);
+  ::test::run(w, 60);
   const float v1 = length(w.body(cube).linear_velocity());
-  test::run(w, 60);
+  ::test::run(w, 60);
   const float v2 = length(w.body(cube).linear_velocity());
   const double analytic = 9.81 * (std::sin(double(angle)) - 0.5 * std::cos(double(angle)));
   CHECK(std::abs((v2 - v1) / analytic - 1) < 0.005);
@@ -41,12 +43,12 @@ TEST_CASE("soft step: a box on a 30 degree incline at friction 0.5 slides at g(s
 
 TEST_CASE("soft step: a 10-box tower stands for 20 s with its top within 1 cm of the axis") {
   soft_world w;
-  test::add_ground(w);
+  ::test::add_ground(w);
   std::vector<body_id> tower;
-  for (int k = 0; k < 10; ++k) tower.push_back(test::add_cube(w, {0, 0.5f + float(k), 0}));
+  for (int k = 0; k < 10; ++k) tower.push_back(::test::add_cube(w, {0, 0.5f + float(k), 0}));
   float drift = 0;
   for (int i = 0; i < 1200; ++i) {
-    w.step(test::step_dt<float>);
+    w.step(::test::step_dt<float>);
     const vec3<float> top = w.body(tower.back()).position;
     drift = std::max(drift, std::hypot(top.x, top.z));
   }
@@ -58,11 +60,11 @@ TEST_CASE("soft step: a 10-box tower stands for 20 s with its top within 1 cm of
 
 TEST_CASE("soft step: the 20-row pyramid stands for 20 s without spreading more than 2 cm across") {
   soft_world w;
-  test::add_ground(w);
-  const std::vector<body_id> boxes = test::add_pyramid(w, 20);
-  const auto start = test::positions(w, boxes);
-  test::run(w, test::long_run(1200));
-  const vec3<float> worst = test::largest_displacement(w, boxes, start);
+  ::test::add_ground(w);
+  const std::vector<body_id> boxes = ::test::add_pyramid(w, 20);
+  const auto start = ::test::positions(w, boxes);
+  ::test::run(w, ::test::long_run(1200));
+  const vec3<float> worst = ::test::largest_displacement(w, boxes, start);
   CHECK(worst.x < 0.02f);
   CHECK(worst.z < 0.02f);
   CHECK(w.body(boxes.back()).position.y > 19.0f);
@@ -70,12 +72,12 @@ TEST_CASE("soft step: the 20-row pyramid stands for 20 s without spreading more 
 
 TEST_CASE("soft step: a 100 kg box on a 1 kg box stands for 10 s without sliding 1 cm") {
   soft_world w;
-  test::add_ground(w);
-  test::add_cube(w, {0, 0.5f, 0}, 1);
-  const body_id heavy = test::add_cube(w, {0, 1.5f, 0}, 100);
+  ::test::add_ground(w);
+  ::test::add_cube(w, {0, 0.5f, 0}, 1);
+  const body_id heavy = ::test::add_cube(w, {0, 1.5f, 0}, 100);
   float slid = 0;
   for (int i = 0; i < 600; ++i) {
-    w.step(test::step_dt<float>);
+    w.step(::test::step_dt<float>);
     slid = std::max(slid, std::hypot(w.body(heavy).position.x, w.body(heavy).position.z));
   }
   CHECK(slid < 0.01f);
@@ -90,7 +92,7 @@ TEST_CASE("soft step: a box spun about its intermediate axis never gains energy 
   // chain's whipped tail spun up to 3 000 rad/s. Measured: 34 % lost at
   // 1/60 s, 17 % at 1/120 s; the sequential_impulse solver keeps both
   // invariants to its integrator's order instead (test_world.cpp).
-  struct double_soft : test::awake_double_config {
+  struct double_soft : ::test::awake_double_config {
     using solver = impulse::solver::soft_step;
   };
   const auto energy_lost = [](double dt) {
@@ -113,4 +115,22 @@ TEST_CASE("soft step: a box spun about its intermediate axis never gains energy 
   MESSAGE("energy lost in 20 s: " << coarse << " at 1/60 s, " << fine << " at 1/120 s");
   CHECK(coarse / fine > 1.8);  // 2 for a first-order method
   CHECK(coarse / fine < 2.2);
+}
+
+TEST_CASE("soft step's own settings are checked: no substep, a negative stiffness or a NaN damping is refused, the "
+          "world's settings kept") {
+  soft_world w;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  soft_world::settings_type bad;
+  bad.solver.substeps = 0;
+  CHECK(impulse::test::error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  bad = {};
+  bad.solver.contact_hertz = -30;
+  CHECK(impulse::test::error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  bad = {};
+  bad.solver.joint_damping_ratio = nan;
+  CHECK(impulse::test::error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
+  CHECK(w.settings().solver.substeps == 4);
+  CHECK(w.settings().solver.contact_hertz == 30);
+  CHECK(std::isfinite(w.settings().solver.joint_damping_ratio));
 }

@@ -101,6 +101,17 @@ TEST_CASE("a spring of 1e6 N/m on a 1 kg box at 60 Hz takes the implicit step, i
   CHECK(w.body(b).position.y == doctest::Approx(4.2f - 9.81f / 1e6f).epsilon(1e-5));
 }
 
+TEST_CASE("a spring of zero stiffness and damping pulls with nothing: the body falls as it would alone") {
+  awake_double_world w;
+  const body_id held = add_box(w, {0, 10, 0}, 1.0);
+  const body_id free = add_box(w, {5, 10, 0}, 1.0);
+  const spring_id s = w.create_spring(body_spring<double>::to_anchor(held, {}, {0, 10.5, 0}, 0.0, 0.0, 0.5));
+  ::test::run(w, 60);
+  CHECK(w.body(held).position.y == w.body(free).position.y);  // bit for bit: nothing acted on it but gravity
+  CHECK(w.body(held).position.y < 6);
+  CHECK(w.spring_tension(s) == 0.0);
+}
+
 TEST_CASE("a spring between two bodies conserves their momentum to rounding") {
   awake_double_world w(weightless<awake_double_world>());
   const body_id a = add_box(w, {0, 0, 0}, 1.0);

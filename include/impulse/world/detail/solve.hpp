@@ -258,9 +258,15 @@ struct body_solve {
   /// static body at `anchor`, the origin.
   void add_springs(std::size_t anchor) {
     for (const std::uint32_t k : state.awake_springs) {
-      const spring_record<T>& r = state.springs.values()[k];
+      spring_record<T>& r = state.springs.values()[k];
       const bool solved_b = !r.anchored() && is_solved(state.bodies[r.def.body_b]);
       if (!is_solved(state.bodies[r.def.body_a]) && !solved_b) continue;
+      // With neither stiffness nor damping it pulls with nothing; as a
+      // distance row it would be a rigid rod (joint_constraint::is_spring).
+      if (!(r.def.stiffness > T(0)) && !(r.def.damping > T(0))) {
+        r.impulse = r.tension = T(0);
+        continue;
+      }
       const std::uint32_t ia = scratch.solver_place[state.dense(r.def.body_a)];
       const std::uint32_t ib = r.anchored() ? std::uint32_t(anchor) : scratch.solver_place[state.dense(r.def.body_b)];
       if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
