@@ -1,5 +1,6 @@
-// bench/rigid_motion/rigid_motion.cpp — body-steps per second of
-// rigid_body_system under gravity and springs, per integrator and scalar.
+// bench/rigid_motion/rigid_motion.cpp — body-steps per second of a world
+// without collision (config `collision = false`: bodies moved by forces
+// alone) under gravity and springs, per integrator and scalar.
 //
 // Two scenes of unit boxes (half-extent 0.5 m, density 1: mass 1 kg) under
 // gravity (0, −9.81, 0), with the same damped spring (k = 100 N/m,
@@ -7,13 +8,13 @@
 //   independent  N boxes, each hung by its corner (½, ½, ½) from its own
 //                world anchor, released at rest off to one side so that it
 //                swings and turns. No spring joins two moving bodies: the
-//                system steps each body alone (the fast path).
+//                world steps each body alone (the fast path).
 //   coupled      a chain of N boxes in a row 1.5 m apart, the middle of
 //                each one's top +x edge (½, ½, 0) joined to the middle of
 //                the next one's top −x edge (−½, ½, 0), the two end boxes
 //                held by anchors the same way; released straight, every
 //                spring at its rest length, it sags. The springs couple
-//                the bodies: the system steps the whole set as one state
+//                the bodies: the world steps every body as one state
 //                (the coupled path).
 //
 // Output: CSV on stdout,
@@ -36,7 +37,6 @@
 #include <vector>
 
 #include "impulse/shapes/box.hpp"
-#include "impulse/shapes/mass_properties.hpp"
 
 #include "stretch_timing.hpp"
 
@@ -50,9 +50,12 @@ constexpr double dt = 1.0 / 60;  // the standard scenes' fixed step (docs/standa
 constexpr long warm_steps = 10, timed_steps = 30;
 constexpr double stiffness = 100, damping = 2, rest_length = 0.5;
 
-template <class T>
-rigid_body<T> unit_box(const vec3<T>& at) {
-  return rigid_body<T>::dynamic(mass_properties_of(box<T>{{T(0.5), T(0.5), T(0.5)}}, T(1)), {at, quat<T>::identity()});
+/// A unit box (density 1: mass 1 kg) at `at`, unturned and at rest.
+template <class World, class T = typename World::scalar>
+body_id add_unit_box(World& w, const vec3<T>& at) {
+  body_def<T> def;
+  def.pose.position = at;
+  return w.create_body(def, box<T>{{T(0.5), T(0.5), T(0.5)}});
 }
 
 template <class T>
@@ -62,51 +65,50 @@ body_spring<T> scene_spring(body_id a, const vec3<T>& pa, body_id b, const vec3<
 
 /// Boxes on a square grid 3 m apart, each 1 m below and (0.3, 0.1) m to the
 /// side of its anchor (the hanging cube of tests/dynamics/test_body_springs).
-template <class System>
-void hang_boxes(System& system, std::size_t n) {
-  using T = typename System::scalar;
+template <class World>
+void hang_boxes(World& w, std::size_t n) {
+  using T = typename World::scalar;
   const std::size_t side = std::size_t(std::ceil(std::sqrt(double(n))));
   for (std::size_t i = 0; i < n; ++i) {
     const vec3<T> anchor{T(3.0 * double(i % side)), T(3), T(3.0 * double(i / side))};
-    const body_id id = system.add_body(unit_box(anchor + vec3<T>{T(0.3), T(-1), T(0.1)}));
-    system.add_spring(scene_spring<T>(id, {T(0.5), T(0.5), T(0.5)}, body_id{}, anchor));
+    const body_id id = add_unit_box(w, anchor + vec3<T>{T(0.3), T(-1), T(0.1)});
+    w.create_spring(scene_spring<T>(id, {T(0.5), T(0.5), T(0.5)}, body_id{}, anchor));
   }
 }
 
 /// Boxes 1.5 m apart along x at a height of 10 m: each spring spans the
 /// 0.5 m gap between neighbours at its rest length.
-template <class System>
-void hang_chain(System& system, std::size_t n) {
-  using T = typename System::scalar;
+template <class World>
+void hang_chain(World& w, std::size_t n) {
+  using T = typename World::scalar;
   const vec3<T> right{T(0.5), T(0.5), T(0)}, left{T(-0.5), T(0.5), T(0)};
   std::vector<body_id> ids;
-  for (std::size_t i = 0; i < n; ++i)
-    ids.push_back(system.add_body(unit_box(vec3<T>{T(1.5 * double(i)), T(10), T(0)})));
-  for (std::size_t i = 0; i + 1 < n; ++i) system.add_spring(scene_spring<T>(ids[i], right, ids[i + 1], left));
+  for (std::size_t i = 0; i < n; ++i) ids.push_back(add_unit_box(w, vec3<T>{T(1.5 * double(i)), T(10), T(0)}));
+  for (std::size_t i = 0; i + 1 < n; ++i) w.create_spring(scene_spring<T>(ids[i], right, ids[i + 1], left));
   const vec3<T> first_anchor{T(-1), T(10.5), T(0)}, last_anchor{T(1.5 * double(n - 1) + 1), T(10.5), T(0)};
-  system.add_spring(scene_spring<T>(ids.front(), left, body_id{}, first_anchor));
-  system.add_spring(scene_spring<T>(ids.back(), right, body_id{}, last_anchor));
+  w.create_spring(scene_spring<T>(ids.front(), left, body_id{}, first_anchor));
+  w.create_spring(scene_spring<T>(ids.back(), right, body_id{}, last_anchor));
 }
 
 enum class scene { independent, coupled };
 
 /// The scene, stepped to the start of the timed stretch.
 template <class T, class I>
-stretch_timing<rigid_motion::system<T, I>> timing_of(scene which, std::size_t n) {
-  rigid_motion::system<T, I> system;
+stretch_timing<rigid_motion::world<T, I>> timing_of(scene which, std::size_t n) {
+  rigid_motion::world<T, I> w;
   if (which == scene::independent) {
-    hang_boxes(system, n);
+    hang_boxes(w, n);
   } else {
-    hang_chain(system, n);
+    hang_chain(w, n);
   }
-  for (long i = 0; i < warm_steps; ++i) system.step(T(dt));
-  return {system, timed_steps, T(dt)};
+  for (long i = 0; i < warm_steps; ++i) w.step(T(dt));
+  return {w, timed_steps, T(dt)};
 }
 
 /// One integrator on both scenes of the same N.
 template <class T, class I>
 struct scene_timings {
-  stretch_timing<rigid_motion::system<T, I>> independent, coupled;
+  stretch_timing<rigid_motion::world<T, I>> independent, coupled;
   explicit scene_timings(std::size_t n)
       : independent(timing_of<T, I>(scene::independent, n)), coupled(timing_of<T, I>(scene::coupled, n)) {}
 };
@@ -121,9 +123,9 @@ void measure(std::size_t n, const settings& s) {
   scene_timings<T, in::rk4> rk4(n);
   rigid_motion::time_in_turns(s, euler.independent, euler.coupled, symplectic.independent, symplectic.coupled,
                               midpoint.independent, midpoint.coupled, rk4.independent, rk4.coupled);
-  const auto print = [&]<class System>(const char* scene_name, const stretch_timing<System>& timing,
-                                       const stretch_timing<System>& independent, const auto& symplectic_euler) {
-    std::printf("%s,%s,%s,%zu,%.3f,%.3f,%.3f\n", scene_name, rigid_motion::integrator_name<typename System::integrator>,
+  const auto print = [&]<class World>(const char* scene_name, const stretch_timing<World>& timing,
+                                      const stretch_timing<World>& independent, const auto& symplectic_euler) {
+    std::printf("%s,%s,%s,%zu,%.3f,%.3f,%.3f\n", scene_name, rigid_motion::integrator_name<typename World::integrator>,
                 rigid_motion::scalar_name<T>, n, double(n) / rigid_motion::median(timing.seconds_per_step()) / 1e6,
                 rigid_motion::median_ratio(timing, symplectic_euler), rigid_motion::median_ratio(timing, independent));
   };

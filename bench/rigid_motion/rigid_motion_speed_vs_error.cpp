@@ -22,10 +22,11 @@
 // For dt = 1/15 · 2^-k s (k = 0 … 9: 1/15 s down to 1/7680 s, 150 to 76 800
 // steps to 10 s) it prints one CSV row per integrator and scalar:
 //   integrator,scalar,dt,steps,ns_per_body_step,energy_error,orientation_error
-// ns_per_body_step: median of 7 runs, each ≥ 20 ms, of a set of 512 spinning
-// bodies and 512 tops (no springs: the fast path), stepped through the
-// same 30 steps from the start again and again. The errors come from one
-// body of each kind alone in a set, stepped to 10 s by the same code.
+// ns_per_body_step: median of 7 runs, each ≥ 20 ms, of a world without
+// collision holding 512 spinning bodies and 512 tops (no springs: the fast
+// path), stepped through the same 30 steps from the start again and again.
+// The errors come from one body of each kind alone in such a world, stepped
+// to 10 s by the same code.
 //
 // Usage: rigid_motion_speed_vs_error [--quick] > rigid_motion_speed_vs_error.csv
 //   --quick  3 time steps, 3 repeats of ≥ 2 ms: a smoke run, not figures.
@@ -36,6 +37,7 @@
 #include <vector>
 
 #include "impulse/math/quat.hpp"
+#include "impulse/shapes/sphere.hpp"
 
 #include "stretch_timing.hpp"
 
@@ -47,7 +49,7 @@ using rigid_motion::stretch_timing;
 
 constexpr double t_end = 10;                 // s, as in the energy test of test_free_rotation.cpp
 constexpr long timed_steps = 30;             // per stretch of a timed run
-constexpr std::size_t bodies_of_each = 512;  // in the timed set, per problem
+constexpr std::size_t bodies_of_each = 512;  // in the timed world, per problem
 
 constexpr double spinning_moments[3] = {1, 2, 3}, spin[3] = {0.01, 2, 0.01};
 constexpr double top_perpendicular = 1, top_axial = 1.8;
@@ -62,22 +64,31 @@ quat<double> widen(const quat<T>& q) {
 }
 
 /// Mass 1 kg, principal moments i along the body axes, at orientation q0,
-/// spinning at omega (body axes).
+/// spinning at omega (body axes). The body_def's inertia replaces its
+/// shape's (carrier below).
 template <class T>
-rigid_body<T> principal_body(const vec3<T>& i, const quat<T>& q0, const vec3<T>& omega) {
-  rigid_body<T> b = rigid_body<T>::dynamic({T(1), {}, mat3<T>::diagonal(i)}, {{}, q0});
-  b.set_velocity({}, rotate(q0, omega));
-  return b;
+body_def<T> principal_body(const vec3<T>& i, const quat<T>& q0, const vec3<T>& omega) {
+  body_def<T> def;
+  def.pose.rotation = q0;
+  def.angular_velocity = rotate(q0, omega);
+  def.mass = T(1);
+  def.inertia = mat3<T>::diagonal(i);
+  return def;
 }
 
+/// The shape the bodies are made of: a sphere, whose center of mass is its
+/// origin. Without collision its size plays no part.
 template <class T>
-rigid_body<T> spinning_body() {
+constexpr sphere<T> carrier{T(0.5)};
+
+template <class T>
+body_def<T> spinning_body() {
   const double* m = spinning_moments;
   return principal_body<T>({T(m[0]), T(m[1]), T(m[2])}, quat<T>::identity(), {T(spin[0]), T(spin[1]), T(spin[2])});
 }
 
 template <class T>
-rigid_body<T> symmetric_top() {
+body_def<T> symmetric_top() {
   const quat<T> tilt = quat<T>::from_axis_angle(normalize(vec3<T>{1, T(0.3), T(-0.2)}), T(0.6));
   return principal_body<T>({T(top_perpendicular), T(top_perpendicular), T(top_axial)}, tilt,
                            {T(0.7), T(-0.4), T(3)});
@@ -105,14 +116,15 @@ quat<double> top_orientation(const rigid_body<T>& start, double t) {
          quat<double>::from_axis_angle({0, 0, 1}, nu * t);
 }
 
-/// `start` alone in a set without gravity, after `steps` steps of h.
+/// The body `def` makes, alone in a world without gravity, after `steps`
+/// steps of h (0: as made, its state rounded to T).
 template <class T, class I>
-rigid_body<T> advanced(const rigid_body<T>& start, long steps, T h) {
-  rigid_motion::system<T, I> system;
-  system.gravity = {};
-  system.add_body(start);
-  for (long i = 0; i < steps; ++i) system.step(h);
-  return system.bodies()[0];
+rigid_body<T> advanced(const body_def<T>& def, long steps, T h) {
+  rigid_motion::world<T, I> w;
+  w.set_gravity({});
+  const body_id id = w.create_body(def, carrier<T>);
+  for (long i = 0; i < steps; ++i) w.step(h);
+  return w.body(id);
 }
 
 struct errors {
@@ -121,26 +133,27 @@ struct errors {
 
 template <class T, class I>
 errors errors_after(long steps, T h) {
-  const rigid_body<T> body = spinning_body<T>(), top = symmetric_top<T>();
-  const double e0 = kinetic_energy(body);
-  // The set makes `steps` steps of h as rounded to T, so the end time is
+  const body_def<T> body = spinning_body<T>(), top = symmetric_top<T>();
+  const double e0 = kinetic_energy(advanced<T, I>(body, 0, h));
+  // The world makes `steps` steps of h as rounded to T, so the end time is
   // steps·h in that precision: in float every h of the ladder ends 10 s
   // 5.2e-7 s late, 2.8e-6 rad of the top's precession, above float's floor.
   const double t = double(steps) * double(h);
   return {std::abs(kinetic_energy(advanced<T, I>(body, steps, h)) - e0) / e0,
-          angle_between(widen(advanced<T, I>(top, steps, h).orientation), top_orientation(top, t))};
+          angle_between(widen(advanced<T, I>(top, steps, h).orientation),
+                        top_orientation(advanced<T, I>(top, 0, h), t))};
 }
 
-/// The timed set: spinning bodies and tops in turn.
+/// The timed world: spinning bodies and tops in turn.
 template <class T, class I>
-stretch_timing<rigid_motion::system<T, I>> timing_of(T h) {
-  rigid_motion::system<T, I> system;
-  system.gravity = {};
+stretch_timing<rigid_motion::world<T, I>> timing_of(T h) {
+  rigid_motion::world<T, I> w;
+  w.set_gravity({});
   for (std::size_t i = 0; i < bodies_of_each; ++i) {
-    system.add_body(spinning_body<T>());
-    system.add_body(symmetric_top<T>());
+    w.create_body(spinning_body<T>(), carrier<T>);
+    w.create_body(symmetric_top<T>(), carrier<T>);
   }
-  return {system, timed_steps, h};
+  return {w, timed_steps, h};
 }
 
 template <class T, class... I>
@@ -150,10 +163,10 @@ void measure(const std::vector<int>& ladder, const settings& s) {
     const double h = std::ldexp(1.0 / 15, -k);
     const long steps = std::lround(t_end / h);
     const T h_t = T(h);
-    std::tuple<stretch_timing<rigid_motion::system<T, I>>...> timings{timing_of<T, I>(h_t)...};
+    std::tuple<stretch_timing<rigid_motion::world<T, I>>...> timings{timing_of<T, I>(h_t)...};
     std::apply([&](auto&... t) { rigid_motion::time_in_turns(s, t...); }, timings);
-    const auto print = [&]<class System>(const stretch_timing<System>& timing) {
-      using integrator = typename System::integrator;
+    const auto print = [&]<class World>(const stretch_timing<World>& timing) {
+      using integrator = typename World::integrator;
       const errors e = errors_after<T, integrator>(steps, h_t);
       std::printf("%s,%s,%.9g,%ld,%.2f,%.6e,%.6e\n", rigid_motion::integrator_name<integrator>,
                   rigid_motion::scalar_name<T>, h, steps, rigid_motion::median(timing.seconds_per_step()) * 1e9 /

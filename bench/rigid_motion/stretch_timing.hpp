@@ -18,17 +18,21 @@
 #include "impulse/config.hpp"
 #include "impulse/dynamics.hpp"
 #include "impulse/integrators.hpp"
+#include "impulse/world.hpp"
 
 namespace rigid_motion {
 
+/// A world without collision: no broad phase, contacts, joints or solver;
+/// gravity and springs move the bodies, evaluated at every stage of I.
 template <class T, class I>
 struct config : impulse::default_config {
   using scalar = T;
   using integrator = I;
+  static constexpr bool collision = false;
 };
 
 template <class T, class I>
-using system = impulse::rigid_body_system<config<T, I>>;
+using world = impulse::world<config<T, I>>;
 
 template <class I> constexpr const char* integrator_name = nullptr;
 template <> inline constexpr const char* integrator_name<impulse::integrators::euler> = "euler";
@@ -53,15 +57,15 @@ struct settings {
 /// end, so that no timed step can be optimised away.
 inline double checksum = 0;
 
-template <class System>
+template <class World>
 class stretch_timing {
  public:
-  using T = typename System::scalar;
+  using T = typename World::scalar;
 
-  stretch_timing(const System& start, long stretch, T dt) : start_(start), stretch_(stretch), dt_(dt) {}
+  stretch_timing(const World& start, long stretch, T dt) : start_(start), stretch_(stretch), dt_(dt) {}
 
   /// Doubles the stretches per run until a run lasts min_run_seconds; also
-  /// the warm-up (caches, branch predictors, the system's scratch buffers).
+  /// the warm-up (caches, branch predictors, the world's scratch buffers).
   void calibrate(const settings& s) {
     while (run() < s.min_run_seconds) stretches_ *= 2;
   }
@@ -75,17 +79,19 @@ class stretch_timing {
     using clock = std::chrono::steady_clock;
     double seconds = 0;
     for (long k = 0; k < stretches_; ++k) {
-      System system = start_;
+      World w = start_;
       const auto t0 = clock::now();
-      for (long i = 0; i < stretch_; ++i) system.step(dt_);
+      for (long i = 0; i < stretch_; ++i) w.step(dt_);
       seconds += std::chrono::duration<double>(clock::now() - t0).count();
-      for (const impulse::rigid_body<T>& b : system.bodies())
+      for (const impulse::body_id id : w.body_ids()) {
+        const impulse::rigid_body<T>& b = w.body(id);
         checksum += double(b.position.x + b.position.y + b.position.z) + double(b.orientation.w);
+      }
     }
     return seconds;
   }
 
-  System start_;
+  World start_;
   long stretch_;
   T dt_;
   long stretches_ = 1;

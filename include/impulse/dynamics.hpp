@@ -14,7 +14,6 @@
 #include "dynamics/joint.hpp"
 #include "dynamics/material.hpp"
 #include "dynamics/rigid_body.hpp"
-#include "dynamics/rigid_body_system.hpp"
 #include "dynamics/sequential_impulse.hpp"
 #include "dynamics/soft_step.hpp"
 #include "dynamics/softness.hpp"

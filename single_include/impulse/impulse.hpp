@@ -157,6 +157,7 @@ template <class C> concept has_solver = requires { typename C::solver; };
 template <class C> concept has_shapes = requires { typename C::shapes; };
 template <class C> concept has_sleeping = requires { C::sleeping; };
 template <class C> concept has_ccd = requires { C::ccd; };
+template <class C> concept has_collision = requires { C::collision; };
 
 template <class T>
 concept constexpr_bool = std::same_as<std::remove_cv_t<T>, bool>;
@@ -175,7 +176,8 @@ concept world_config =
     (!detail::has_solver<C> || solver_policy<typename C::solver>) &&
     (!detail::has_shapes<C> || shape_set<typename C::shapes>) &&
     (!detail::has_sleeping<C> || detail::constexpr_bool<decltype(C::sleeping)>) &&
-    (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>);
+    (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>) &&
+    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>);
 
 /// Loud form: use as `static_assert(impulse::check_config<C>());`. Each failed
 /// requirement produces one static_assert message naming the member at fault.
@@ -218,6 +220,10 @@ consteval bool check_config() {
   if constexpr (detail::has_ccd<C>) {
     static_assert(detail::constexpr_bool<decltype(C::ccd)>,
                   "impulse config: `ccd` must be `static constexpr bool`");
+  }
+  if constexpr (detail::has_collision<C>) {
+    static_assert(detail::constexpr_bool<decltype(C::collision)>,
+                  "impulse config: `collision` must be `static constexpr bool`");
   }
   return world_config<C>;
 }
@@ -1102,31 +1108,76 @@ template <scalar_type T>
 // naming whatever took the slot next. Removal moves the last element into
 // the hole, so dense positions change; ids do not. A slot is retired
 // before its generation wraps, so a destroyed id never names a live object.
+//
+// A user's ids also carry their owner: the world that made them (a number
+// world.hpp draws for each world it constructs). A slot_map refuses an id
+// of another owner, so an id kept from one world never names a body of
+// another, even at the same slot and generation.
 
 #include <vector>
 
 
 namespace impulse {
 
+namespace detail {
+/// The owner of an id that has none: the broad phase's proxies, which
+/// never leave their world.
+struct no_owner {
+  friend constexpr bool operator==(no_owner, no_owner) noexcept = default;
+};
+}  // namespace detail
+
 /// A stable, checked handle. Tag keeps body and spring ids apart at
-/// compile time.
+/// compile time; Tag::owned says whether the id names its owner too.
 template <class Tag>
 struct object_id {
   std::uint32_t index = no_object;  ///< slot; no_object for "none"
   std::uint32_t generation = 0;     ///< bumped each time the slot is freed
+  /// The world that made it (0: none); costs nothing in an unowned id.
+  [[no_unique_address]] std::conditional_t<Tag::owned, std::uint32_t, detail::no_owner> owner{};
 
   [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
   friend constexpr bool operator==(const object_id&, const object_id&) = default;
 };
 
+/// An id type that names its owner.
+template <class Id>
+concept owned_id = requires(Id id) {
+  { id.owner } -> std::convertible_to<std::uint32_t>;
+};
+
 template <class V, class Id>
 class slot_map {
+  /// The id's generation type: 32 bits for impulse's ids; a test's id with
+  /// a narrower one wraps sooner.
+  using generation_type = decltype(Id{}.generation);
+
  public:
   [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
   [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
   [[nodiscard]] bool contains(Id id) const noexcept {
+    if constexpr (owned_id<Id>) {
+      if (id.owner != owner_) return false;
+    }
     return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
            slots_[id.index].dense != free_slot;
+  }
+
+  /// The owner stamped on the ids this map makes, and required of the ids
+  /// it is given; the ids it holds take the new owner.
+  [[nodiscard]] std::uint32_t owner() const noexcept { return owner_; }
+  void set_owner(std::uint32_t owner) noexcept
+    requires owned_id<Id>
+  {
+    owner_ = owner;
+    for (Id& id : ids_) id.owner = owner;
+  }
+  /// The id of the live object at `slot` with `generation`, stamped with
+  /// this map's owner (for ids stored without it, as proxies' user data).
+  [[nodiscard]] Id id_at(std::uint32_t slot, generation_type generation) const noexcept {
+    Id id{slot, generation};
+    if constexpr (owned_id<Id>) id.owner = owner_;
+    return id;
   }
 
   Id insert(V value) {
@@ -1142,7 +1193,7 @@ class slot_map {
     }
     slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
     values_.push_back(std::move(value));
-    ids_.push_back(Id{slot, slots_[slot].generation});
+    ids_.push_back(id_at(slot, slots_[slot].generation));
     return ids_.back();
   }
 
@@ -1177,9 +1228,6 @@ class slot_map {
 
  private:
   static constexpr std::uint32_t free_slot = 0xffffffffu;
-  /// The id's generation type: 32 bits for impulse's ids; a test's id with
-  /// a narrower one wraps sooner.
-  using generation_type = decltype(Id{}.generation);
   struct slot {
     std::uint32_t dense;
     generation_type generation;
@@ -1188,6 +1236,7 @@ class slot_map {
   std::vector<Id> ids_;
   std::vector<slot> slots_;
   std::vector<std::uint32_t> free_;
+  std::uint32_t owner_ = 0;
 };
 
 }  // namespace impulse
@@ -1195,7 +1244,10 @@ class slot_map {
 
 namespace impulse {
 
-struct proxy_tag;
+/// Proxies never leave their broad phase: their ids name no owner.
+struct proxy_tag {
+  static constexpr bool owned = false;
+};
 /// Names a proxy (a box and its user data) in a broad phase.
 using proxy_id = object_id<proxy_tag>;
 struct proxy_pair;
@@ -4628,7 +4680,7 @@ struct sweep_and_prune {
 
 // ---- begin impulse/core/extern_templates.hpp ----
 // impulse/core/extern_templates.hpp — compile once, link everywhere: explicit
-// instantiation of the world, the particle system and the rigid-body system.
+// instantiation of the world and the particle system.
 //
 // Header-only templates are compiled again in every translation unit that
 // uses them: a program that creates a world and steps it compiles the whole
@@ -4647,10 +4699,10 @@ struct sweep_and_prune {
 //     (CMake: target_compile_definitions(app PRIVATE IMPULSE_EXTERN_TEMPLATES=1));
 //   - include "impulse/instantiate.hpp" in exactly one .cpp file.
 //
-// Then world<default_config>, world<default_double_config>,
-// rigid_body_system<...> of both, and the particle system
-// particle_system<..., gravity, drag, point_forces> of both are compiled in
-// that file only. Another configuration, in a header the program shares:
+// Then world<default_config>, world<default_double_config>, and the
+// particle system particle_system<..., gravity, drag, point_forces> of both
+// are compiled in that file only. Another configuration, in a header the
+// program shares:
 //
 //   struct my_config : impulse::default_config { using scalar = double; };
 //   IMPULSE_DECLARE_WORLD(my_config);          // everywhere: only parsed
@@ -4659,10 +4711,10 @@ struct sweep_and_prune {
 //
 //   IMPULSE_INSTANTIATE_WORLD(my_config);      // compiled here, once
 //
-// The same pairs exist for particle_system (its config, then its forces)
-// and rigid_body_system. A member template (create_body<Shape>, draw<D>,
-// for_each_contact<F>, step<Field>) is still compiled where it is used;
-// create_body's part that depends on the shape is short.
+// The same pair exists for particle_system (its config, then its forces).
+// A member template (create_body<Shape>, draw<D>, for_each_contact<F>,
+// step<Field>) is still compiled where it is used; create_body's part that
+// depends on the shape is short.
 
 /// 1: the headers declare the default configurations' instantiations extern
 /// (one translation unit must then include impulse/instantiate.hpp).
@@ -4679,11 +4731,6 @@ struct sweep_and_prune {
 #define IMPULSE_DECLARE_PARTICLE_SYSTEM(...) extern template class impulse::particles::particle_system<__VA_ARGS__>
 /// Compiles impulse::particles::particle_system<Config, Forces...> here, in one translation unit.
 #define IMPULSE_INSTANTIATE_PARTICLE_SYSTEM(...) template class impulse::particles::particle_system<__VA_ARGS__>
-
-/// impulse::rigid_body_system<Config> is compiled in another translation unit.
-#define IMPULSE_DECLARE_RIGID_BODY_SYSTEM(...) extern template class impulse::rigid_body_system<__VA_ARGS__>
-/// Compiles impulse::rigid_body_system<Config> here, in one translation unit.
-#define IMPULSE_INSTANTIATE_RIGID_BODY_SYSTEM(...) template class impulse::rigid_body_system<__VA_ARGS__>
 // ---- end impulse/core/extern_templates.hpp ----
 // ---- begin impulse/integrators/symplectic_euler.hpp ----
 // impulse/integrators/symplectic_euler.hpp — semi-implicit (symplectic) Euler.
@@ -5361,6 +5408,48 @@ inline constexpr version_info version{IMPULSE_VERSION_MAJOR, IMPULSE_VERSION_MIN
 // comes from the turning of R.
 
 
+// ---- begin impulse/dynamics/fwd.hpp ----
+// impulse/dynamics/fwd.hpp — the dynamics module's names.
+
+
+
+namespace impulse {
+
+enum class body_type : std::uint8_t;
+template <scalar_type T> struct rigid_body;
+template <scalar_type T> struct body_pose;
+template <scalar_type T> struct body_momentum;
+template <scalar_type T> struct body_kinematics;
+template <scalar_type T> struct wrench;
+template <scalar_type T> struct body_spring;
+enum class joint_type : std::uint8_t;
+template <scalar_type T> struct joint_def;
+template <scalar_type T> struct joint_constraint;
+template <scalar_type T> struct solver_settings;
+template <scalar_type T> struct sequential_impulse_settings;
+template <scalar_type T> struct soft_step_settings;
+
+// A world's ids carry the world that made them (core/slot_map.hpp).
+struct body_tag {
+  static constexpr bool owned = true;
+};
+struct spring_tag {
+  static constexpr bool owned = true;
+};
+struct joint_tag {
+  static constexpr bool owned = true;
+};
+/// Names a body of a world.
+using body_id = object_id<body_tag>;
+/// Names a spring of a world.
+using spring_id = object_id<spring_tag>;
+/// Names a joint of a world.
+using joint_id = object_id<joint_tag>;
+
+struct default_config;
+
+}  // namespace impulse
+// ---- end impulse/dynamics/fwd.hpp ----
 // ---- begin impulse/dynamics/rigid_body.hpp ----
 // impulse/dynamics/rigid_body.hpp — Baraff's rigid body state and the loads on it.
 //
@@ -5819,6 +5908,18 @@ template <scalar_type T>
   return {k.linear_velocity, quat<T>{w.x, w.y, w.z, T(0)} * q * T(0.5)};
 }
 
+namespace detail {
+/// The field used when a step is given none.
+struct no_force_field {};
+}  // namespace detail
+
+/// A force model evaluated per body: field(id, kinematics) -> wrench (force
+/// through the center of mass and torque about it). world::step(dt, field)
+/// takes one; it must not change the world.
+template <class F, class T>
+concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||
+                           std::is_invocable_r_v<wrench<T>, F&, body_id, const body_kinematics<T>&>;
+
 }  // namespace impulse
 // ---- end impulse/dynamics/body_motion.hpp ----
 // ---- begin impulse/dynamics/body_spring.hpp ----
@@ -5832,42 +5933,6 @@ template <scalar_type T>
 // End b is either a point of a second body or a fixed world anchor.
 
 
-// ---- begin impulse/dynamics/fwd.hpp ----
-// impulse/dynamics/fwd.hpp — the dynamics module's names.
-
-
-
-namespace impulse {
-
-enum class body_type : std::uint8_t;
-template <scalar_type T> struct rigid_body;
-template <scalar_type T> struct body_pose;
-template <scalar_type T> struct body_momentum;
-template <scalar_type T> struct body_kinematics;
-template <scalar_type T> struct wrench;
-template <scalar_type T> struct body_spring;
-enum class joint_type : std::uint8_t;
-template <scalar_type T> struct joint_def;
-template <scalar_type T> struct joint_constraint;
-template <scalar_type T> struct solver_settings;
-template <scalar_type T> struct sequential_impulse_settings;
-template <scalar_type T> struct soft_step_settings;
-
-struct body_tag;
-struct spring_tag;
-struct joint_tag;
-/// Names a body of a world or of a rigid_body_system.
-using body_id = object_id<body_tag>;
-/// Names a spring of a world or of a rigid_body_system.
-using spring_id = object_id<spring_tag>;
-/// Names a joint of a world.
-using joint_id = object_id<joint_tag>;
-
-struct default_config;
-template <class Config = default_config> class rigid_body_system;
-
-}  // namespace impulse
-// ---- end impulse/dynamics/fwd.hpp ----
 
 namespace impulse {
 
@@ -7388,589 +7453,6 @@ template <scalar_type T>
 
 }  // namespace impulse
 // ---- end impulse/dynamics/material.hpp ----
-// ---- begin impulse/dynamics/rigid_body_system.hpp ----
-// impulse/dynamics/rigid_body_system.hpp — bodies moved by forces and springs.
-//
-// A set of rigid bodies under gravity, their accumulated loads, damped
-// springs (body_spring.hpp) and an optional force field, advanced by the
-// config's integrator policy. It is the force-driven half of the world's
-// step (docs/architecture.md, "The world's step"); contacts and joints
-// come with the world.
-//
-// Forces are evaluated at every stage of the integrator, on the stage's
-// speculative state: springs see where the bodies would be mid-step, and so
-// does a user's field. Loads applied with rigid_body::apply_force are held
-// constant over the step and cleared after it.
-//
-// Two paths run the same integrator code. When no spring joins two moving
-// bodies, each body is independent: it is advanced alone, with its state in
-// registers (body_motion.hpp's pose and momenta as the integrator's x and
-// p). When springs couple bodies, every stage needs every body's stage
-// state, so the integrator is handed the whole set as one state
-// (core/detail/pooled_state.hpp), as the particle system does for its
-// springs.
-//
-// Input is checked before a step changes anything: a non-finite position,
-// orientation, momentum or load, a non-unit orientation, a dynamic body
-// without positive finite mass, or a spring with a missing end or a negative
-// parameter is refused, naming the body or spring, and the set is left as
-// it was. A body whose state becomes non-finite during a step (valid input
-// can still overflow: a spring of stiffness 1e300) is left where it was at
-// the start of the step, the others keep their step, and the error names
-// it.
-
-
-// ---- begin impulse/core/detail/pooled_state.hpp ----
-// impulse/core/detail/pooled_state.hpp — a whole system's state as one
-// integrator state, with temporaries drawn from a pool.
-//
-// Some systems cannot be stepped one element at a time: springs between
-// particles or between bodies couple arbitrary elements, so every integrator
-// stage needs every element's stage state before any force can be
-// evaluated. The integrators are written once, over any ode_state
-// (integrators/ode_state.hpp), so these systems hand them a state holding
-// every element, with + and × as loops. The temporaries an integrator makes
-// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
-// the first step and reused on every later one, so a step allocates nothing
-// once warm.
-//
-// A buffer is `segments` runs of `stride` elements of which the first `used`
-// are live: the particle system keeps its x, y and z columns (3 segments of
-// scalars), the rigid body system one run of poses or momenta.
-
-
-
-namespace impulse::detail {
-
-template <class E>
-class buffer_pool {
- public:
-  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
-    if (segments != segments_ || stride != stride_) {
-      buffers_.clear();
-      free_.clear();
-      segments_ = segments;
-      stride_ = stride;
-    }
-    used_ = used;
-  }
-  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
-  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
-  [[nodiscard]] std::size_t used() const noexcept { return used_; }
-
-  std::size_t acquire() {
-    if (free_.empty()) {
-      buffers_.emplace_back(segments_ * stride_);
-      return buffers_.size() - 1;
-    }
-    const std::size_t slot = free_.back();
-    free_.pop_back();
-    return slot;
-  }
-  void release(std::size_t slot) { free_.push_back(slot); }
-  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
-
- private:
-  // aligned_array's move keeps its pointer, so growing this vector never
-  // invalidates an E* handed out before.
-  std::vector<aligned_array<E>> buffers_;
-  std::vector<std::size_t> free_;
-  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
-};
-
-/// E needs E + E and E * S for the scalar S the integrator steps with.
-template <class E>
-class pooled_state {
- public:
-  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
-  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
-    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
-  }
-  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
-  pooled_state& operator=(pooled_state other) noexcept {
-    std::swap(pool_, other.pool_);
-    std::swap(slot_, other.slot_);
-    return *this;
-  }
-  ~pooled_state() {
-    if (slot_ != none) pool_->release(slot_);
-  }
-
-  E* data() noexcept { return pool_->data(slot_); }
-  const E* data() const noexcept { return pool_->data(slot_); }
-  E& operator[](std::size_t i) noexcept { return data()[i]; }
-  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
-  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
-
-  /// Calls f(i) for the index of every live element of every segment.
-  template <class F>
-  void for_each(F&& f) const {
-    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
-    for (std::size_t s = 0; s < segments; ++s)
-      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
-  }
-
-  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
-  // one temporary, not two.
-  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
-    return std::move(a);
-  }
-  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
-  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
-  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
-  template <class S>
-  friend pooled_state operator*(pooled_state&& a, S h) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
-    return std::move(a);
-  }
-  template <class S>
-  friend pooled_state operator*(const pooled_state& a, S h) {
-    return pooled_state(a) * h;
-  }
-
- private:
-  static constexpr std::size_t none = ~std::size_t(0);
-  buffer_pool<E>* pool_;
-  std::size_t slot_;
-};
-
-}  // namespace impulse::detail
-// ---- end impulse/core/detail/pooled_state.hpp ----
-
-namespace impulse {
-
-namespace detail {
-/// The field used when a step is given none.
-struct no_force_field {};
-}  // namespace detail
-
-/// A force model evaluated per body at every integrator stage:
-/// field(id, kinematics) -> wrench (force through the center of mass and
-/// torque about it). It must not change the system.
-template <class F, class T>
-concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||
-                           std::is_invocable_r_v<wrench<T>, F&, body_id, const body_kinematics<T>&>;
-
-template <class Config>
-class rigid_body_system {
- public:
-  using config = Config;
-  using scalar = typename Config::scalar;
-  using integrator = typename Config::integrator;
-  using T = scalar;
-
-  /// Acceleration of gravity on every dynamic body, m/s².
-  vec3<T> gravity{T(0), T(-9.81), T(0)};
-
-  // ---- bodies ----
-
-  /// Adds a body. Its inverse mass and inverse inertia are recomputed from
-  /// mass and inertia (so a hand-built body cannot carry inconsistent
-  /// ones); its state must be finite with a unit orientation.
-  body_id add_body(rigid_body<T> b) {
-    validate_body(b, no_object);
-    if (b.type == body_type::dynamic) b.set_mass_properties({b.mass, vec3<T>{}, b.inertia});
-    return bodies_.insert(b);
-  }
-  /// Removes a body and every spring attached to it.
-  void remove_body(body_id id) {
-    require_body(id, "rigid_body_system::remove_body: no such body");
-    for (std::size_t i = springs_.size(); i-- > 0;) {
-      const body_spring<T>& s = springs_.values()[i];
-      if (s.body_a == id || s.body_b == id) springs_.erase(springs_.ids()[i]);
-    }
-    bodies_.erase(id);
-  }
-  [[nodiscard]] bool contains(body_id id) const noexcept { return bodies_.contains(id); }
-  [[nodiscard]] rigid_body<T>& body(body_id id) {
-    require_body(id, "rigid_body_system::body: no such body");
-    return bodies_[id];
-  }
-  [[nodiscard]] const rigid_body<T>& body(body_id id) const {
-    require_body(id, "rigid_body_system::body: no such body");
-    return bodies_[id];
-  }
-  [[nodiscard]] std::size_t body_count() const noexcept { return bodies_.size(); }
-  /// The bodies in storage order; body_ids()[i] names bodies()[i].
-  [[nodiscard]] const std::vector<rigid_body<T>>& bodies() const noexcept { return bodies_.values(); }
-  [[nodiscard]] const std::vector<body_id>& body_ids() const noexcept { return bodies_.ids(); }
-
-  // ---- springs ----
-
-  spring_id add_spring(const body_spring<T>& s) {
-    validate_spring(s, no_object);
-    return springs_.insert(s);
-  }
-  void remove_spring(spring_id id) {
-    require_spring(id, "rigid_body_system::remove_spring: no such spring");
-    springs_.erase(id);
-  }
-  [[nodiscard]] bool contains(spring_id id) const noexcept { return springs_.contains(id); }
-  [[nodiscard]] body_spring<T>& spring(spring_id id) {
-    require_spring(id, "rigid_body_system::spring: no such spring");
-    return springs_[id];
-  }
-  [[nodiscard]] const body_spring<T>& spring(spring_id id) const {
-    require_spring(id, "rigid_body_system::spring: no such spring");
-    return springs_[id];
-  }
-  [[nodiscard]] std::size_t spring_count() const noexcept { return springs_.size(); }
-  [[nodiscard]] const std::vector<body_spring<T>>& springs() const noexcept { return springs_.values(); }
-
-  // ---- stepping ----
-
-  /// Advances every body by dt seconds under gravity, loads and springs.
-  /// (Defined after the class, not inline: IMPULSE_DECLARE_RIGID_BODY_SYSTEM
-  /// then keeps the integration out of other translation units.)
-  void step(T dt);
-
-  /// The same, with field(id, kinematics) -> wrench added on every dynamic
-  /// body at every stage.
-  template <class Field>
-    requires body_force_field<Field, T>
-  void step(T dt, Field&& field) {
-    validate_step(dt);
-    resolve_springs();
-    failed_ = none;
-    if (coupled_) {
-      step_coupled(dt, field);
-    } else {
-      step_each(dt, field);
-    }
-    finish_step(dt);
-  }
-
-  /// Simulated time, s.
-  [[nodiscard]] T time() const noexcept { return time_; }
-
-  // ---- what is conserved, for tests and diagnostics ----
-
-  /// Σ ½·m·v² + ½·ω·L over dynamic bodies, J.
-  [[nodiscard]] T kinetic_energy() const noexcept {
-    T e = T(0);
-    for (const rigid_body<T>& b : bodies_.values()) e += b.kinetic_energy();
-    return e;
-  }
-  /// Gravitational (−m·g·x, zero at the origin) plus spring energy, J.
-  [[nodiscard]] T potential_energy() const {
-    T e = T(0);
-    for (const rigid_body<T>& b : bodies_.values())
-      if (b.type == body_type::dynamic) e -= b.mass * dot(gravity, b.position);
-    for (const body_spring<T>& s : springs_.values()) {
-      const rigid_body<T>& a = bodies_[s.body_a];
-      const vec3<T> pa = a.position + rotate(a.orientation, s.point_a);
-      const vec3<T> pb = s.body_b.is_none() ? s.point_b
-                                            : bodies_[s.body_b].position +
-                                                  rotate(bodies_[s.body_b].orientation, s.point_b);
-      e += spring_energy(s, pa, pb);
-    }
-    return e;
-  }
-  /// Σ P over dynamic bodies, kg·m/s.
-  [[nodiscard]] vec3<T> linear_momentum() const noexcept {
-    vec3<T> p{};
-    for (const rigid_body<T>& b : bodies_.values())
-      if (b.type == body_type::dynamic) p += b.linear_momentum;
-    return p;
-  }
-  /// Σ (x × P + L) over dynamic bodies, about the world origin, kg·m²/s.
-  [[nodiscard]] vec3<T> angular_momentum() const noexcept {
-    vec3<T> l{};
-    for (const rigid_body<T>& b : bodies_.values())
-      if (b.type == body_type::dynamic) l += cross(b.position, b.linear_momentum) + b.angular_momentum;
-    return l;
-  }
-
- private:
-  static constexpr std::uint32_t none = no_object;
-
-  // A spring with its ends as storage positions, resolved once per step.
-  struct spring_ends {
-    std::uint32_t a, b;  // b == none: world anchor
-  };
-
-  // ---- validation ----
-
-  void require_body(body_id id, const char* message) const {
-    if (!bodies_.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
-  }
-  void require_spring(spring_id id, const char* message) const {
-    if (!springs_.contains(id)) detail::report_error(error_code::out_of_range, message, id.index);
-  }
-
-  static void validate_body(const rigid_body<T>& b, std::uint32_t id) {
-    if (!is_finite(b.position) || !is_finite(b.orientation) || !is_finite(b.linear_momentum) ||
-        !is_finite(b.angular_momentum) || !is_finite(b.kinematic_velocity) ||
-        !is_finite(b.kinematic_angular_velocity))
-      detail::report_error(error_code::non_finite, "rigid_body_system: a body's state is not finite", id);
-    if (!is_finite(b.force) || !is_finite(b.torque))
-      detail::report_error(error_code::non_finite, "rigid_body_system: a body's load is not finite", id);
-    if (!is_normalized(b.orientation))
-      detail::report_error(error_code::not_normalized, "rigid_body_system: a body's orientation is not a unit quaternion",
-                           id);
-    if (b.type == body_type::dynamic && !(b.mass > T(0) && std::isfinite(b.mass)))
-      detail::report_error(error_code::non_positive_mass,
-                           "rigid_body_system: a dynamic body needs a positive, finite mass", id);
-  }
-
-  void validate_spring(const body_spring<T>& s, std::uint32_t id) const {
-    if (!bodies_.contains(s.body_a) || (!s.body_b.is_none() && !bodies_.contains(s.body_b)))
-      detail::report_error(error_code::out_of_range, "rigid_body_system: a spring's end names no body", id);
-    if (s.body_a == s.body_b)
-      detail::report_error(error_code::invalid_parameter, "rigid_body_system: a spring joins a body to itself", id);
-    if (!is_finite(s.point_a) || !is_finite(s.point_b) || !std::isfinite(s.stiffness) || !std::isfinite(s.damping) ||
-        !std::isfinite(s.rest_length))
-      detail::report_error(error_code::non_finite, "rigid_body_system: a spring's points or parameters are not finite",
-                           id);
-    if (s.stiffness < T(0) || s.damping < T(0) || s.rest_length < T(0))
-      detail::report_error(error_code::invalid_parameter,
-                           "rigid_body_system: a spring's stiffness, damping and rest length must be >= 0", id);
-  }
-
-  // Bodies and springs are plain data the user may edit between steps, so
-  // all of it is checked before the step touches anything.
-  void validate_step(T dt) const {
-    if (!std::isfinite(dt) || !(dt > T(0)))
-      detail::report_error(error_code::invalid_parameter, "rigid_body_system::step: dt must be positive and finite");
-    if (!is_finite(gravity)) detail::report_error(error_code::non_finite, "rigid_body_system: gravity is not finite");
-    for (std::size_t i = 0; i < bodies_.size(); ++i) validate_body(bodies_.values()[i], bodies_.ids()[i].index);
-    for (std::size_t i = 0; i < springs_.size(); ++i) validate_spring(springs_.values()[i], springs_.ids()[i].index);
-  }
-
-  // ---- forces at a stage ----
-
-  void resolve_springs() {
-    const std::size_t n = bodies_.size();
-    ends_.resize(springs_.size());
-    coupled_ = false;
-    first_spring_.assign(n + 1, 0);
-    for (std::size_t i = 0; i < springs_.size(); ++i) {
-      const body_spring<T>& s = springs_.values()[i];
-      spring_ends& e = ends_[i];
-      e.a = static_cast<std::uint32_t>(bodies_.dense_index(s.body_a));
-      e.b = s.body_b.is_none() ? none : static_cast<std::uint32_t>(bodies_.dense_index(s.body_b));
-      const bool a_moves = bodies_.values()[e.a].type != body_type::static_body;
-      const bool b_moves = e.b != none && bodies_.values()[e.b].type != body_type::static_body;
-      coupled_ = coupled_ || (a_moves && b_moves);
-      ++first_spring_[e.a + 1];
-      if (e.b != none) ++first_spring_[e.b + 1];
-    }
-    // Springs of each body, for the independent path (counting sort).
-    for (std::size_t i = 0; i < n; ++i) first_spring_[i + 1] += first_spring_[i];
-    springs_of_.resize(first_spring_[n]);
-    fill_.assign(first_spring_.begin(), first_spring_.end() - 1);
-    for (std::uint32_t i = 0; i < ends_.size(); ++i) {
-      springs_of_[fill_[ends_[i].a]++] = i;
-      if (ends_[i].b != none) springs_of_[fill_[ends_[i].b]++] = i;
-    }
-  }
-
-  // Gravity, the held loads and the field on body i at kinematics k.
-  template <class Field>
-  wrench<T> body_wrench(std::size_t i, const body_kinematics<T>& k, Field& field) const {
-    const rigid_body<T>& b = bodies_.values()[i];
-    if (b.type != body_type::dynamic) return {};
-    wrench<T> w{b.force + gravity * b.mass, b.torque};
-    if constexpr (!std::is_same_v<std::remove_cvref_t<Field>, detail::no_force_field>)
-      w += field(bodies_.ids()[i], k);
-    return w;
-  }
-
-  static body_momentum<T> as_rate(const wrench<T>& w) noexcept { return {w.force, w.torque}; }
-
-  // One dynamic body alone, its springs' other ends fixed for the step
-  // (static bodies or world anchors).
-  template <class Field>
-  struct single_body {
-    const rigid_body_system& system;
-    std::size_t index;
-    Field& field;
-    // Most methods ask for both rates at the same stage state; the
-    // kinematics (a rotation matrix and the world inverse inertia) are
-    // worked out once for both.
-    body_pose<T> cached_x{};
-    body_momentum<T> cached_p{};
-    body_kinematics<T> cached_k{};
-    bool cached = false;
-
-    const body_kinematics<T>& kinematics(const body_pose<T>& x, const body_momentum<T>& p) {
-      if (!cached || !(x.position == cached_x.position && x.orientation == cached_x.orientation &&
-                       p.linear == cached_p.linear && p.angular == cached_p.angular)) {
-        cached_k = kinematics_of(system.bodies_.values()[index], x, p);
-        cached_x = x, cached_p = p, cached = true;
-      }
-      return cached_k;
-    }
-
-    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) {
-      return pose_rate(kinematics(x, p), x.orientation);
-    }
-    body_momentum<T> momentum_rate(const body_pose<T>& x, const body_momentum<T>& p) {
-      const body_kinematics<T>& k = kinematics(x, p);
-      wrench<T> w = system.body_wrench(index, k, field);
-      for (std::uint32_t j = system.first_spring_[index]; j < system.first_spring_[index + 1]; ++j) {
-        const std::uint32_t s = system.springs_of_[j];
-        const spring_ends& e = system.ends_[s];
-        const body_spring<T>& spring = system.springs_.values()[s];
-        // This body may be either end; the other end does not move.
-        if (e.a == index && e.b == none) {  // a world anchor
-          const spring_load<T> load = spring_load_of<T>(spring, k, nullptr);
-          add_at(w, k, load.force, load.point_a);
-        } else if (e.a == index) {
-          const body_kinematics<T> other = system.resting_kinematics(e.b);
-          const spring_load<T> load = spring_load_of(spring, k, &other);
-          add_at(w, k, load.force, load.point_a);
-        } else {
-          const body_kinematics<T> other = system.resting_kinematics(e.a);
-          const spring_load<T> load = spring_load_of(spring, other, &k);
-          add_at(w, k, -load.force, load.point_b);
-        }
-      }
-      return as_rate(w);
-    }
-  };
-
-  static void add_at(wrench<T>& w, const body_kinematics<T>& k, const vec3<T>& f, const vec3<T>& p) noexcept {
-    w.force += f;
-    w.torque += cross(p - k.position, f);
-  }
-
-  // A static body at the other end of a spring: it does not move in the step.
-  body_kinematics<T> resting_kinematics(std::uint32_t i) const noexcept {
-    const rigid_body<T>& b = bodies_.values()[i];
-    return kinematics_of(b, pose_of(b), momentum_of(b));
-  }
-
-  template <class Field>
-  void step_each(T dt, Field& field) {
-    std::vector<rigid_body<T>>& bodies = bodies_.values();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (bodies[i].type != body_type::dynamic) continue;  // kinematic ones are placed exactly in finish_step
-      body_pose<T> x = pose_of(bodies[i]);
-      body_momentum<T> p = momentum_of(bodies[i]);
-      integrator::advance(x, p, dt, single_body<Field>{*this, i, field});
-      commit(i, x, p);
-    }
-  }
-
-  // Every body at once: the whole set is the integrator's state.
-  using poses = detail::pooled_state<body_pose<T>>;
-  using momenta = detail::pooled_state<body_momentum<T>>;
-
-  template <class Field>
-  struct whole_set {
-    rigid_body_system& system;
-    Field& field;
-
-    poses position_rate(const poses& x, const momenta& p) const {
-      const std::vector<rigid_body<T>>& bodies = system.bodies_.values();
-      poses rate(system.pose_pool_);
-      for (std::size_t i = 0; i < bodies.size(); ++i)
-        rate[i] = pose_rate(kinematics_of(bodies[i], x[i], p[i]), x[i].orientation);
-      return rate;
-    }
-    momenta momentum_rate(const poses& x, const momenta& p) const {
-      const std::vector<rigid_body<T>>& bodies = system.bodies_.values();
-      std::vector<body_kinematics<T>>& k = system.stage_kinematics_;
-      std::vector<wrench<T>>& w = system.stage_wrenches_;
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        k[i] = kinematics_of(bodies[i], x[i], p[i]);
-        w[i] = system.body_wrench(i, k[i], field);
-      }
-      for (std::size_t s = 0; s < system.ends_.size(); ++s) {
-        const spring_ends& e = system.ends_[s];
-        const spring_load<T> load = spring_load_of(system.springs_.values()[s], k[e.a], e.b == none ? nullptr : &k[e.b]);
-        if (bodies[e.a].type == body_type::dynamic) add_at(w[e.a], k[e.a], load.force, load.point_a);
-        if (e.b != none && bodies[e.b].type == body_type::dynamic) add_at(w[e.b], k[e.b], -load.force, load.point_b);
-      }
-      momenta rate(system.momentum_pool_);
-      for (std::size_t i = 0; i < bodies.size(); ++i)
-        rate[i] = bodies[i].type == body_type::dynamic ? as_rate(w[i]) : body_momentum<T>{};
-      return rate;
-    }
-  };
-
-  template <class Field>
-  void step_coupled(T dt, Field& field) {
-    std::vector<rigid_body<T>>& bodies = bodies_.values();
-    const std::size_t n = bodies.size();
-    pose_pool_.resize(1, n, n);
-    momentum_pool_.resize(1, n, n);
-    stage_kinematics_.resize(n);
-    stage_wrenches_.resize(n);
-    poses x(pose_pool_);
-    momenta p(momentum_pool_);
-    for (std::size_t i = 0; i < n; ++i) x[i] = pose_of(bodies[i]), p[i] = momentum_of(bodies[i]);
-    integrator::advance(x, p, dt, whole_set<Field>{*this, field});
-    for (std::size_t i = 0; i < n; ++i) commit(i, x[i], p[i]);
-  }
-
-  // ---- the end of a step ----
-
-  // Writes a dynamic body's step, or, if it came out non-finite, leaves the
-  // body as it was and remembers it. Nothing else reads a body's stored
-  // state after its step is computed, so no copy of the start is needed.
-  void commit(std::size_t i, const body_pose<T>& x, const body_momentum<T>& p) noexcept {
-    rigid_body<T>& b = bodies_.values()[i];
-    if (b.type != body_type::dynamic) return;
-    const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(p.linear) &&
-                        is_finite(p.angular) &&
-                        length_squared(x.orientation) > scalar_traits<T>::zero_length_squared;
-    if (!finite) {
-      if (failed_ == none) failed_ = bodies_.ids()[i].index;
-      return;
-    }
-    b.position = x.position;
-    b.orientation = normalize(x.orientation);
-    b.linear_momentum = p.linear;
-    b.angular_momentum = p.angular;
-  }
-
-  void finish_step(T dt) {
-    for (rigid_body<T>& b : bodies_.values()) {
-      if (b.type == body_type::kinematic) {
-        // A kinematic body's motion is prescribed: place it exactly rather
-        // than where an integrator's approximation of q' = ½ω⊗q would.
-        b.position += b.kinematic_velocity * dt;
-        b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
-      }
-      b.clear_loads();
-    }
-    time_ += dt;
-    if (failed_ != none)
-      detail::report_error(error_code::non_finite,
-                           "rigid_body_system::step: a body's state became non-finite; it was left where it was",
-                           failed_);
-  }
-
-  slot_map<rigid_body<T>, body_id> bodies_;
-  slot_map<body_spring<T>, spring_id> springs_;
-  T time_ = T(0);
-
-  // Per-step scratch, kept to allocate nothing once warm.
-  std::uint32_t failed_ = none;
-  std::vector<spring_ends> ends_;
-  std::vector<std::uint32_t> first_spring_, springs_of_, fill_;
-  bool coupled_ = false;
-  detail::buffer_pool<body_pose<T>> pose_pool_;
-  detail::buffer_pool<body_momentum<T>> momentum_pool_;
-  std::vector<body_kinematics<T>> stage_kinematics_;
-  std::vector<wrench<T>> stage_wrenches_;
-};
-
-template <class Config>
-void rigid_body_system<Config>::step(T dt) {
-  step(dt, detail::no_force_field{});
-}
-
-}  // namespace impulse
-
-#if IMPULSE_EXTERN_TEMPLATES
-IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_config);
-IMPULSE_DECLARE_RIGID_BODY_SYSTEM(impulse::default_double_config);
-#endif
-// ---- end impulse/dynamics/rigid_body_system.hpp ----
 // ---- begin impulse/dynamics/sequential_impulse.hpp ----
 // impulse/dynamics/sequential_impulse.hpp — the contact solver by sequential
 // impulses: projected Gauss–Seidel over the velocity rows of every contact,
@@ -15890,6 +15372,123 @@ struct gravity {
 
 #include <tuple>
 
+// ---- begin impulse/core/detail/pooled_state.hpp ----
+// impulse/core/detail/pooled_state.hpp — a whole system's state as one
+// integrator state, with temporaries drawn from a pool.
+//
+// Some systems cannot be stepped one element at a time: springs between
+// particles or between bodies couple arbitrary elements, so every integrator
+// stage needs every element's stage state before any force can be
+// evaluated. The integrators are written once, over any ode_state
+// (integrators/ode_state.hpp), so these systems hand them a state holding
+// every element, with + and × as loops. The temporaries an integrator makes
+// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
+// the first step and reused on every later one, so a step allocates nothing
+// once warm.
+//
+// A buffer is `segments` runs of `stride` elements of which the first `used`
+// are live: the particle system keeps its x, y and z columns (3 segments of
+// scalars), a world without collision one run of poses or momenta.
+
+
+
+namespace impulse::detail {
+
+template <class E>
+class buffer_pool {
+ public:
+  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
+    if (segments != segments_ || stride != stride_) {
+      buffers_.clear();
+      free_.clear();
+      segments_ = segments;
+      stride_ = stride;
+    }
+    used_ = used;
+  }
+  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
+  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
+  [[nodiscard]] std::size_t used() const noexcept { return used_; }
+
+  std::size_t acquire() {
+    if (free_.empty()) {
+      buffers_.emplace_back(segments_ * stride_);
+      return buffers_.size() - 1;
+    }
+    const std::size_t slot = free_.back();
+    free_.pop_back();
+    return slot;
+  }
+  void release(std::size_t slot) { free_.push_back(slot); }
+  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
+
+ private:
+  // aligned_array's move keeps its pointer, so growing this vector never
+  // invalidates an E* handed out before.
+  std::vector<aligned_array<E>> buffers_;
+  std::vector<std::size_t> free_;
+  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+};
+
+/// E needs E + E and E * S for the scalar S the integrator steps with.
+template <class E>
+class pooled_state {
+ public:
+  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
+  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
+    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
+  }
+  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
+  pooled_state& operator=(pooled_state other) noexcept {
+    std::swap(pool_, other.pool_);
+    std::swap(slot_, other.slot_);
+    return *this;
+  }
+  ~pooled_state() {
+    if (slot_ != none) pool_->release(slot_);
+  }
+
+  E* data() noexcept { return pool_->data(slot_); }
+  const E* data() const noexcept { return pool_->data(slot_); }
+  E& operator[](std::size_t i) noexcept { return data()[i]; }
+  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
+  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
+
+  /// Calls f(i) for the index of every live element of every segment.
+  template <class F>
+  void for_each(F&& f) const {
+    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
+    for (std::size_t s = 0; s < segments; ++s)
+      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
+  }
+
+  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
+  // one temporary, not two.
+  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
+    return std::move(a);
+  }
+  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
+  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
+  template <class S>
+  friend pooled_state operator*(pooled_state&& a, S h) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
+    return std::move(a);
+  }
+  template <class S>
+  friend pooled_state operator*(const pooled_state& a, S h) {
+    return pooled_state(a) * h;
+  }
+
+ private:
+  static constexpr std::size_t none = ~std::size_t(0);
+  buffer_pool<E>* pool_;
+  std::size_t slot_;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/pooled_state.hpp ----
 // ---- begin impulse/particles/plane_collider.hpp ----
 // impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
 //
@@ -16907,6 +16506,11 @@ struct body_def {
   /// kg. 0: the shape's volume times material.density. A dynamic body's
   /// inertia is the shape's, scaled to this mass.
   T mass = T(0);
+  /// kg·m² about the center of mass, in the shape's frame (a tensor from a
+  /// CAD tool, or a test's principal moments). Zero: the shape's, scaled
+  /// to the mass. Refused unless symmetric and positive definite, with
+  /// principal moments that a solid can have (I_a + I_b ≥ I_c).
+  mat3<T> inertia = mat3<T>::zero();
   /// Created asleep: a settled scene loaded from a file need not settle again.
   bool awake = true;
   /// With ccd on in the world's config: swept every step against every
@@ -16982,8 +16586,11 @@ template <class Config = default_config> class world;
 //   solve and write-back     detail/solve.hpp
 //   continuous collision     detail/continuous.hpp (ccd on)
 //
-// world_bodies.hpp and world_joints.hpp define the members that make and
-// destroy bodies and joints.
+// A world without collision (config `collision = false`) steps through
+// detail/force_motion.hpp alone: forces at every integrator stage.
+// world_bodies.hpp, world_joints.hpp, world_forces.hpp and
+// world_queries.hpp define the members that make and destroy bodies,
+// joints and springs, and that answer queries.
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure
@@ -17226,6 +16833,7 @@ struct world_settings : detail::world_settings_base<T> {
 // a step needs from the last one; it is kept only so that a warm world
 // allocates nothing.
 
+#include <atomic>
 
 // ---- begin impulse/world/detail/shape_store.hpp ----
 // impulse/world/detail/shape_store.hpp — the shapes of a world's bodies, one array
@@ -17478,12 +17086,26 @@ struct world_solver<C> {
   using type = typename C::solver;
 };
 
+/// Whether bodies collide. A world without collision (`collision =
+/// false`) has no broad phase, contacts, joints or solver: forces move its
+/// bodies, evaluated at every stage of the integrator (force_motion.hpp).
+template <class C>
+consteval bool world_collides() {
+  if constexpr (has_collision<C>) {
+    return C::collision;
+  } else {
+    return true;
+  }
+}
+
+/// Sleeping is on unless the config turns it off; a world without
+/// collision never sleeps.
 template <class C>
 consteval bool world_sleeping() {
   if constexpr (has_sleeping<C>) {
     return C::sleeping;
   } else {
-    return true;
+    return world_collides<C>();
   }
 }
 
@@ -17546,6 +17168,9 @@ consteval bool check_world_config() {
     using broadphase_policy = typename world_broadphase<C>::type;
     using solver_policy = typename world_solver<C>::type;
     static_assert(has_integrator<C>, "impulse world: the config names no `integrator`; inherit impulse::default_config");
+    static_assert(world_collides<C>() || (!world_sleeping<C>() && !world_ccd<C>()),
+                  "impulse world: a world without collision neither sleeps nor sweeps; drop `sleeping` and `ccd` "
+                  "or set them false");
     constexpr bool integrates = integrator_advances<C, T>();
     static_assert(!has_integrator<C> || integrates,
                   "impulse world: the config's integrator has no static `advance(body_pose<T>&, "
@@ -17676,12 +17301,22 @@ template <scalar_type T>
   return r.body.type == body_type::dynamic && r.awake;
 }
 
-/// A body id as a broad-phase proxy's user data, and back.
+/// A body id as a broad-phase proxy's user data (world_state::unpack
+/// turns it back, with the world's owner).
 [[nodiscard]] inline std::uint64_t pack(body_id id) noexcept {
   return std::uint64_t(id.index) | (std::uint64_t(id.generation) << 32);
 }
-[[nodiscard]] inline body_id unpack(std::uint64_t data) noexcept {
-  return body_id{std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32)};
+
+/// A number for a new world, stamped on its ids (core/slot_map.hpp): the
+/// count of worlds constructed in the process, 0 skipped. Copies and
+/// restored snapshots keep the number of the world they copy, since they
+/// hold the same bodies; a world constructed afresh never answers to
+/// another's ids (until 2³² worlds later).
+[[nodiscard]] inline std::uint32_t next_world_owner() noexcept {
+  static std::atomic<std::uint32_t> count{0};
+  std::uint32_t owner = ++count;
+  while (owner == 0) owner = ++count;
+  return owner;
 }
 /// The key of an unordered pair of bodies.
 [[nodiscard]] inline std::uint64_t pair_key(body_id a, body_id b) noexcept {
@@ -17690,7 +17325,8 @@ template <scalar_type T>
 }
 
 /// The rigid body `def` makes of `shape`: its exact mass properties at
-/// def.material.density, or scaled to def.mass. Refuses a mass that is not
+/// def.material.density, or scaled to def.mass; def.inertia, if given,
+/// replaces the shape's inertia (rigid_body checks it). Refuses a mass that is not
 /// finite and non-negative, and a dynamic plane or mesh.
 template <scalar_type T, class Shape>
 [[nodiscard]] rigid_body<T> make_body(const body_def<T>& def, const Shape& shape) {
@@ -17704,6 +17340,7 @@ template <scalar_type T, class Shape>
       p.inertia = p.inertia * (def.mass / p.mass);
       p.mass = def.mass;
     }
+    if (!(def.inertia == mat3<T>::zero())) p.inertia = def.inertia;
     return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
@@ -17779,6 +17416,16 @@ struct world_state {
 
   // ---- bodies ----
 
+  /// Stamps the ids this world makes with `owner` (a new, empty world).
+  void set_owner(std::uint32_t owner) noexcept {
+    bodies.set_owner(owner);
+    joints.set_owner(owner);
+    springs.set_owner(owner);
+  }
+  /// The body whose proxy carries `data` (pack).
+  [[nodiscard]] body_id unpack(std::uint64_t data) const noexcept {
+    return bodies.id_at(std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32));
+  }
   /// A body's place in the dense arrays (bodies.values(), the solver's).
   [[nodiscard]] std::uint32_t dense(body_id id) const noexcept { return std::uint32_t(bodies.dense_index(id)); }
   [[nodiscard]] aabb<T> bounds_of(const body_record<T>& r) const {
@@ -17796,6 +17443,22 @@ struct world_state {
   }
   [[nodiscard]] typename dispatcher::shape_ref shape_ref_of(const body_record<T>& r) const noexcept {
     return {shape_store.address(r.shape), r.shape.type};
+  }
+  /// Moves a kinematic body through a step of dt: its motion is
+  /// prescribed, so it is placed exactly (not where an integrator's
+  /// approximation would put it). Stopped at the world's bounds instead,
+  /// it returns false and the caller holds it.
+  bool move_kinematic(body_record<T>& r, T dt) {
+    rigid_body<T>& b = r.body;
+    if (r.target == target_state::armed) r.target = target_state::arrived;
+    const vec3<T> moved = b.position + b.kinematic_velocity * dt;
+    if (!within_bounds(moved)) {
+      b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
+      return false;
+    }
+    b.position = moved;
+    b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+    return true;
   }
   /// Wakes a body, and every body of its sleeping island with it.
   void wake(body_record<T>& r) {
@@ -17997,6 +17660,22 @@ struct step_scratch {
   std::vector<std::uint32_t> island_set;
   std::vector<std::uint8_t> held;  ///< per solver body: held in this step (hold)
 
+  /// A world without collision's (force_motion.hpp).
+  struct motion_scratch {
+    /// A spring's ends as dense places; b none: a world anchor.
+    struct spring_ends {
+      std::uint32_t a, b;
+    };
+    std::vector<spring_ends> ends;
+    std::vector<std::uint32_t> first_spring, springs_of, fill;  ///< each body's springs
+    bool coupled = false;  ///< a spring joins two moving bodies
+    buffer_pool<body_pose<T>> pose_pool;
+    buffer_pool<body_momentum<T>> momentum_pool;
+    std::vector<body_kinematics<T>> stage_kinematics;
+    std::vector<wrench<T>> stage_wrenches;
+  };
+  motion_scratch motion;
+
   /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).
   void hold(world_state<Config>& state, std::size_t i) {
@@ -18092,7 +17771,7 @@ struct contact_update {
           continue;
         }
         ++created;
-        const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+        const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
         const body_record<T>& ra = state.bodies[a];
         const body_record<T>& rb = state.bodies[b];
         contact_record<T> c{};
@@ -18112,7 +17791,7 @@ struct contact_update {
   /// Whether a pair of proxies can make contact: one of its bodies is
   /// dynamic, and no joint between them keeps them apart.
   bool may_touch(const proxy_pair& pair) const {
-    const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+    const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
     const body_record<T>& ra = state.bodies[a];
     const body_record<T>& rb = state.bodies[b];
     return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !state.joined_apart(a, b);
@@ -18298,7 +17977,7 @@ struct continuous_collision {
     });
     T first = T(1);
     state.broad.query(swept, [&](proxy_id proxy) {
-      const body_id other = unpack(state.broad.user_data(proxy));
+      const body_id other = state.unpack(state.broad.user_data(proxy));
       if (other == id || state.joined_apart(id, other)) return;
       const body_record<T>& o = state.bodies[other];
       // Fast bodies meet the world; bullets meet moving bodies too, but
@@ -18464,6 +18143,275 @@ void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& 
 
 }  // namespace impulse::detail
 // ---- end impulse/world/detail/debug_drawing.hpp ----
+// ---- begin impulse/world/detail/force_motion.hpp ----
+// impulse/world/detail/force_motion.hpp — the step of a world without
+// collision: bodies moved by forces alone, every force at every stage.
+//
+// A config with `collision = false` (world_traits.hpp) has no broad phase,
+// contacts, joints or solver. Its step is this stage: each dynamic body
+// moves under gravity, its held loads, its springs and the step's force
+// field, advanced by the config's integrator policy, and the forces are
+// evaluated at every stage of the integrator, on the stage's speculative
+// state: a spring sees where its bodies would be mid-step, and so does a
+// field. RK4 then keeps its fourth order on a spring-coupled pair, which a
+// constraint solver's step cannot (integrators compared in
+// docs/rigid_motion.md).
+//
+// Two paths run the same integrator code. When no spring joins two moving
+// bodies, each body is independent: it is advanced alone, with its state in
+// registers (body_motion.hpp's pose and momenta as the integrator's x and
+// p). When springs couple bodies, every stage needs every body's stage
+// state, so the integrator is handed the whole set as one state
+// (core/detail/pooled_state.hpp), as the particle system does for its
+// springs.
+//
+// A body whose step comes out non-finite, past the speed limits or beyond
+// max_coordinate is held as in a colliding world: it stays where it was
+// with no velocity, the others keep their step, and world::step names it.
+
+
+
+namespace impulse::detail {
+
+template <class Config>
+struct force_motion {
+  using T = typename Config::scalar;
+  using integrator = typename Config::integrator;
+  static constexpr std::uint32_t none = no_object;
+
+  world_state<Config>& state;
+  step_scratch<Config>& scratch;
+
+  template <class Field>
+  void run(T dt, Field& field) {
+    for (body_record<T>& r : state.bodies.values()) r.previous = r.body.pose();
+    resolve_springs();
+    if (scratch.motion.coupled) {
+      step_coupled(dt, field);
+    } else {
+      step_each(dt, field);
+    }
+    for (std::size_t i = 0; i < state.bodies.size(); ++i) {
+      body_record<T>& r = state.bodies.values()[i];
+      rigid_body<T>& b = r.body;
+      if (b.type == body_type::kinematic && !state.move_kinematic(r, dt)) state.held.push_back(state.bodies.ids()[i]);
+      b.clear_loads();
+    }
+    state.counts = {};
+    state.counts.active_bodies = state.bodies.size();
+  }
+
+ private:
+  using motion_scratch = typename step_scratch<Config>::motion_scratch;
+  using spring_ends = typename motion_scratch::spring_ends;
+  using poses = pooled_state<body_pose<T>>;
+  using momenta = pooled_state<body_momentum<T>>;
+
+  [[nodiscard]] const rigid_body<T>& body(std::size_t i) const noexcept { return state.bodies.values()[i].body; }
+  [[nodiscard]] const body_spring<T>& spring(std::size_t s) const noexcept { return state.springs.values()[s].def; }
+
+  // Each spring's ends as dense places, and each body's springs (counting
+  // sort), for the independent path.
+  void resolve_springs() {
+    motion_scratch& m = scratch.motion;
+    const std::size_t n = state.bodies.size();
+    m.ends.resize(state.springs.size());
+    m.coupled = false;
+    m.first_spring.assign(n + 1, 0);
+    for (std::size_t i = 0; i < state.springs.size(); ++i) {
+      const body_spring<T>& s = spring(i);
+      spring_ends& e = m.ends[i];
+      e.a = state.dense(s.body_a);
+      e.b = s.body_b.is_none() ? none : state.dense(s.body_b);
+      const bool a_moves = body(e.a).type != body_type::static_body;
+      const bool b_moves = e.b != none && body(e.b).type != body_type::static_body;
+      m.coupled = m.coupled || (a_moves && b_moves);
+      ++m.first_spring[e.a + 1];
+      if (e.b != none) ++m.first_spring[e.b + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) m.first_spring[i + 1] += m.first_spring[i];
+    m.springs_of.resize(m.first_spring[n]);
+    m.fill.assign(m.first_spring.begin(), m.first_spring.end() - 1);
+    for (std::uint32_t i = 0; i < m.ends.size(); ++i) {
+      m.springs_of[m.fill[m.ends[i].a]++] = i;
+      if (m.ends[i].b != none) m.springs_of[m.fill[m.ends[i].b]++] = i;
+    }
+  }
+
+  // Gravity, the held loads and the field on body i at kinematics k.
+  template <class Field>
+  wrench<T> body_wrench(std::size_t i, const body_kinematics<T>& k, Field& field) const {
+    const rigid_body<T>& b = body(i);
+    if (b.type != body_type::dynamic) return {};
+    wrench<T> w{b.force + state.settings.gravity * b.mass, b.torque};
+    if constexpr (!std::is_same_v<std::remove_cvref_t<Field>, no_force_field>) w += field(state.bodies.ids()[i], k);
+    return w;
+  }
+
+  static void add_at(wrench<T>& w, const body_kinematics<T>& k, const vec3<T>& f, const vec3<T>& p) noexcept {
+    w.force += f;
+    w.torque += cross(p - k.position, f);
+  }
+
+  // A body at the other end of a spring that does not move in the step.
+  [[nodiscard]] body_kinematics<T> resting_kinematics(std::uint32_t i) const noexcept {
+    return kinematics_of(body(i), pose_of(body(i)), momentum_of(body(i)));
+  }
+
+  // One dynamic body alone, its springs' other ends fixed for the step
+  // (static bodies or world anchors).
+  template <class Field>
+  struct single_body {
+    const force_motion& stage;
+    std::size_t index;
+    Field& field;
+    // Most methods ask for both rates at the same stage state; the
+    // kinematics (a rotation matrix and the world inverse inertia) are
+    // worked out once for both.
+    body_pose<T> cached_x{};
+    body_momentum<T> cached_p{};
+    body_kinematics<T> cached_k{};
+    bool cached = false;
+
+    const body_kinematics<T>& kinematics(const body_pose<T>& x, const body_momentum<T>& p) {
+      if (!cached || !(x.position == cached_x.position && x.orientation == cached_x.orientation &&
+                       p.linear == cached_p.linear && p.angular == cached_p.angular)) {
+        cached_k = kinematics_of(stage.body(index), x, p);
+        cached_x = x, cached_p = p, cached = true;
+      }
+      return cached_k;
+    }
+    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) {
+      return pose_rate(kinematics(x, p), x.orientation);
+    }
+    body_momentum<T> momentum_rate(const body_pose<T>& x, const body_momentum<T>& p) {
+      const body_kinematics<T>& k = kinematics(x, p);
+      wrench<T> w = stage.body_wrench(index, k, field);
+      const motion_scratch& m = stage.scratch.motion;
+      for (std::uint32_t j = m.first_spring[index]; j < m.first_spring[index + 1]; ++j) {
+        const std::uint32_t s = m.springs_of[j];
+        const spring_ends& e = m.ends[s];
+        const body_spring<T>& spring = stage.spring(s);
+        // This body may be either end; the other end does not move.
+        if (e.a == index && e.b == none) {  // a world anchor
+          const spring_load<T> load = spring_load_of<T>(spring, k, nullptr);
+          add_at(w, k, load.force, load.point_a);
+        } else if (e.a == index) {
+          const body_kinematics<T> other = stage.resting_kinematics(e.b);
+          const spring_load<T> load = spring_load_of(spring, k, &other);
+          add_at(w, k, load.force, load.point_a);
+        } else {
+          const body_kinematics<T> other = stage.resting_kinematics(e.a);
+          const spring_load<T> load = spring_load_of(spring, other, &k);
+          add_at(w, k, -load.force, load.point_b);
+        }
+      }
+      return {w.force, w.torque};
+    }
+  };
+
+  template <class Field>
+  void step_each(T dt, Field& field) {
+    for (std::size_t i = 0; i < state.bodies.size(); ++i) {
+      if (body(i).type != body_type::dynamic) continue;  // kinematic ones are placed exactly after
+      body_pose<T> x = pose_of(body(i));
+      body_momentum<T> p = momentum_of(body(i));
+      integrator::advance(x, p, dt, single_body<Field>{*this, i, field});
+      commit(i, x, p);
+    }
+  }
+
+  // Every body at once: the whole set is the integrator's state.
+  template <class Field>
+  struct whole_set {
+    force_motion& stage;
+    Field& field;
+
+    poses position_rate(const poses& x, const momenta& p) const {
+      poses rate(stage.scratch.motion.pose_pool);
+      for (std::size_t i = 0; i < stage.state.bodies.size(); ++i)
+        rate[i] = pose_rate(kinematics_of(stage.body(i), x[i], p[i]), x[i].orientation);
+      return rate;
+    }
+    momenta momentum_rate(const poses& x, const momenta& p) const {
+      motion_scratch& m = stage.scratch.motion;
+      const std::size_t n = stage.state.bodies.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        m.stage_kinematics[i] = kinematics_of(stage.body(i), x[i], p[i]);
+        m.stage_wrenches[i] = stage.body_wrench(i, m.stage_kinematics[i], field);
+      }
+      for (std::size_t s = 0; s < m.ends.size(); ++s) {
+        const spring_ends& e = m.ends[s];
+        const std::vector<body_kinematics<T>>& k = m.stage_kinematics;
+        const spring_load<T> load = spring_load_of(stage.spring(s), k[e.a], e.b == none ? nullptr : &k[e.b]);
+        if (stage.body(e.a).type == body_type::dynamic) add_at(m.stage_wrenches[e.a], k[e.a], load.force, load.point_a);
+        if (e.b != none && stage.body(e.b).type == body_type::dynamic)
+          add_at(m.stage_wrenches[e.b], k[e.b], -load.force, load.point_b);
+      }
+      momenta rate(m.momentum_pool);
+      for (std::size_t i = 0; i < n; ++i)
+        rate[i] = stage.body(i).type == body_type::dynamic
+                      ? body_momentum<T>{m.stage_wrenches[i].force, m.stage_wrenches[i].torque}
+                      : body_momentum<T>{};
+      return rate;
+    }
+  };
+
+  template <class Field>
+  void step_coupled(T dt, Field& field) {
+    motion_scratch& m = scratch.motion;
+    const std::size_t n = state.bodies.size();
+    m.pose_pool.resize(1, n, n);
+    m.momentum_pool.resize(1, n, n);
+    m.stage_kinematics.resize(n);
+    m.stage_wrenches.resize(n);
+    poses x(m.pose_pool);
+    momenta p(m.momentum_pool);
+    for (std::size_t i = 0; i < n; ++i) x[i] = pose_of(body(i)), p[i] = momentum_of(body(i));
+    integrator::advance(x, p, dt, whole_set<Field>{*this, field});
+    for (std::size_t i = 0; i < n; ++i) commit(i, x[i], p[i]);
+  }
+
+  // Whether the body's speeds after its step are within the world's
+  // limits. |ω| ≤ |L|·‖I⁻¹‖ (the largest row sum of the body-space inverse
+  // inertia bounds its largest eigenvalue), so ω itself, a rotation matrix
+  // and two products, is worked out only when that bound passes the limit:
+  // done for every body, it cost a third of a symplectic Euler step.
+  [[nodiscard]] bool within_speed_limits(const rigid_body<T>& b, const body_pose<T>& x,
+                                         const body_momentum<T>& p) const noexcept {
+    const mat3<T>& i = b.inverse_inertia;
+    T bound = T(0);
+    for (int r = 0; r < 3; ++r) bound = std::max(bound, std::abs(i(r, 0)) + std::abs(i(r, 1)) + std::abs(i(r, 2)));
+    const T w = state.settings.max_angular_speed;
+    const vec3<T> v = p.linear * b.inverse_mass;
+    if (length_squared(p.angular) * bound * bound <= w * w) return state.within_speed_limits(v, vec3<T>{});
+    return state.within_speed_limits(v, kinematics_of(b, x, p).angular_velocity);
+  }
+
+  // Writes a dynamic body's step or, if it overflowed, holds the body where
+  // it was with no velocity. Nothing reads a body's stored state after its
+  // step is computed, so no copy of the start is needed.
+  void commit(std::size_t i, const body_pose<T>& x, const body_momentum<T>& p) {
+    body_record<T>& r = state.bodies.values()[i];
+    rigid_body<T>& b = r.body;
+    if (b.type != body_type::dynamic) return;
+    const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(p.linear) &&
+                        is_finite(p.angular) && length_squared(x.orientation) > scalar_traits<T>::zero_length_squared;
+    const bool kept = finite && state.within_bounds(x.position) && within_speed_limits(b, x, p);
+    if (!kept) {
+      b.linear_momentum = b.angular_momentum = vec3<T>{};
+      state.held.push_back(state.bodies.ids()[i]);
+      return;
+    }
+    b.position = x.position;
+    b.orientation = normalize(x.orientation);
+    b.linear_momentum = p.linear;
+    b.angular_momentum = p.angular;
+  }
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/world/detail/force_motion.hpp ----
 // ---- begin impulse/world/detail/islands.hpp ----
 // impulse/world/detail/islands.hpp — the step's islands and sleeping (with
 // `sleeping` on in the config). Before the solve, a sleeping body touching
@@ -18884,17 +18832,7 @@ struct body_solve {
           scratch.hold(state, i);
         }
       } else if (b.type == body_type::kinematic) {
-        // A kinematic body's motion is prescribed: placed exactly, and
-        // stopped at the world's bounds.
-        const vec3<T> moved = b.position + b.kinematic_velocity * dt;
-        if (state.within_bounds(moved)) {
-          b.position = moved;
-          b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
-        } else {
-          b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
-          scratch.hold(state, i);
-        }
-        if (r.target == target_state::armed) r.target = target_state::arrived;
+        if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
       }
       b.clear_loads();
     }
@@ -19143,6 +19081,11 @@ class world {
   using solver_type = typename solver_policy::template type<T>;
   using settings_type = typename state_type::settings_type;  ///< world_settings with its solver's
   using integrator = typename Config::integrator;
+  /// Whether bodies collide (config `collision`, on by default). Off, the
+  /// world has no broad phase, contacts, joints or solver: gravity, loads,
+  /// springs and force fields move the bodies, each evaluated at every
+  /// stage of the integrator (detail/force_motion.hpp).
+  static constexpr bool collision = detail::world_collides<Config>();
   static constexpr bool sleeping = detail::world_sleeping<Config>();
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
@@ -19215,19 +19158,7 @@ class world {
   /// the last step, 1 at its end (advance() returns the alpha of the time
   /// left over). Rendering at it hides the fixed step's stutter. Refused:
   /// alpha outside [0, 1] or NaN.
-  [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const {
-    require(id, "world::interpolated_pose: no such body");
-    if (!(alpha >= T(0) && alpha <= T(1)))
-      detail::report_error(error_code::invalid_parameter, "world::interpolated_pose: alpha must be within [0, 1]",
-                           id.index);
-    const body_record& r = state_.bodies[id];
-    const transform<T> now = r.body.pose();
-    quat<T> q1 = now.rotation;
-    if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
-    const transform<T> center{lerp(r.previous.position, now.position, alpha),
-                              normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
-    return {center.position - rotate(center.rotation, r.center), center.rotation};
-  }
+  [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const;
   /// Calls f(shape) with the body's shape (one of the config's shape
   /// list, in the body's shape frame) and returns what f returns.
   template <class F>
@@ -19308,7 +19239,9 @@ class world {
   /// neither of which is dynamic, non-finite anchors or axis, and the
   /// other bad values joint_def::validate names. Both bodies wake; unless
   /// def.collide_connected, their contacts with each other end.
-  joint_id create_joint(const joint_def<T>& def);
+  /// A world without collision has no solver, and so no joints.
+  joint_id create_joint(const joint_def<T>& def)
+    requires(detail::world_collides<Config>());
 
   /// Removes a joint; its bodies wake and, if they did not collide, may
   /// touch again from the next step. A broken joint stays until destroyed.
@@ -19363,7 +19296,8 @@ class world {
   /// Adds a damped spring (body_spring.hpp) from a point of one body to a
   /// point of another or to a world anchor (end b none), solved with the
   /// contacts and joints as a soft row of its stiffness and damping:
-  /// stable at any stiffness, and the bodies still collide. Refused, the
+  /// stable at any stiffness, and the bodies still collide. (Without
+  /// collision it is a force at every integrator stage instead.) Refused, the
   /// world unchanged: a missing body, both ends on one body, no end on a
   /// dynamic body, a value not finite or negative. Its bodies wake.
   spring_id create_spring(const body_spring<T>& def);
@@ -19403,7 +19337,10 @@ class world {
   /// A step with a force field: field(body_id, body_kinematics) -> wrench
   /// (force through the center of mass, torque), added to each awake
   /// dynamic body's loads for this step (world_forces.hpp). It wakes none.
+  /// Without collision it is evaluated at every integrator stage instead,
+  /// on the stage's state.
   template <class Field>
+    requires body_force_field<Field, T>
   void step(T dt, Field&& field);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
@@ -19460,15 +19397,7 @@ class world {
 
   /// f(body) for every body whose shape's bounding box overlaps `box`.
   template <class F>
-  void overlap(const aabb<T>& box, F&& f) const {
-    if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
-      detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
-    const in_callback scope(*this);
-    state_.broad.query(box, [&](proxy_id proxy) {
-      const body_id id = detail::unpack(state_.broad.user_data(proxy));
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
-    });
-  }
+  void overlap(const aabb<T>& box, F&& f) const;
 
   // ---- drawing ----
 
@@ -19492,11 +19421,19 @@ class world {
 
   // ---- what is conserved, for tests and diagnostics ----
 
+  /// Σ ½·m·v² + ½·ω·L over dynamic bodies, J.
   [[nodiscard]] T kinetic_energy() const noexcept {
     T e = T(0);
     for (const body_record& r : state_.bodies.values()) e += r.body.kinetic_energy();
     return e;
   }
+  /// Gravitational (−m·g·x, zero at the origin) plus the springs' elastic
+  /// energy, J (world_queries.hpp).
+  [[nodiscard]] T potential_energy() const;
+  /// Σ P over dynamic bodies, kg·m/s.
+  [[nodiscard]] vec3<T> linear_momentum() const noexcept;
+  /// Σ (x × P + L) over dynamic bodies, about the world origin, kg·m²/s.
+  [[nodiscard]] vec3<T> angular_momentum() const noexcept;
 
  private:
   friend class world_snapshot<Config>;
@@ -19533,6 +19470,10 @@ class world {
   void expire_targets();
 
   void end_contacts_between(body_id a, body_id b);
+  /// The step's start (checks dt, clears the last step's events) and its
+  /// end (the clock, and the error naming a held body).
+  void begin_step(T dt);
+  void finish_step(T dt);
 
   state_type state_;
   detail::step_scratch<Config> scratch_;  ///< rebuilt by each step; not part of the state
@@ -19569,6 +19510,7 @@ template <class Config>
 world<Config>::world(const settings_type& settings) {
   settings.validate();
   state_.settings = settings;
+  state_.set_owner(detail::next_world_owner());
 }
 template <class Config>
 world<Config>::world(const world&) = default;
@@ -19583,6 +19525,22 @@ world<Config>::~world() = default;
 
 template <class Config>
 void world<Config>::step(T dt) {
+  begin_step(dt);
+  if constexpr (collision) {
+    detail::contact_update<Config>{state_, scratch_}.run();
+    if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
+    detail::body_solve<Config>{state_, scratch_}.run(dt);
+    if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
+    if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+  } else {
+    detail::no_force_field none;
+    detail::force_motion<Config>{state_, scratch_}.run(dt, none);
+  }
+  finish_step(dt);
+}
+
+template <class Config>
+void world<Config>::begin_step(T dt) {
   refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   if (!(dt > T(0) && dt <= max_dt))
@@ -19592,11 +19550,10 @@ void world<Config>::step(T dt) {
   state_.broken.clear();
   state_.held.clear();
   expire_targets();
-  detail::contact_update<Config>{state_, scratch_}.run();
-  if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
-  detail::body_solve<Config>{state_, scratch_}.run(dt);
-  if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
-  if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+}
+
+template <class Config>
+void world<Config>::finish_step(T dt) {
   state_.time += dt;
   state_.last_dt = dt;
   ++state_.step_count;
@@ -19627,25 +19584,6 @@ auto world<Config>::advance(T frame_dt) -> T {
   // behind the clock rather than trying to catch up ever harder.
   if (state_.accumulator >= due) state_.accumulator = std::fmod(state_.accumulator, h);
   return state_.accumulator / h;
-}
-
-template <class Config>
-auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
-  std::optional<world_ray_hit<T>> best;
-  T reach = max_fraction;
-  state_.broad.ray_cast(r, max_fraction, [&](proxy_id proxy, T) {
-    const body_id id = detail::unpack(state_.broad.user_data(proxy));
-    const body_record& rec = state_.bodies[id];
-    const transform<T> pose = detail::shape_pose_of(rec);
-    const narrowphase::ray_hit<T> hit =
-        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
-    if (hit.hit && hit.fraction <= reach) {
-      reach = hit.fraction;
-      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
-    }
-    return reach;
-  });
-  return best;
 }
 
 /// A world's whole state, to restore it later exactly.
@@ -19724,7 +19662,7 @@ template <class Config>
 body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
-  r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  if constexpr (collision) r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
   state_.awake_stale = true;
   if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
@@ -19755,7 +19693,7 @@ void world<Config>::destroy_body(body_id id) {
     return true;
   });
   body_record& r = state_.bodies[id];
-  state_.broad.destroy(r.proxy);
+  if constexpr (collision) state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
   state_.bodies.erase(id);
   state_.awake_stale = true;  // the last body took its dense place
@@ -19776,7 +19714,7 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
     detail::report_error(error_code::invalid_parameter,
                          "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
   r = moved;
-  state_.broad.move(r.proxy, box);
+  if constexpr (collision) state_.broad.move(r.proxy, box);
   state_.wake(r);
 }
 
@@ -19832,6 +19770,9 @@ void world<Config>::expire_targets() {
 // of its bodies in the same iterations. A force field is a load: evaluated
 // once at the start of a step, on every awake dynamic body, and held over
 // the step like every other force.
+//
+// In a world without collision (detail/force_motion.hpp) both are forces
+// evaluated at every stage of the integrator instead.
 
 
 
@@ -19880,7 +19821,18 @@ void world<Config>::destroy_spring(spring_id id) {
 
 template <class Config>
 template <class Field>
+  requires body_force_field<Field, typename Config::scalar>
 void world<Config>::step(T dt, Field&& field) {
+  if constexpr (!collision) {
+    begin_step(dt);
+    {
+      // The field may read the world, and not change it (world::for_each_contact's rules).
+      const in_callback scope(*this);
+      detail::force_motion<Config>{state_, scratch_}.run(dt, field);
+    }
+    finish_step(dt);
+    return;
+  }
   refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   // Every load first, checked: a field that gives one body a force that is
@@ -19923,7 +19875,9 @@ void world<Config>::step(T dt, Field&& field) {
 namespace impulse {
 
 template <class Config>
-joint_id world<Config>::create_joint(const joint_def<T>& def) {
+joint_id world<Config>::create_joint(const joint_def<T>& def)
+  requires(detail::world_collides<Config>())
+{
   refuse_in_callback("world::create_joint: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");
@@ -20023,6 +19977,112 @@ void world<Config>::set_joint_limits(joint_id id, bool enable, T lower, T upper)
 
 }  // namespace impulse
 // ---- end impulse/world/world_joints.hpp ----
+// ---- begin impulse/world/world_queries.hpp ----
+// impulse/world/world_queries.hpp — world<Config>'s queries, defined outside
+// the class (world.hpp says why they are not inline): ray casts, box
+// overlaps, interpolated poses, and the energies and momenta tests and
+// diagnostics check conservation with.
+//
+// A world without collision keeps no broad phase: its ray casts and
+// overlaps test every body, in storage order.
+
+
+
+namespace impulse {
+
+template <class Config>
+auto world<Config>::interpolated_pose(body_id id, T alpha) const -> transform<T> {
+  require(id, "world::interpolated_pose: no such body");
+  if (!(alpha >= T(0) && alpha <= T(1)))
+    detail::report_error(error_code::invalid_parameter, "world::interpolated_pose: alpha must be within [0, 1]",
+                         id.index);
+  const body_record& r = state_.bodies[id];
+  const transform<T> now = r.body.pose();
+  quat<T> q1 = now.rotation;
+  if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
+  const transform<T> center{lerp(r.previous.position, now.position, alpha),
+                            normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
+  return {center.position - rotate(center.rotation, r.center), center.rotation};
+}
+
+template <class Config>
+auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
+  std::optional<world_ray_hit<T>> best;
+  T reach = max_fraction;
+  const auto test = [&](body_id id) {
+    const body_record& rec = state_.bodies[id];
+    const transform<T> pose = detail::shape_pose_of(rec);
+    const narrowphase::ray_hit<T> hit =
+        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
+    if (hit.hit && hit.fraction <= reach) {
+      reach = hit.fraction;
+      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
+    }
+    return reach;
+  };
+  if constexpr (collision) {
+    state_.broad.ray_cast(r, max_fraction,
+                          [&](proxy_id proxy, T) { return test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
+    for (const body_id id : state_.bodies.ids()) test(id);
+  }
+  return best;
+}
+
+template <class Config>
+template <class F>
+void world<Config>::overlap(const aabb<T>& box, F&& f) const {
+  if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
+    detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
+  const in_callback scope(*this);
+  if constexpr (collision) {
+    state_.broad.query(box, [&](proxy_id proxy) {
+      const body_id id = state_.unpack(state_.broad.user_data(proxy));
+      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+    });
+  } else {
+    for (const body_id id : state_.bodies.ids())
+      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+  }
+}
+
+template <class Config>
+auto world<Config>::potential_energy() const -> T {
+  T e = T(0);
+  for (const body_record& r : state_.bodies.values())
+    if (r.body.type == body_type::dynamic) e -= r.body.mass * dot(state_.settings.gravity, r.body.position);
+  for (const detail::spring_record<T>& record : state_.springs.values()) {
+    const body_spring<T>& s = record.def;
+    const rigid_body<T>& a = state_.bodies[s.body_a].body;
+    const vec3<T> pa = a.position + rotate(a.orientation, s.point_a);
+    vec3<T> pb = s.point_b;
+    if (!s.body_b.is_none()) {
+      const rigid_body<T>& b = state_.bodies[s.body_b].body;
+      pb = b.position + rotate(b.orientation, s.point_b);
+    }
+    e += spring_energy(s, pa, pb);
+  }
+  return e;
+}
+
+template <class Config>
+auto world<Config>::linear_momentum() const noexcept -> vec3<T> {
+  vec3<T> p{};
+  for (const body_record& r : state_.bodies.values())
+    if (r.body.type == body_type::dynamic) p += r.body.linear_momentum;
+  return p;
+}
+
+template <class Config>
+auto world<Config>::angular_momentum() const noexcept -> vec3<T> {
+  vec3<T> l{};
+  for (const body_record& r : state_.bodies.values())
+    if (r.body.type == body_type::dynamic) l += cross(r.body.position, r.body.linear_momentum) + r.body.angular_momentum;
+  return l;
+}
+
+}  // namespace impulse
+// ---- end impulse/world/world_queries.hpp ----
 
 #if IMPULSE_EXTERN_TEMPLATES
 IMPULSE_DECLARE_WORLD(impulse::default_config);

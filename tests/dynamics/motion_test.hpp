@@ -1,5 +1,7 @@
 // tests/dynamics/motion_test.hpp — configs and bodies shared by the rigid
-// motion tests.
+// motion tests: worlds without collision, whose bodies gravity, loads,
+// springs and force fields move, every force evaluated at every stage of
+// the config's integrator.
 #pragma once
 
 #include <cmath>
@@ -8,6 +10,7 @@
 #include "impulse/config.hpp"
 #include "impulse/dynamics.hpp"
 #include "impulse/integrators.hpp"
+#include "impulse/world.hpp"
 
 namespace impulse::test {
 
@@ -15,20 +18,41 @@ template <class T, class I>
 struct motion_config : default_config {
   using scalar = T;
   using integrator = I;
+  static constexpr bool collision = false;
 };
 
+/// A world without collision stepped by integrator I.
 template <class T, class I>
-using body_system = rigid_body_system<motion_config<T, I>>;
+using motion_world = world<motion_config<T, I>>;
 
 template <class T>
 constexpr double epsilon_of = double(std::numeric_limits<T>::epsilon());
 
-/// Mass 1 with principal moments (i1, i2, i3) along the body axes.
+/// A dynamic body at `pose` moving at v and spinning at ω (world frame).
+/// Its mass is the shape's at material.density unless set.
 template <class T>
-mass_properties<T> principal(T i1, T i2, T i3) {
-  mass_properties<T> p{T(1), {}, mat3<T>::zero()};
-  p.inertia(0, 0) = i1, p.inertia(1, 1) = i2, p.inertia(2, 2) = i3;
-  return p;
+body_def<T> moving(const transform<T>& pose, const vec3<T>& v = {}, const vec3<T>& omega = {}) {
+  body_def<T> def;
+  def.pose = pose;
+  def.linear_velocity = v;
+  def.angular_velocity = omega;
+  return def;
+}
+
+/// Mass 1 with principal moments (i1, i2, i3) along the body axes, for a
+/// shape whose center of mass is its origin (a sphere).
+template <class T>
+body_def<T> principal(T i1, T i2, T i3) {
+  body_def<T> def;
+  def.mass = T(1);
+  def.inertia = mat3<T>::diagonal({i1, i2, i3});
+  return def;
+}
+
+/// The one body of a world that has one.
+template <class World>
+const auto& only_body(const World& w) {
+  return w.body(w.body_ids()[0]);
 }
 
 /// Angular velocity in body axes: Rᵀ·ω.

@@ -1,10 +1,13 @@
-// Damped springs on body points, evaluated at every integrator stage: the
-// hanging cube's equilibrium, a physical pendulum's period, conservation
-// laws of springs between bodies, and the two stepping paths agreeing.
+// Damped springs on body points in a world without collision, evaluated at
+// every integrator stage: the hanging cube's equilibrium, a physical
+// pendulum's period, conservation laws of springs between bodies, and the
+// two stepping paths agreeing.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 #include "impulse/shapes/box.hpp"
 #include "impulse/shapes/mass_properties.hpp"
@@ -16,8 +19,9 @@ namespace {
 
 using namespace impulse;
 using namespace impulse::integrators;
-using impulse::test::body_system;
 using impulse::test::epsilon_of;
+using impulse::test::motion_world;
+using impulse::test::moving;
 
 // A unit cube of mass 1 hung by its corner (½, ½, ½) from the anchor
 // (0, 3, 0) on a spring of k = 100 N/m, c = 2 N·s/m, rest length 0.5 m,
@@ -26,14 +30,13 @@ constexpr double cube_stiffness = 100, cube_rest = 0.5;
 
 template <class T, class I>
 struct hanging_cube {
-  body_system<T, I> system;
+  motion_world<T, I> w;
   body_id cube;
   hanging_cube() {
-    rigid_body<T> b = rigid_body<T>::dynamic(mass_properties_of(box<T>{{T(0.5), T(0.5), T(0.5)}}, T(1)),
-                                             {{T(0.3), T(2), T(0.1)}, quat<T>::identity()});
-    cube = system.add_body(b);
-    system.add_spring(body_spring<T>::to_anchor(cube, {T(0.5), T(0.5), T(0.5)}, {T(0), T(3), T(0)},
-                                                T(cube_stiffness), T(2), T(cube_rest)));
+    // Density 1: mass 1 kg.
+    cube = w.create_body(moving<T>({{T(0.3), T(2), T(0.1)}, quat<T>::identity()}), box<T>{{T(0.5), T(0.5), T(0.5)}});
+    w.create_spring(body_spring<T>::to_anchor(cube, {T(0.5), T(0.5), T(0.5)}, {T(0), T(3), T(0)}, T(cube_stiffness),
+                                              T(2), T(cube_rest)));
   }
 };
 
@@ -50,8 +53,8 @@ void check_cube_settles(int seconds) {
   const auto drag = [](body_id, const body_kinematics<T>& k) {
     return wrench<T>{k.linear_velocity * T(-1), k.angular_velocity * T(-0.2)};
   };
-  for (int i = 0; i < seconds * 120; ++i) h.system.step(T(1.0 / 120), drag);
-  const rigid_body<T>& b = h.system.body(h.cube);
+  for (int i = 0; i < seconds * 120; ++i) h.w.step(T(1.0 / 120), drag);
+  const rigid_body<T>& b = h.w.body(h.cube);
   const double g = 9.81, corner_y = 3 - cube_rest - g / cube_stiffness;
   const vec3<double> expected{0, corner_y - std::sqrt(0.75), 0};
   const vec3<double> at{double(b.position.x), double(b.position.y), double(b.position.z)};
@@ -78,8 +81,8 @@ TEST_CASE_TEMPLATE("the hanging cube turns as it swings", T, float, double) {
   // cube picks up angular momentum; without a spring at a body point it
   // could not.
   hanging_cube<T, rk4> h;
-  for (int i = 0; i < 60; ++i) h.system.step(T(1.0 / 120));
-  CHECK(length(h.system.body(h.cube).angular_momentum) > T(0.01));
+  for (int i = 0; i < 60; ++i) h.w.step(T(1.0 / 120));
+  CHECK(length(h.w.body(h.cube).angular_momentum) > T(0.01));
 }
 
 namespace {
@@ -92,21 +95,21 @@ namespace {
 // m·g/k = 1e-4 m moves the pivot by 2e-4 of d.
 template <class T>
 double pendulum_period() {
-  body_system<T, rk4> system;
+  motion_world<T, rk4> w;
   const double d = 0.5, theta0 = 0.05;
   const quat<T> tilt = quat<T>::from_axis_angle({0, 0, 1}, T(theta0));
   const vec3<T> center = rotate(tilt, vec3<T>{0, T(-d), 0});
-  rigid_body<T> rod = rigid_body<T>::dynamic(mass_properties_of(box<T>{{T(0.05), T(d), T(0.05)}}, T(100)),
-                                             {center, tilt});
-  const body_id id = system.add_body(rod);
-  system.add_spring(body_spring<T>::to_anchor(id, {0, T(d), 0}, {}, T(1e5), T(0)));
+  body_def<T> rod = moving<T>({center, tilt});
+  rod.material.density = T(100);  // mass 1 kg
+  const body_id id = w.create_body(rod, box<T>{{T(0.05), T(d), T(0.05)}});
+  w.create_spring(body_spring<T>::to_anchor(id, {0, T(d), 0}, {}, T(1e5), T(0)));
   // Period from successive upward zero crossings of x (interpolated).
   const double dt = 1.0 / 960;
   double previous = double(center.x), first = -1, last = -1;
   int periods = -1;
   for (int i = 1; i <= 5 * 960; ++i) {
-    system.step(T(dt));
-    const double x = double(system.body(id).position.x), t = i * dt;
+    w.step(T(dt));
+    const double x = double(w.body(id).position.x), t = i * dt;
     if (previous < 0 && x >= 0) {
       last = t - dt * x / (x - previous);
       if (first < 0) first = last;
@@ -130,6 +133,19 @@ TEST_CASE_TEMPLATE("a rod hung on a stiff spring swings with the physical pendul
 
 namespace {
 
+/// The pair's two bodies, made in `w`: a box of density 500 and a ball of
+/// density 800.
+template <class World, class T = typename World::scalar>
+std::pair<body_id, body_id> add_pair_bodies(World& w) {
+  body_def<T> da = moving<T>({{-1, 0, 0}, quat<T>::identity()}, {0, 1, T(0.5)}, {1, -2, 3});
+  da.material.density = T(500);
+  body_def<T> db =
+      moving<T>({{1, T(0.5), 0}, quat<T>::from_axis_angle({0, 1, 0}, T(0.4))}, {T(-0.5), 0, 0}, {0, 4, -1});
+  db.material.density = T(800);
+  const body_id a = w.create_body(da, box<T>{{T(0.3), T(0.2), T(0.1)}});
+  return {a, w.create_body(db, sphere<T>{T(0.25)})};
+}
+
 // Two bodies joined by an undamped spring between off-center points, no
 // gravity, thrown spinning. The force pair is equal and opposite, so total
 // linear momentum is a linear invariant of the equations, and every
@@ -139,39 +155,32 @@ namespace {
 // the state, and the methods keep it only to their order.
 template <class T, class I>
 struct spring_pair {
-  body_system<T, I> system;
+  motion_world<T, I> w;
   body_id a, b;
   spring_pair(T damping = T(0)) {
-    system.gravity = {};
-    rigid_body<T> ra = rigid_body<T>::dynamic(mass_properties_of(box<T>{{T(0.3), T(0.2), T(0.1)}}, T(500)),
-                                              {{-1, 0, 0}, quat<T>::identity()});
-    rigid_body<T> rb = rigid_body<T>::dynamic(mass_properties_of(sphere<T>{T(0.25)}, T(800)),
-                                              {{1, T(0.5), 0}, quat<T>::from_axis_angle({0, 1, 0}, T(0.4))});
-    ra.set_velocity({0, 1, T(0.5)}, {1, -2, 3});
-    rb.set_velocity({T(-0.5), 0, 0}, {0, 4, -1});
-    a = system.add_body(ra);
-    b = system.add_body(rb);
-    system.add_spring(body_spring<T>::between(a, {T(0.3), T(0.2), 0}, b, {0, T(-0.25), 0}, T(40), damping, T(1)));
+    w.set_gravity({});
+    std::tie(a, b) = add_pair_bodies(w);
+    w.create_spring(body_spring<T>::between(a, {T(0.3), T(0.2), 0}, b, {0, T(-0.25), 0}, T(40), damping, T(1)));
   }
 };
 
 template <class T, class I>
 void check_pair_keeps_linear_momentum() {
   spring_pair<T, I> pair;
-  const vec3<T> p0 = pair.system.linear_momentum();
+  const vec3<T> p0 = pair.w.linear_momentum();
   const int steps = 600;
-  for (int i = 0; i < steps; ++i) pair.system.step(T(1.0 / 120));
+  for (int i = 0; i < steps; ++i) pair.w.step(T(1.0 / 120));
   // Rounding: each step adds a few ε of |P| ≈ 40 kg·m/s; 600 steps stay
   // below 600·16·ε of it.
-  CHECK(double(length(pair.system.linear_momentum() - p0)) < steps * 16 * epsilon_of<T> * 40);
+  CHECK(double(length(pair.w.linear_momentum() - p0)) < steps * 16 * epsilon_of<T> * 40);
 }
 
 template <class I>
 double pair_angular_momentum_drift(double h) {
   spring_pair<double, I> pair;
-  const vec3<double> l0 = pair.system.angular_momentum();
-  for (int i = 0, n = int(std::lround(5 / h)); i < n; ++i) pair.system.step(h);
-  return length(pair.system.angular_momentum() - l0) / length(l0);
+  const vec3<double> l0 = pair.w.angular_momentum();
+  for (int i = 0, n = int(std::lround(5 / h)); i < n; ++i) pair.w.step(h);
+  return length(pair.w.angular_momentum() - l0) / length(l0);
 }
 
 }  // namespace
@@ -201,17 +210,17 @@ TEST_CASE("a spring between two bodies keeps their angular momentum to each meth
 
 TEST_CASE("an undamped spring pair keeps its energy to RK4's order and a damped one loses it") {
   spring_pair<double, rk4> free;
-  const double e0 = free.system.kinetic_energy() + free.system.potential_energy();
-  for (int i = 0; i < 1200; ++i) free.system.step(1.0 / 120);
+  const double e0 = free.w.kinetic_energy() + free.w.potential_energy();
+  for (int i = 0; i < 1200; ++i) free.w.step(1.0 / 120);
   // 10 s at ω·h ≈ 0.1 (the spring's 40 N/m on masses of ~50 kg is slow; the
   // spins are up to 4 rad/s): measured drift 7.2e-9 of the energy.
-  CHECK(std::abs(free.system.kinetic_energy() + free.system.potential_energy() - e0) < 1e-7 * e0);
+  CHECK(std::abs(free.w.kinetic_energy() + free.w.potential_energy() - e0) < 1e-7 * e0);
 
   spring_pair<double, rk4> damped(5.0);
-  double previous = damped.system.kinetic_energy() + damped.system.potential_energy();
+  double previous = damped.w.kinetic_energy() + damped.w.potential_energy();
   for (int i = 0; i < 1200; ++i) {
-    damped.system.step(1.0 / 120);
-    const double e = damped.system.kinetic_energy() + damped.system.potential_energy();
+    damped.w.step(1.0 / 120);
+    const double e = damped.w.kinetic_energy() + damped.w.potential_energy();
     CHECK(e <= previous + 1e-12 * e0);  // a dashpot only takes energy out
     previous = e;
   }
@@ -226,10 +235,10 @@ template <class I>
 double pair_error(double h) {
   spring_pair<double, I> coarse;
   spring_pair<double, rk4> fine;
-  for (int i = 0, n = int(std::lround(2 / h)); i < n; ++i) coarse.system.step(h);
-  for (int i = 0, n = int(std::lround(2 / (h / 32))); i < n; ++i) fine.system.step(h / 32);
-  const rigid_body<double>& x = coarse.system.body(coarse.b);
-  const rigid_body<double>& y = fine.system.body(fine.b);
+  for (int i = 0, n = int(std::lround(2 / h)); i < n; ++i) coarse.w.step(h);
+  for (int i = 0, n = int(std::lround(2 / (h / 32))); i < n; ++i) fine.w.step(h / 32);
+  const rigid_body<double>& x = coarse.w.body(coarse.b);
+  const rigid_body<double>& y = fine.w.body(fine.b);
   return length(x.position - y.position) + angle_between(x.orientation, y.orientation);
 }
 
@@ -246,10 +255,10 @@ TEST_CASE("springs are evaluated at every stage: each method keeps its order on 
   CHECK(order([](double h) { return pair_error<rk4>(h); }) == doctest::Approx(4).epsilon(0.15 / 4));
 }
 
-TEST_CASE_TEMPLATE("a body moves the same whether the set is stepped body by body or as a whole", T, float,
+TEST_CASE_TEMPLATE("a body moves the same whether the world steps it alone or every body as one state", T, float,
                    double) {
   // The hanging cube alone takes the body-by-body path; with a spring pair
-  // added to the same set, every body is stepped as one coupled state. The
+  // added to the same world, every body is stepped as one coupled state. The
   // arithmetic is the same, but the two paths are compiled separately and
   // the compiler fuses a·b + c into FMAs differently in each (GCC contracts
   // by default in GNU mode; with -ffp-contract=off they agree to the bit,
@@ -257,16 +266,14 @@ TEST_CASE_TEMPLATE("a body moves the same whether the set is stepped body by bod
   // 15 ε·(1 kg·m/s) in float and 25 ε in double; bound 64 ε of a scale
   // of 3 (m, kg·m/s, kg·m²/s).
   hanging_cube<T, rk4> alone, beside;
-  spring_pair<T, rk4> pair;
-  const body_id a = beside.system.add_body(pair.system.body(pair.a));
-  const body_id b = beside.system.add_body(pair.system.body(pair.b));
-  beside.system.add_spring(body_spring<T>::between(a, {}, b, {}, T(10), T(1), T(1)));
+  const auto [a, b] = add_pair_bodies(beside.w);
+  beside.w.create_spring(body_spring<T>::between(a, {}, b, {}, T(10), T(1), T(1)));
   for (int i = 0; i < 240; ++i) {
-    alone.system.step(T(1.0 / 120));
-    beside.system.step(T(1.0 / 120));
+    alone.w.step(T(1.0 / 120));
+    beside.w.step(T(1.0 / 120));
   }
-  const rigid_body<T>& x = alone.system.body(alone.cube);
-  const rigid_body<T>& y = beside.system.body(beside.cube);
+  const rigid_body<T>& x = alone.w.body(alone.cube);
+  const rigid_body<T>& y = beside.w.body(beside.cube);
   const double bound = 64 * epsilon_of<T> * 3;
   CHECK(double(length(x.position - y.position)) < bound);
   CHECK(double(angle_between(x.orientation, y.orientation)) < bound);

@@ -260,8 +260,10 @@ TEST_CASE("a velocity past the speed limits or whose momentum overflows is refus
 }
 
 TEST_CASE("a rigid body refuses a velocity whose momentum overflows, and keeps its own") {
-  // The world's speed limits keep its bodies far from this; a rigid_body
-  // used on its own (rigid_body_system) has no limits and is guarded here.
+  // The world's speed limits keep its bodies far from this, with or without
+  // collision; a rigid_body used on its own, outside any world (stepped by
+  // hand through body_motion.hpp and an integrator), has no limits and is
+  // guarded here.
   rigid_body<float> b = rigid_body<float>::dynamic({8000, {}, mat3<float>::diagonal({1e4f, 1e4f, 1e4f})});
   b.set_velocity({1, 0, 0}, {});
   CHECK(error_code_of([&] { b.set_velocity({1e35f, 0, 0}, {}); }) == error_code::non_finite);

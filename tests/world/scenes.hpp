@@ -127,7 +127,10 @@ std::uint64_t transform_hash(const World& w) {
   };
   for (const impulse::body_id id : w.body_ids()) {
     const auto& b = w.body(id);
-    mix(&id, sizeof id);
+    // The slot and generation, not the world's number (world_state.hpp,
+    // next_world_owner), which counts the worlds made before this one.
+    mix(&id.index, sizeof id.index);
+    mix(&id.generation, sizeof id.generation);
     mix(&b.position, sizeof b.position);
     mix(&b.orientation, sizeof b.orientation);
   }

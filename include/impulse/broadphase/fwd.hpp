@@ -6,7 +6,10 @@
 
 namespace impulse {
 
-struct proxy_tag;
+/// Proxies never leave their broad phase: their ids name no owner.
+struct proxy_tag {
+  static constexpr bool owned = false;
+};
 /// Names a proxy (a box and its user data) in a broad phase.
 using proxy_id = object_id<proxy_tag>;
 struct proxy_pair;

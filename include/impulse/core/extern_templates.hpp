@@ -1,5 +1,5 @@
 // impulse/core/extern_templates.hpp — compile once, link everywhere: explicit
-// instantiation of the world, the particle system and the rigid-body system.
+// instantiation of the world and the particle system.
 //
 // Header-only templates are compiled again in every translation unit that
 // uses them: a program that creates a world and steps it compiles the whole
@@ -18,10 +18,10 @@
 //     (CMake: target_compile_definitions(app PRIVATE IMPULSE_EXTERN_TEMPLATES=1));
 //   - include "impulse/instantiate.hpp" in exactly one .cpp file.
 //
-// Then world<default_config>, world<default_double_config>,
-// rigid_body_system<...> of both, and the particle system
-// particle_system<..., gravity, drag, point_forces> of both are compiled in
-// that file only. Another configuration, in a header the program shares:
+// Then world<default_config>, world<default_double_config>, and the
+// particle system particle_system<..., gravity, drag, point_forces> of both
+// are compiled in that file only. Another configuration, in a header the
+// program shares:
 //
 //   struct my_config : impulse::default_config { using scalar = double; };
 //   IMPULSE_DECLARE_WORLD(my_config);          // everywhere: only parsed
@@ -30,10 +30,10 @@
 //
 //   IMPULSE_INSTANTIATE_WORLD(my_config);      // compiled here, once
 //
-// The same pairs exist for particle_system (its config, then its forces)
-// and rigid_body_system. A member template (create_body<Shape>, draw<D>,
-// for_each_contact<F>, step<Field>) is still compiled where it is used;
-// create_body's part that depends on the shape is short.
+// The same pair exists for particle_system (its config, then its forces).
+// A member template (create_body<Shape>, draw<D>, for_each_contact<F>,
+// step<Field>) is still compiled where it is used; create_body's part that
+// depends on the shape is short.
 #pragma once
 
 /// 1: the headers declare the default configurations' instantiations extern
@@ -51,8 +51,3 @@
 #define IMPULSE_DECLARE_PARTICLE_SYSTEM(...) extern template class impulse::particles::particle_system<__VA_ARGS__>
 /// Compiles impulse::particles::particle_system<Config, Forces...> here, in one translation unit.
 #define IMPULSE_INSTANTIATE_PARTICLE_SYSTEM(...) template class impulse::particles::particle_system<__VA_ARGS__>
-
-/// impulse::rigid_body_system<Config> is compiled in another translation unit.
-#define IMPULSE_DECLARE_RIGID_BODY_SYSTEM(...) extern template class impulse::rigid_body_system<__VA_ARGS__>
-/// Compiles impulse::rigid_body_system<Config> here, in one translation unit.
-#define IMPULSE_INSTANTIATE_RIGID_BODY_SYSTEM(...) template class impulse::rigid_body_system<__VA_ARGS__>

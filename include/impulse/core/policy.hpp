@@ -103,6 +103,7 @@ template <class C> concept has_solver = requires { typename C::solver; };
 template <class C> concept has_shapes = requires { typename C::shapes; };
 template <class C> concept has_sleeping = requires { C::sleeping; };
 template <class C> concept has_ccd = requires { C::ccd; };
+template <class C> concept has_collision = requires { C::collision; };
 
 template <class T>
 concept constexpr_bool = std::same_as<std::remove_cv_t<T>, bool>;
@@ -121,7 +122,8 @@ concept world_config =
     (!detail::has_solver<C> || solver_policy<typename C::solver>) &&
     (!detail::has_shapes<C> || shape_set<typename C::shapes>) &&
     (!detail::has_sleeping<C> || detail::constexpr_bool<decltype(C::sleeping)>) &&
-    (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>);
+    (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>) &&
+    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>);
 
 /// Loud form: use as `static_assert(impulse::check_config<C>());`. Each failed
 /// requirement produces one static_assert message naming the member at fault.
@@ -164,6 +166,10 @@ consteval bool check_config() {
   if constexpr (detail::has_ccd<C>) {
     static_assert(detail::constexpr_bool<decltype(C::ccd)>,
                   "impulse config: `ccd` must be `static constexpr bool`");
+  }
+  if constexpr (detail::has_collision<C>) {
+    static_assert(detail::constexpr_bool<decltype(C::collision)>,
+                  "impulse config: `collision` must be `static constexpr bool`");
   }
   return world_config<C>;
 }

@@ -8,10 +8,17 @@
 // naming whatever took the slot next. Removal moves the last element into
 // the hole, so dense positions change; ids do not. A slot is retired
 // before its generation wraps, so a destroyed id never names a live object.
+//
+// A user's ids also carry their owner: the world that made them (a number
+// world.hpp draws for each world it constructs). A slot_map refuses an id
+// of another owner, so an id kept from one world never names a body of
+// another, even at the same slot and generation.
 #pragma once
 
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,25 +26,65 @@
 
 namespace impulse {
 
+namespace detail {
+/// The owner of an id that has none: the broad phase's proxies, which
+/// never leave their world.
+struct no_owner {
+  friend constexpr bool operator==(no_owner, no_owner) noexcept = default;
+};
+}  // namespace detail
+
 /// A stable, checked handle. Tag keeps body and spring ids apart at
-/// compile time.
+/// compile time; Tag::owned says whether the id names its owner too.
 template <class Tag>
 struct object_id {
   std::uint32_t index = no_object;  ///< slot; no_object for "none"
   std::uint32_t generation = 0;     ///< bumped each time the slot is freed
+  /// The world that made it (0: none); costs nothing in an unowned id.
+  [[no_unique_address]] std::conditional_t<Tag::owned, std::uint32_t, detail::no_owner> owner{};
 
   [[nodiscard]] constexpr bool is_none() const noexcept { return index == no_object; }
   friend constexpr bool operator==(const object_id&, const object_id&) = default;
 };
 
+/// An id type that names its owner.
+template <class Id>
+concept owned_id = requires(Id id) {
+  { id.owner } -> std::convertible_to<std::uint32_t>;
+};
+
 template <class V, class Id>
 class slot_map {
+  /// The id's generation type: 32 bits for impulse's ids; a test's id with
+  /// a narrower one wraps sooner.
+  using generation_type = decltype(Id{}.generation);
+
  public:
   [[nodiscard]] std::size_t size() const noexcept { return values_.size(); }
   [[nodiscard]] bool empty() const noexcept { return values_.empty(); }
   [[nodiscard]] bool contains(Id id) const noexcept {
+    if constexpr (owned_id<Id>) {
+      if (id.owner != owner_) return false;
+    }
     return id.index < slots_.size() && slots_[id.index].generation == id.generation &&
            slots_[id.index].dense != free_slot;
+  }
+
+  /// The owner stamped on the ids this map makes, and required of the ids
+  /// it is given; the ids it holds take the new owner.
+  [[nodiscard]] std::uint32_t owner() const noexcept { return owner_; }
+  void set_owner(std::uint32_t owner) noexcept
+    requires owned_id<Id>
+  {
+    owner_ = owner;
+    for (Id& id : ids_) id.owner = owner;
+  }
+  /// The id of the live object at `slot` with `generation`, stamped with
+  /// this map's owner (for ids stored without it, as proxies' user data).
+  [[nodiscard]] Id id_at(std::uint32_t slot, generation_type generation) const noexcept {
+    Id id{slot, generation};
+    if constexpr (owned_id<Id>) id.owner = owner_;
+    return id;
   }
 
   Id insert(V value) {
@@ -53,7 +100,7 @@ class slot_map {
     }
     slots_[slot].dense = static_cast<std::uint32_t>(values_.size());
     values_.push_back(std::move(value));
-    ids_.push_back(Id{slot, slots_[slot].generation});
+    ids_.push_back(id_at(slot, slots_[slot].generation));
     return ids_.back();
   }
 
@@ -88,9 +135,6 @@ class slot_map {
 
  private:
   static constexpr std::uint32_t free_slot = 0xffffffffu;
-  /// The id's generation type: 32 bits for impulse's ids; a test's id with
-  /// a narrower one wraps sooner.
-  using generation_type = decltype(Id{}.generation);
   struct slot {
     std::uint32_t dense;
     generation_type generation;
@@ -99,6 +143,7 @@ class slot_map {
   std::vector<Id> ids_;
   std::vector<slot> slots_;
   std::vector<std::uint32_t> free_;
+  std::uint32_t owner_ = 0;
 };
 
 }  // namespace impulse

@@ -15,10 +15,12 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "../math/mat3.hpp"
 #include "../math/quat.hpp"
 #include "../math/vec3.hpp"
+#include "fwd.hpp"
 #include "rigid_body.hpp"
 
 namespace impulse {
@@ -120,5 +122,17 @@ template <scalar_type T>
   const vec3<T>& w = k.angular_velocity;
   return {k.linear_velocity, quat<T>{w.x, w.y, w.z, T(0)} * q * T(0.5)};
 }
+
+namespace detail {
+/// The field used when a step is given none.
+struct no_force_field {};
+}  // namespace detail
+
+/// A force model evaluated per body: field(id, kinematics) -> wrench (force
+/// through the center of mass and torque about it). world::step(dt, field)
+/// takes one; it must not change the world.
+template <class F, class T>
+concept body_force_field = std::is_same_v<std::remove_cvref_t<F>, detail::no_force_field> ||
+                           std::is_invocable_r_v<wrench<T>, F&, body_id, const body_kinematics<T>&>;
 
 }  // namespace impulse

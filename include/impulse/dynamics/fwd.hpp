@@ -22,17 +22,23 @@ template <scalar_type T> struct solver_settings;
 template <scalar_type T> struct sequential_impulse_settings;
 template <scalar_type T> struct soft_step_settings;
 
-struct body_tag;
-struct spring_tag;
-struct joint_tag;
-/// Names a body of a world or of a rigid_body_system.
+// A world's ids carry the world that made them (core/slot_map.hpp).
+struct body_tag {
+  static constexpr bool owned = true;
+};
+struct spring_tag {
+  static constexpr bool owned = true;
+};
+struct joint_tag {
+  static constexpr bool owned = true;
+};
+/// Names a body of a world.
 using body_id = object_id<body_tag>;
-/// Names a spring of a world or of a rigid_body_system.
+/// Names a spring of a world.
 using spring_id = object_id<spring_tag>;
 /// Names a joint of a world.
 using joint_id = object_id<joint_tag>;
 
 struct default_config;
-template <class Config = default_config> class rigid_body_system;
 
 }  // namespace impulse

@@ -7,6 +7,7 @@
 #include "../dynamics/fwd.hpp"
 #include "../dynamics/material.hpp"
 #include "../dynamics/rigid_body.hpp"
+#include "../math/mat3.hpp"
 #include "../math/transform.hpp"
 
 namespace impulse {
@@ -26,6 +27,11 @@ struct body_def {
   /// kg. 0: the shape's volume times material.density. A dynamic body's
   /// inertia is the shape's, scaled to this mass.
   T mass = T(0);
+  /// kg·m² about the center of mass, in the shape's frame (a tensor from a
+  /// CAD tool, or a test's principal moments). Zero: the shape's, scaled
+  /// to the mass. Refused unless symmetric and positive definite, with
+  /// principal moments that a solid can have (I_a + I_b ≥ I_c).
+  mat3<T> inertia = mat3<T>::zero();
   /// Created asleep: a settled scene loaded from a file need not settle again.
   bool awake = true;
   /// With ccd on in the world's config: swept every step against every

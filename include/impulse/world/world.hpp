@@ -9,8 +9,11 @@
 //   solve and write-back     detail/solve.hpp
 //   continuous collision     detail/continuous.hpp (ccd on)
 //
-// world_bodies.hpp and world_joints.hpp define the members that make and
-// destroy bodies and joints.
+// A world without collision (config `collision = false`) steps through
+// detail/force_motion.hpp alone: forces at every integrator stage.
+// world_bodies.hpp, world_joints.hpp, world_forces.hpp and
+// world_queries.hpp define the members that make and destroy bodies,
+// joints and springs, and that answer queries.
 //
 // The world is a value: copying it copies every body, shape, contact and
 // impulse, and snapshot() / restore() are that copy. A step is a pure
@@ -40,6 +43,7 @@
 #include "detail/contact_update.hpp"
 #include "detail/continuous.hpp"
 #include "detail/debug_drawing.hpp"
+#include "detail/force_motion.hpp"
 #include "fwd.hpp"
 #include "detail/islands.hpp"
 #include "detail/solve.hpp"
@@ -62,6 +66,11 @@ class world {
   using solver_type = typename solver_policy::template type<T>;
   using settings_type = typename state_type::settings_type;  ///< world_settings with its solver's
   using integrator = typename Config::integrator;
+  /// Whether bodies collide (config `collision`, on by default). Off, the
+  /// world has no broad phase, contacts, joints or solver: gravity, loads,
+  /// springs and force fields move the bodies, each evaluated at every
+  /// stage of the integrator (detail/force_motion.hpp).
+  static constexpr bool collision = detail::world_collides<Config>();
   static constexpr bool sleeping = detail::world_sleeping<Config>();
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
@@ -134,19 +143,7 @@ class world {
   /// the last step, 1 at its end (advance() returns the alpha of the time
   /// left over). Rendering at it hides the fixed step's stutter. Refused:
   /// alpha outside [0, 1] or NaN.
-  [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const {
-    require(id, "world::interpolated_pose: no such body");
-    if (!(alpha >= T(0) && alpha <= T(1)))
-      detail::report_error(error_code::invalid_parameter, "world::interpolated_pose: alpha must be within [0, 1]",
-                           id.index);
-    const body_record& r = state_.bodies[id];
-    const transform<T> now = r.body.pose();
-    quat<T> q1 = now.rotation;
-    if (dot(r.previous.rotation, q1) < T(0)) q1 = q1 * T(-1);  // the short way round
-    const transform<T> center{lerp(r.previous.position, now.position, alpha),
-                              normalize(r.previous.rotation * (T(1) - alpha) + q1 * alpha)};
-    return {center.position - rotate(center.rotation, r.center), center.rotation};
-  }
+  [[nodiscard]] transform<T> interpolated_pose(body_id id, T alpha) const;
   /// Calls f(shape) with the body's shape (one of the config's shape
   /// list, in the body's shape frame) and returns what f returns.
   template <class F>
@@ -227,7 +224,9 @@ class world {
   /// neither of which is dynamic, non-finite anchors or axis, and the
   /// other bad values joint_def::validate names. Both bodies wake; unless
   /// def.collide_connected, their contacts with each other end.
-  joint_id create_joint(const joint_def<T>& def);
+  /// A world without collision has no solver, and so no joints.
+  joint_id create_joint(const joint_def<T>& def)
+    requires(detail::world_collides<Config>());
 
   /// Removes a joint; its bodies wake and, if they did not collide, may
   /// touch again from the next step. A broken joint stays until destroyed.
@@ -282,7 +281,8 @@ class world {
   /// Adds a damped spring (body_spring.hpp) from a point of one body to a
   /// point of another or to a world anchor (end b none), solved with the
   /// contacts and joints as a soft row of its stiffness and damping:
-  /// stable at any stiffness, and the bodies still collide. Refused, the
+  /// stable at any stiffness, and the bodies still collide. (Without
+  /// collision it is a force at every integrator stage instead.) Refused, the
   /// world unchanged: a missing body, both ends on one body, no end on a
   /// dynamic body, a value not finite or negative. Its bodies wake.
   spring_id create_spring(const body_spring<T>& def);
@@ -322,7 +322,10 @@ class world {
   /// A step with a force field: field(body_id, body_kinematics) -> wrench
   /// (force through the center of mass, torque), added to each awake
   /// dynamic body's loads for this step (world_forces.hpp). It wakes none.
+  /// Without collision it is evaluated at every integrator stage instead,
+  /// on the stage's state.
   template <class Field>
+    requires body_force_field<Field, T>
   void step(T dt, Field&& field);
 
   /// Runs as many fixed steps (settings().fixed_dt) as the frame time and
@@ -379,15 +382,7 @@ class world {
 
   /// f(body) for every body whose shape's bounding box overlaps `box`.
   template <class F>
-  void overlap(const aabb<T>& box, F&& f) const {
-    if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
-      detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
-    const in_callback scope(*this);
-    state_.broad.query(box, [&](proxy_id proxy) {
-      const body_id id = detail::unpack(state_.broad.user_data(proxy));
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
-    });
-  }
+  void overlap(const aabb<T>& box, F&& f) const;
 
   // ---- drawing ----
 
@@ -411,11 +406,19 @@ class world {
 
   // ---- what is conserved, for tests and diagnostics ----
 
+  /// Σ ½·m·v² + ½·ω·L over dynamic bodies, J.
   [[nodiscard]] T kinetic_energy() const noexcept {
     T e = T(0);
     for (const body_record& r : state_.bodies.values()) e += r.body.kinetic_energy();
     return e;
   }
+  /// Gravitational (−m·g·x, zero at the origin) plus the springs' elastic
+  /// energy, J (world_queries.hpp).
+  [[nodiscard]] T potential_energy() const;
+  /// Σ P over dynamic bodies, kg·m/s.
+  [[nodiscard]] vec3<T> linear_momentum() const noexcept;
+  /// Σ (x × P + L) over dynamic bodies, about the world origin, kg·m²/s.
+  [[nodiscard]] vec3<T> angular_momentum() const noexcept;
 
  private:
   friend class world_snapshot<Config>;
@@ -452,6 +455,10 @@ class world {
   void expire_targets();
 
   void end_contacts_between(body_id a, body_id b);
+  /// The step's start (checks dt, clears the last step's events) and its
+  /// end (the clock, and the error naming a held body).
+  void begin_step(T dt);
+  void finish_step(T dt);
 
   state_type state_;
   detail::step_scratch<Config> scratch_;  ///< rebuilt by each step; not part of the state
@@ -488,6 +495,7 @@ template <class Config>
 world<Config>::world(const settings_type& settings) {
   settings.validate();
   state_.settings = settings;
+  state_.set_owner(detail::next_world_owner());
 }
 template <class Config>
 world<Config>::world(const world&) = default;
@@ -502,6 +510,22 @@ world<Config>::~world() = default;
 
 template <class Config>
 void world<Config>::step(T dt) {
+  begin_step(dt);
+  if constexpr (collision) {
+    detail::contact_update<Config>{state_, scratch_}.run();
+    if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
+    detail::body_solve<Config>{state_, scratch_}.run(dt);
+    if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
+    if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+  } else {
+    detail::no_force_field none;
+    detail::force_motion<Config>{state_, scratch_}.run(dt, none);
+  }
+  finish_step(dt);
+}
+
+template <class Config>
+void world<Config>::begin_step(T dt) {
   refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   if (!(dt > T(0) && dt <= max_dt))
@@ -511,11 +535,10 @@ void world<Config>::step(T dt) {
   state_.broken.clear();
   state_.held.clear();
   expire_targets();
-  detail::contact_update<Config>{state_, scratch_}.run();
-  if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
-  detail::body_solve<Config>{state_, scratch_}.run(dt);
-  if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
-  if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+}
+
+template <class Config>
+void world<Config>::finish_step(T dt) {
   state_.time += dt;
   state_.last_dt = dt;
   ++state_.step_count;
@@ -548,25 +571,6 @@ auto world<Config>::advance(T frame_dt) -> T {
   return state_.accumulator / h;
 }
 
-template <class Config>
-auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
-  std::optional<world_ray_hit<T>> best;
-  T reach = max_fraction;
-  state_.broad.ray_cast(r, max_fraction, [&](proxy_id proxy, T) {
-    const body_id id = detail::unpack(state_.broad.user_data(proxy));
-    const body_record& rec = state_.bodies[id];
-    const transform<T> pose = detail::shape_pose_of(rec);
-    const narrowphase::ray_hit<T> hit =
-        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
-    if (hit.hit && hit.fraction <= reach) {
-      reach = hit.fraction;
-      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
-    }
-    return reach;
-  });
-  return best;
-}
-
 /// A world's whole state, to restore it later exactly.
 template <class Config>
 class world_snapshot {
@@ -584,6 +588,7 @@ class world_snapshot {
 #include "world_bodies.hpp"
 #include "world_forces.hpp"
 #include "world_joints.hpp"
+#include "world_queries.hpp"
 
 #if IMPULSE_EXTERN_TEMPLATES
 IMPULSE_DECLARE_WORLD(impulse::default_config);

@@ -64,7 +64,7 @@ template <class Config>
 body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
-  r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  if constexpr (collision) r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
   state_.awake_stale = true;
   if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
@@ -95,7 +95,7 @@ void world<Config>::destroy_body(body_id id) {
     return true;
   });
   body_record& r = state_.bodies[id];
-  state_.broad.destroy(r.proxy);
+  if constexpr (collision) state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
   state_.bodies.erase(id);
   state_.awake_stale = true;  // the last body took its dense place
@@ -116,7 +116,7 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
     detail::report_error(error_code::invalid_parameter,
                          "world::set_pose: the body would reach farther than max_coordinate from the origin", id.index);
   r = moved;
-  state_.broad.move(r.proxy, box);
+  if constexpr (collision) state_.broad.move(r.proxy, box);
   state_.wake(r);
 }
 

@@ -9,6 +9,9 @@
 // of its bodies in the same iterations. A force field is a load: evaluated
 // once at the start of a step, on every awake dynamic body, and held over
 // the step like every other force.
+//
+// In a world without collision (detail/force_motion.hpp) both are forces
+// evaluated at every stage of the integrator instead.
 #pragma once
 
 #include <cmath>
@@ -60,7 +63,18 @@ void world<Config>::destroy_spring(spring_id id) {
 
 template <class Config>
 template <class Field>
+  requires body_force_field<Field, typename Config::scalar>
 void world<Config>::step(T dt, Field&& field) {
+  if constexpr (!collision) {
+    begin_step(dt);
+    {
+      // The field may read the world, and not change it (world::for_each_contact's rules).
+      const in_callback scope(*this);
+      detail::force_motion<Config>{state_, scratch_}.run(dt, field);
+    }
+    finish_step(dt);
+    return;
+  }
   refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   // Every load first, checked: a field that gives one body a force that is

@@ -12,7 +12,9 @@
 namespace impulse {
 
 template <class Config>
-joint_id world<Config>::create_joint(const joint_def<T>& def) {
+joint_id world<Config>::create_joint(const joint_def<T>& def)
+  requires(detail::world_collides<Config>())
+{
   refuse_in_callback("world::create_joint: called from inside a world callback (for_each_contact, overlap, "
                      "visit_shape, draw); make the change after it returns");
   require(def.body_a, "world::create_joint: body_a does not exist (destroyed?)");

@@ -13,7 +13,7 @@
 //
 // A buffer is `segments` runs of `stride` elements of which the first `used`
 // are live: the particle system keeps its x, y and z columns (3 segments of
-// scalars), the rigid body system one run of poses or momenta.
+// scalars), a world without collision one run of poses or momenta.
 #pragma once
 
 #include <cstddef>

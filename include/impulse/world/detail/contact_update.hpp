@@ -100,7 +100,7 @@ struct contact_update {
           continue;
         }
         ++created;
-        const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+        const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
         const body_record<T>& ra = state.bodies[a];
         const body_record<T>& rb = state.bodies[b];
         contact_record<T> c{};
@@ -120,7 +120,7 @@ struct contact_update {
   /// Whether a pair of proxies can make contact: one of its bodies is
   /// dynamic, and no joint between them keeps them apart.
   bool may_touch(const proxy_pair& pair) const {
-    const body_id a = unpack(state.broad.user_data(pair.a)), b = unpack(state.broad.user_data(pair.b));
+    const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
     const body_record<T>& ra = state.bodies[a];
     const body_record<T>& rb = state.bodies[b];
     return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !state.joined_apart(a, b);

@@ -66,7 +66,7 @@ struct continuous_collision {
     });
     T first = T(1);
     state.broad.query(swept, [&](proxy_id proxy) {
-      const body_id other = unpack(state.broad.user_data(proxy));
+      const body_id other = state.unpack(state.broad.user_data(proxy));
       if (other == id || state.joined_apart(id, other)) return;
       const body_record<T>& o = state.bodies[other];
       // Fast bodies meet the world; bullets meet moving bodies too, but

@@ -234,17 +234,7 @@ struct body_solve {
           scratch.hold(state, i);
         }
       } else if (b.type == body_type::kinematic) {
-        // A kinematic body's motion is prescribed: placed exactly, and
-        // stopped at the world's bounds.
-        const vec3<T> moved = b.position + b.kinematic_velocity * dt;
-        if (state.within_bounds(moved)) {
-          b.position = moved;
-          b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
-        } else {
-          b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
-          scratch.hold(state, i);
-        }
-        if (r.target == target_state::armed) r.target = target_state::arrived;
+        if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
       }
       b.clear_loads();
     }

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -23,9 +24,11 @@
 #include "../../broadphase/broad_phase.hpp"
 #include "../../config.hpp"
 #include "../../core/error.hpp"
+#include "../../core/detail/pooled_state.hpp"
 #include "../../core/slot_map.hpp"
 #include "../../dynamics/contact_constraint.hpp"
 #include "../../dynamics/detail/island.hpp"
+#include "../../dynamics/body_motion.hpp"
 #include "../../dynamics/body_spring.hpp"
 #include "../../dynamics/joint.hpp"
 #include "../../dynamics/rigid_body.hpp"
@@ -146,12 +149,22 @@ template <scalar_type T>
   return r.body.type == body_type::dynamic && r.awake;
 }
 
-/// A body id as a broad-phase proxy's user data, and back.
+/// A body id as a broad-phase proxy's user data (world_state::unpack
+/// turns it back, with the world's owner).
 [[nodiscard]] inline std::uint64_t pack(body_id id) noexcept {
   return std::uint64_t(id.index) | (std::uint64_t(id.generation) << 32);
 }
-[[nodiscard]] inline body_id unpack(std::uint64_t data) noexcept {
-  return body_id{std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32)};
+
+/// A number for a new world, stamped on its ids (core/slot_map.hpp): the
+/// count of worlds constructed in the process, 0 skipped. Copies and
+/// restored snapshots keep the number of the world they copy, since they
+/// hold the same bodies; a world constructed afresh never answers to
+/// another's ids (until 2³² worlds later).
+[[nodiscard]] inline std::uint32_t next_world_owner() noexcept {
+  static std::atomic<std::uint32_t> count{0};
+  std::uint32_t owner = ++count;
+  while (owner == 0) owner = ++count;
+  return owner;
 }
 /// The key of an unordered pair of bodies.
 [[nodiscard]] inline std::uint64_t pair_key(body_id a, body_id b) noexcept {
@@ -160,7 +173,8 @@ template <scalar_type T>
 }
 
 /// The rigid body `def` makes of `shape`: its exact mass properties at
-/// def.material.density, or scaled to def.mass. Refuses a mass that is not
+/// def.material.density, or scaled to def.mass; def.inertia, if given,
+/// replaces the shape's inertia (rigid_body checks it). Refuses a mass that is not
 /// finite and non-negative, and a dynamic plane or mesh.
 template <scalar_type T, class Shape>
 [[nodiscard]] rigid_body<T> make_body(const body_def<T>& def, const Shape& shape) {
@@ -174,6 +188,7 @@ template <scalar_type T, class Shape>
       p.inertia = p.inertia * (def.mass / p.mass);
       p.mass = def.mass;
     }
+    if (!(def.inertia == mat3<T>::zero())) p.inertia = def.inertia;
     return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
@@ -249,6 +264,16 @@ struct world_state {
 
   // ---- bodies ----
 
+  /// Stamps the ids this world makes with `owner` (a new, empty world).
+  void set_owner(std::uint32_t owner) noexcept {
+    bodies.set_owner(owner);
+    joints.set_owner(owner);
+    springs.set_owner(owner);
+  }
+  /// The body whose proxy carries `data` (pack).
+  [[nodiscard]] body_id unpack(std::uint64_t data) const noexcept {
+    return bodies.id_at(std::uint32_t(data & 0xffffffffu), std::uint32_t(data >> 32));
+  }
   /// A body's place in the dense arrays (bodies.values(), the solver's).
   [[nodiscard]] std::uint32_t dense(body_id id) const noexcept { return std::uint32_t(bodies.dense_index(id)); }
   [[nodiscard]] aabb<T> bounds_of(const body_record<T>& r) const {
@@ -266,6 +291,22 @@ struct world_state {
   }
   [[nodiscard]] typename dispatcher::shape_ref shape_ref_of(const body_record<T>& r) const noexcept {
     return {shape_store.address(r.shape), r.shape.type};
+  }
+  /// Moves a kinematic body through a step of dt: its motion is
+  /// prescribed, so it is placed exactly (not where an integrator's
+  /// approximation would put it). Stopped at the world's bounds instead,
+  /// it returns false and the caller holds it.
+  bool move_kinematic(body_record<T>& r, T dt) {
+    rigid_body<T>& b = r.body;
+    if (r.target == target_state::armed) r.target = target_state::arrived;
+    const vec3<T> moved = b.position + b.kinematic_velocity * dt;
+    if (!within_bounds(moved)) {
+      b.kinematic_velocity = b.kinematic_angular_velocity = vec3<T>{};
+      return false;
+    }
+    b.position = moved;
+    b.orientation = integrate(b.orientation, b.kinematic_angular_velocity, dt);
+    return true;
   }
   /// Wakes a body, and every body of its sleeping island with it.
   void wake(body_record<T>& r) {
@@ -466,6 +507,22 @@ struct step_scratch {
   std::vector<T> island_timer;
   std::vector<std::uint32_t> island_set;
   std::vector<std::uint8_t> held;  ///< per solver body: held in this step (hold)
+
+  /// A world without collision's (force_motion.hpp).
+  struct motion_scratch {
+    /// A spring's ends as dense places; b none: a world anchor.
+    struct spring_ends {
+      std::uint32_t a, b;
+    };
+    std::vector<spring_ends> ends;
+    std::vector<std::uint32_t> first_spring, springs_of, fill;  ///< each body's springs
+    bool coupled = false;  ///< a spring joins two moving bodies
+    buffer_pool<body_pose<T>> pose_pool;
+    buffer_pool<body_momentum<T>> momentum_pool;
+    std::vector<body_kinematics<T>> stage_kinematics;
+    std::vector<wrench<T>> stage_wrenches;
+  };
+  motion_scratch motion;
 
   /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).

@@ -54,12 +54,26 @@ struct world_solver<C> {
   using type = typename C::solver;
 };
 
+/// Whether bodies collide. A world without collision (`collision =
+/// false`) has no broad phase, contacts, joints or solver: forces move its
+/// bodies, evaluated at every stage of the integrator (force_motion.hpp).
+template <class C>
+consteval bool world_collides() {
+  if constexpr (has_collision<C>) {
+    return C::collision;
+  } else {
+    return true;
+  }
+}
+
+/// Sleeping is on unless the config turns it off; a world without
+/// collision never sleeps.
 template <class C>
 consteval bool world_sleeping() {
   if constexpr (has_sleeping<C>) {
     return C::sleeping;
   } else {
-    return true;
+    return world_collides<C>();
   }
 }
 
@@ -122,6 +136,9 @@ consteval bool check_world_config() {
     using broadphase_policy = typename world_broadphase<C>::type;
     using solver_policy = typename world_solver<C>::type;
     static_assert(has_integrator<C>, "impulse world: the config names no `integrator`; inherit impulse::default_config");
+    static_assert(world_collides<C>() || (!world_sleeping<C>() && !world_ccd<C>()),
+                  "impulse world: a world without collision neither sleeps nor sweeps; drop `sleeping` and `ccd` "
+                  "or set them false");
     constexpr bool integrates = integrator_advances<C, T>();
     static_assert(!has_integrator<C> || integrates,
                   "impulse world: the config's integrator has no static `advance(body_pose<T>&, "
