@@ -12,6 +12,7 @@ struct proxy_tag {
 };
 /// Names a proxy (a box and its user data) in a broad phase.
 using proxy_id = object_id<proxy_tag>;
+static_assert(sizeof(proxy_id) == 8, "a proxy id carries no owner: it never leaves its broad phase");
 struct proxy_pair;
 
 namespace broadphase {

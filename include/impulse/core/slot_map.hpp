@@ -70,9 +70,8 @@ class slot_map {
            slots_[id.index].dense != free_slot;
   }
 
-  /// The owner stamped on the ids this map makes, and required of the ids
-  /// it is given; the ids it holds take the new owner.
-  [[nodiscard]] std::uint32_t owner() const noexcept { return owner_; }
+  /// Sets the owner stamped on the ids this map makes and required of the
+  /// ids it is given; the ids it holds take the new owner.
   void set_owner(std::uint32_t owner) noexcept
     requires owned_id<Id>
   {

@@ -73,36 +73,36 @@ void world<Config>::step(T dt, Field&& field) {
       detail::force_motion<Config>{state_, scratch_}.run(dt, field);
     }
     finish_step(dt);
-    return;
-  }
-  refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
-                     "visit_shape, draw); make the change after it returns");
-  // Every load first, checked: a field that gives one body a force that is
-  // not finite (or overflows what it bears already) is refused before any
-  // body has been given anything.
-  state_.refresh_awake();
-  scratch_.field_loads.clear();
-  {
-    // The field may read the world, and not change what this walks (world::for_each_contact's rules).
-    const in_callback scope(*this);
-    for (const std::uint32_t i : state_.awake_bodies) {
-      const rigid_body<T>& b = state_.bodies.values()[i].body;
-      if (b.type != body_type::dynamic) continue;
-      const body_id id = state_.bodies.ids()[i];
-      const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
-                                                  body_momentum<T>{b.linear_momentum, b.angular_momentum}));
-      if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
-        detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
-                             id.index);
-      scratch_.field_loads.push_back({i, w});
+  } else {
+    refuse_in_callback("world::step: called from inside a world callback (for_each_contact, overlap, "
+                       "visit_shape, draw); make the change after it returns");
+    // Every load first, checked: a field that gives one body a force that is
+    // not finite (or overflows what it bears already) is refused before any
+    // body has been given anything.
+    state_.refresh_awake();
+    scratch_.field_loads.clear();
+    {
+      // The field may read the world, and not change what this walks (world::for_each_contact's rules).
+      const in_callback scope(*this);
+      for (const std::uint32_t i : state_.awake_bodies) {
+        const rigid_body<T>& b = state_.bodies.values()[i].body;
+        if (b.type != body_type::dynamic) continue;
+        const body_id id = state_.bodies.ids()[i];
+        const wrench<T> w = field(id, kinematics_of(b, body_pose<T>{b.position, b.orientation},
+                                                    body_momentum<T>{b.linear_momentum, b.angular_momentum}));
+        if (!is_finite(b.force + w.force) || !is_finite(b.torque + w.torque))
+          detail::report_error(error_code::non_finite, "world::step: the force field's load on a body is not finite",
+                               id.index);
+        scratch_.field_loads.push_back({i, w});
+      }
     }
+    for (const auto& [i, w] : scratch_.field_loads) {
+      rigid_body<T>& b = state_.bodies.values()[i].body;
+      b.apply_force(w.force);
+      b.apply_torque(w.torque);
+    }
+    step(dt);
   }
-  for (const auto& [i, w] : scratch_.field_loads) {
-    rigid_body<T>& b = state_.bodies.values()[i].body;
-    b.apply_force(w.force);
-    b.apply_torque(w.torque);
-  }
-  step(dt);
 }
 
 }  // namespace impulse
