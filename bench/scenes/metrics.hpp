@@ -3,7 +3,7 @@
 // every engine is measured by the same code; and the step-time median.
 //
 // A metric_recorder is told which steps it wants to see (most scenes only
-// the last; bounce and heavy_on_light every step; incline steps 60 and 120)
+// the last; bounce, heavy_on_light, landing and stack_1000to1 every step; incline steps 60 and 120)
 // and turns them into named values. Displacements are measured from the
 // scene's initial positions (scene_spec), which every engine starts from.
 //
@@ -32,6 +32,12 @@
 //   cradle          last_ball_speed_ratio, first_ball_speed_ratio (final
 //                   speed over the first ball's initial speed),
 //                   kinetic_energy_ratio (final over initial)
+//   landing         depth_max, depth_end (m: how far below its resting
+//                   height 0.5 a body's center is, the largest over the
+//                   bodies and the run, and over the bodies at the end)
+//   stack           sink_max, sink_end (m: how far below its initial
+//                   height a box's center is, the largest over the boxes
+//                   and the run, and at the end), and the top box's as in tower
 //
 // Column height: a settled column of ten unit boxes has its top face at
 // y = 10 and its top box's center at 9.5 (the `pile` scene's "nominal 9.5"); the
@@ -92,6 +98,8 @@ class metric_recorder {
     switch (spec_->metrics) {
       case metric_set::bounce:
       case metric_set::heavy_on_light:
+      case metric_set::landing:
+      case metric_set::stack:
         return true;
       case metric_set::incline_sliding:
         return step == steps_per_second() || step == 2 * steps_per_second();
@@ -111,6 +119,8 @@ class metric_recorder {
       case metric_set::tower: if (step == spec_->steps) end_tower(states); break;
       case metric_set::heavy_on_light: track_heavy(step, states); break;
       case metric_set::cradle: if (step == spec_->steps) end_cradle(states); break;
+      case metric_set::landing: track_landing(step, states); break;
+      case metric_set::stack: track_stack(step, states); break;
     }
   }
 
@@ -249,6 +259,27 @@ class metric_recorder {
     }
   }
 
+  void track_landing(int step, std::span<const body_state> states) {
+    double deepest = -infinity;
+    for (std::size_t i : dynamic_) deepest = std::max(deepest, 0.5 - states[i].position.y);
+    landing_max_ = std::max(landing_max_, deepest);
+    if (step == spec_->steps) {
+      put("depth_max", landing_max_);
+      put("depth_end", deepest);
+    }
+  }
+
+  void track_stack(int step, std::span<const body_state> states) {
+    double sink = -infinity;
+    for (std::size_t i : dynamic_) sink = std::max(sink, initial(i).position.y - states[i].position.y);
+    sink_max_ = std::max(sink_max_, sink);
+    if (step == spec_->steps) {
+      put("sink_max", sink_max_);
+      put("sink_end", sink);
+      end_tower(states);
+    }
+  }
+
   void end_cradle(std::span<const body_state> states) {
     const std::size_t first = dynamic_.front(), last = dynamic_.back();
     const double v0 = detail::length(initial(first).linear_velocity);
@@ -274,6 +305,8 @@ class metric_recorder {
   double bounce_peak_ = -infinity;
   double incline_speed_1s_ = 0;
   double sinking_max_ = -infinity;
+  double landing_max_ = -infinity;
+  double sink_max_ = -infinity;
 };
 
 }  // namespace bench::scenes

@@ -57,10 +57,10 @@ struct recorded {
   std::uint64_t pile, large_pyramid;
 };
 
-/// Recorded on 2026-11-26 (AMD EPYC, Debian 12): g++ 12.2 and clang 14,
+/// Recorded on 2026-11-27 (AMD EPYC, Debian 12): g++ 12.2 and clang 14,
 /// -O3 -march=native, agree.
 constexpr recorded hashes[] = {
-    {"avx512f", 0x5c738d4cf93d9bceull, 0xba05d696aaa2945dull},
+    {"avx512f", 0xc8689a0e6afea672ull, 0xa70903ed31c7215bull},
 };
 
 

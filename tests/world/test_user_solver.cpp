@@ -59,8 +59,11 @@ struct plain_gauss_seidel {
         solver_body<T>& b = bodies[c.body_b];
         for (int p = 0; p < c.count; ++p) {
           contact_constraint_point<T>& point = c.points[p];
-          // Push out a fraction of the depth past the slop each step.
-          const T push = settings.fraction * std::max(point.depth - settings.slop, T(0)) / dt;
+          // Apart (a speculative point, depth < 0): approach no faster
+          // than closes the gap in the step. In contact: push out a
+          // fraction of the depth past the slop each step.
+          const T push = point.depth < T(0) ? point.depth / dt
+                                            : settings.fraction * std::max(point.depth - settings.slop, T(0)) / dt;
           const T lambda = row(a, b, point.offset_a, point.offset_b, c.normal, push);
           const T total = std::max(point.normal_impulse + lambda, T(0));
           apply(a, b, point.offset_a, point.offset_b, c.normal, total - point.normal_impulse);

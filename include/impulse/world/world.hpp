@@ -512,7 +512,7 @@ template <class Config>
 void world<Config>::step(T dt) {
   begin_step(dt);
   if constexpr (collision) {
-    detail::contact_update<Config>{state_, scratch_}.run();
+    detail::contact_update<Config>{state_, scratch_}.run(dt);
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
     detail::body_solve<Config>{state_, scratch_}.run(dt);
     if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();

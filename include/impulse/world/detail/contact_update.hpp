@@ -16,9 +16,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
+#include "../../narrowphase/time_of_impact.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
@@ -30,20 +33,22 @@ struct contact_update {
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
+  T step = T(0);  ///< s: the step's length
 
-  /// The broad phase, then the narrow phase.
-  void run() {
+  /// The broad phase, then the narrow phase, for a step of h.
+  void run(T h) {
+    step = h;
     state.counts = step_counts{};
     state.refresh_awake();
-    update_broad_phase();
+    update_broad_phase(h);
     update_contacts();
   }
 
  private:
-  void update_broad_phase() {
+  void update_broad_phase(T h) {
     for (const std::uint32_t i : state.awake_bodies) {
-      const body_record<T>& r = state.bodies.values()[i];
-      if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r));
+      body_record<T>& r = state.bodies.values()[i];
+      if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r, state.set_reach(r, h)));
     }
     state.broad.update();
   }
@@ -166,9 +171,11 @@ struct contact_update {
     const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
     if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
     std::array<contact_manifold<T>, max_manifolds> fresh;
-    const std::size_t n = dispatcher::collide(state.shape_ref_of(ra), pose_a, state.shape_ref_of(rb), pose_b,
-                                              state.settings.solver.speculative_distance,
-                                              std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
+    const T near = state.settings.solver.speculative_distance;
+    const T margin = speculative_margin(ra, rb);
+    std::size_t n = dispatcher::collide(state.shape_ref_of(ra), pose_a, state.shape_ref_of(rb), pose_b, margin,
+                                        std::span<contact_manifold<T>>(fresh.data(), fresh.size()));
+    if (n > 0 && margin > near && nearest_gap(fresh, n) > near && !meet_within_step(ra, rb, pose_a, pose_b)) n = 0;
     std::array<manifold_impulse<T>, max_manifolds> carried{};
     for (std::size_t m = 0; m < n; ++m) {
       // The old manifold with the nearest normal (a mesh's several keep
@@ -208,6 +215,57 @@ struct contact_update {
     if (touching && !c.touching) state.begun.push_back({c.a, c.b});
     if (!touching && c.touching) state.ended.push_back({c.a, c.b});
     c.touching = touching;
+  }
+
+  /// How far ahead the pair's contacts reach: speculative_distance, or as
+  /// far as their surfaces can close in the step if that is farther (each
+  /// body's path and turn, set_reach), up to max_speculative_distance.
+  T speculative_margin(const body_record<T>& ra, const body_record<T>& rb) const noexcept {
+    const auto& solver = state.settings.solver;
+    const bool moving_a = is_moving(ra), moving_b = is_moving(rb);
+    const vec3<T> path = (moving_b ? rb.reach_path : vec3<T>{}) - (moving_a ? ra.reach_path : vec3<T>{});
+    const T closing = length(path) + (moving_a ? ra.reach_turn : T(0)) + (moving_b ? rb.reach_turn : T(0));
+    return std::max(solver.speculative_distance, std::min(closing, solver.max_speculative_distance));
+  }
+
+  static T nearest_gap(const std::array<contact_manifold<T>, max_manifolds>& manifolds, std::size_t n) noexcept {
+    T gap = std::numeric_limits<T>::infinity();
+    for (std::size_t m = 0; m < n; ++m)
+      for (int p = 0; p < manifolds[m].count; ++p) gap = std::min(gap, -manifolds[m].points[std::size_t(p)].depth);
+    return gap;
+  }
+
+  /// Whether the pair comes within speculative_distance in the step, each
+  /// body swept along its reach (narrowphase/time_of_impact.hpp): a
+  /// contact found farther ahead than that is kept only if so, or a fast
+  /// body passing an edge would be stopped by it. Pairs without a support
+  /// function (planes, meshes) have no edge to pass by and are kept.
+  bool meet_within_step(const body_record<T>& ra, const body_record<T>& rb, const transform<T>& pose_a,
+                        const transform<T>& pose_b) const {
+    const narrowphase::sweep<T> path_a = sweep_of(ra, pose_a), path_b = sweep_of(rb, pose_b);
+    return state.shape_store.visit(ra.shape, [&](const auto& a) {
+      return state.shape_store.visit(rb.shape, [&](const auto& b) {
+        using A = std::decay_t<decltype(a)>;
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (requires(vec3<T> d) { a.support(d); b.support(d); }) {
+          narrowphase::toi_options<T> options;
+          options.target = state.settings.solver.speculative_distance;
+          options.tolerance = options.target * T(0.25);
+          return narrowphase::time_of_impact(a, path_a, b, path_b, options).state != narrowphase::toi_state::separated;
+        } else {
+          (void)sizeof(A), (void)sizeof(B);
+          return true;
+        }
+      });
+    });
+  }
+  /// A body's motion over the step as its reach says: its center along
+  /// reach_path, turning at its angular velocity.
+  narrowphase::sweep<T> sweep_of(const body_record<T>& r, const transform<T>& pose) const noexcept {
+    if (!is_moving(r)) return {pose, pose, r.center};
+    const quat<T> turned = integrate(pose.rotation, r.body.angular_velocity(), step);
+    const vec3<T> center = r.body.position + r.reach_path;
+    return {pose, {center - rotate(turned, r.center), turned}, r.center};
   }
 
   /// Keeps the manifolds of the pair's last full test while B has moved

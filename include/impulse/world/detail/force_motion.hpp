@@ -237,15 +237,13 @@ struct force_motion {
   }
 
   // Whether the body's speeds after its step are within the world's
-  // limits. |ω| ≤ |L|·‖I⁻¹‖ (the largest row sum of the body-space inverse
-  // inertia bounds its largest eigenvalue), so ω itself, a rotation matrix
-  // and two products, is worked out only when that bound passes the limit:
-  // done for every body, it cost a third of a symplectic Euler step.
+  // limits. |ω| ≤ |L|·‖I⁻¹‖ (world_state::inverse_inertia_bound), so ω
+  // itself, a rotation matrix and two products, is worked out only when
+  // that bound passes the limit: done for every body, it cost a third of a
+  // symplectic Euler step.
   [[nodiscard]] bool within_speed_limits(const rigid_body<T>& b, const body_pose<T>& x,
                                          const body_momentum<T>& p) const noexcept {
-    const mat3<T>& i = b.inverse_inertia;
-    T bound = T(0);
-    for (int r = 0; r < 3; ++r) bound = std::max(bound, std::abs(i(r, 0)) + std::abs(i(r, 1)) + std::abs(i(r, 2)));
+    const T bound = world_state<Config>::inverse_inertia_bound(b);
     const T w = state.settings.max_angular_speed;
     const vec3<T> v = p.linear * b.inverse_mass;
     if (length_squared(p.angular) * bound * bound <= w * w) return state.within_speed_limits(v, vec3<T>{});

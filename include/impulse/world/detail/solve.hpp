@@ -122,8 +122,15 @@ struct body_solve {
         T spread = T(0);
         for (int p = 0; p < manifold.count; ++p) spread += length(manifold.points[std::size_t(p)].position - middle);
         cc.twist_radius = spread * (T(2) / T(3)) / T(manifold.count);
-        cc.anchor_a = middle - ra.body.position;
-        cc.anchor_b = middle - rb.body.position;
+        // Apart (a speculative contact), each body's friction acts where it
+        // will touch, its own surface: at the middle of the gap a ball
+        // landing 30 cm a step from the ground would be spun through a
+        // lever 15 cm too long (and roll off 1.7 % too fast at 20 m/s).
+        T gap = T(0);
+        for (int p = 0; p < manifold.count; ++p) gap -= manifold.points[std::size_t(p)].depth;
+        const vec3<T> half_gap = manifold.normal * (std::max(gap, T(0)) / T(2 * manifold.count));
+        cc.anchor_a = middle - half_gap - ra.body.position;
+        cc.anchor_b = middle + half_gap - rb.body.position;
         // The slip at the middle of the patch chooses the tangents.
         const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);

@@ -69,6 +69,11 @@ struct body_record {
   target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
   bool bullet = false;
   T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
+  /// How far it may move in the coming step, while it moves (is_moving):
+  /// its center's path and its farthest point's turn, m, each at most the
+  /// solver's max_speculative_distance (world_state::reach_of).
+  vec3<T> reach_path{};
+  T reach_turn = T(0);
 };
 
 /// One manifold of a touching pair: where it touches, the impulses the
@@ -280,10 +285,46 @@ struct world_state {
     const transform<T> pose = shape_pose_of(r);
     return shape_store.visit(r.shape, [&](const auto& s) { return s.world_aabb(pose); });
   }
+  /// ‖I⁻¹‖, 1/(kg·m²): the largest row sum of a body's inverse inertia,
+  /// which bounds its largest eigenvalue, so |ω| ≤ |L|·‖I⁻¹‖ without the
+  /// rotation matrix and two products that ω itself costs.
+  [[nodiscard]] static T inverse_inertia_bound(const rigid_body<T>& b) noexcept {
+    const mat3<T>& i = b.inverse_inertia;
+    T bound = T(0);
+    for (int r = 0; r < 3; ++r) bound = std::max(bound, std::abs(i(r, 0)) + std::abs(i(r, 1)) + std::abs(i(r, 2)));
+    return bound;
+  }
+  /// A bound on |ω|, rad/s (inverse_inertia_bound).
+  [[nodiscard]] static T spin_bound(const rigid_body<T>& b) noexcept {
+    if (b.type != body_type::dynamic) return length(b.angular_velocity());
+    return length(b.angular_momentum) * inverse_inertia_bound(b);
+  }
+  /// Sets how far a moving body may move in a step of h, for the contacts
+  /// that reach ahead with speed (contact_update.hpp, speculative_margin):
+  /// its center's path, with the step's gravity (the solver adds it before
+  /// the contacts act), and |ω|·h times its farthest point from the center,
+  /// each at most max_speculative_distance. Returns its shape's box.
+  aabb<T> set_reach(body_record<T>& r, T h) const {
+    const aabb<T> bounds = bounds_of(r);
+    const rigid_body<T>& b = r.body;
+    const T limit = settings.solver.max_speculative_distance;
+    vec3<T> path = b.linear_velocity() * h;
+    if (b.type == body_type::dynamic) path += settings.gravity * (h * h);
+    const T distance = length(path);
+    r.reach_path = distance > limit ? path * (limit / distance) : path;
+    const T farthest = length(max(abs(bounds.upper - b.position), abs(bounds.lower - b.position)));
+    r.reach_turn = std::min(spin_bound(b) * h * farthest, limit);
+    if (!std::isfinite(r.reach_turn) || !is_finite(r.reach_path)) r.reach_path = {}, r.reach_turn = limit;
+    return bounds;
+  }
   /// The box the broad phase keeps: the shape's, grown by the speculative
-  /// distance.
-  [[nodiscard]] aabb<T> proxy_box(const body_record<T>& r) const {
-    const aabb<T> box = expand(bounds_of(r), settings.solver.speculative_distance);
+  /// distance and swept over the body's reach (set_reach), so that a pair
+  /// that can meet within the step is a pair.
+  [[nodiscard]] aabb<T> proxy_box(const body_record<T>& r) const { return proxy_box(r, bounds_of(r)); }
+  [[nodiscard]] aabb<T> proxy_box(const body_record<T>& r, const aabb<T>& bounds) const {
+    aabb<T> box = expand(bounds, settings.solver.speculative_distance + r.reach_turn);
+    box.lower += min(r.reach_path, vec3<T>{});
+    box.upper += max(r.reach_path, vec3<T>{});
     // A plane's box spans every finite value already: grown, it must not
     // overflow into infinities the broad phase refuses.
     const vec3<T> big = vec3<T>::splat(std::numeric_limits<T>::max());
