@@ -699,6 +699,7 @@ class scene_parser {
     const std::pair<const char*, T S::*> numbers[] = {{"linear_slop", &S::linear_slop},
                                                       {"max_correction_speed", &S::max_correction_speed},
                                                       {"speculative_distance", &S::speculative_distance},
+                                                      {"max_speculative_distance", &S::max_speculative_distance},
                                                       {"restitution_threshold", &S::restitution_threshold},
                                                       {"rest_slip_speed", &S::rest_slip_speed},
                                                       {"joint_correction", &S::joint_correction}};

@@ -82,8 +82,8 @@ class basic_soft_step {
     start_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) start_[i] = bodies[i].position;
 
-    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations, T(0),
-                             dt);
+    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
+                             T(0.5) - T(0.5) * share, dt);
     if (!settings.warm_starting)
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
     const std::span<const solver_body<T>> read = bodies;
