@@ -6375,7 +6375,7 @@ struct contact_constraint_point {
   vec3<T> local_a{}, local_b{};
   vec3<T> turn_a{}, turn_b{};
   T normal_mass = T(0);     ///< 1 / (J M⁻¹ Jᵀ) of the normal row, kg
-  T depth = T(0);           ///< at the start of the step, m (< 0: a gap)
+  T depth = T(0);           ///< at the start of the step, m (< 0: a gap, up to max_speculative_distance)
   T force_delta = T(0);     ///< change of the normal velocity this step from forces alone, m/s
   T normal_impulse = T(0);  ///< N·s
   T bias_impulse = T(0);    ///< accumulated by the position pass
