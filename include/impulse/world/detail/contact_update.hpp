@@ -18,7 +18,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <type_traits>
 #include <vector>
 
 #include "../../narrowphase/time_of_impact.hpp"
@@ -245,15 +244,12 @@ struct contact_update {
     const narrowphase::sweep<T> path_a = sweep_of(ra, pose_a), path_b = sweep_of(rb, pose_b);
     return state.shape_store.visit(ra.shape, [&](const auto& a) {
       return state.shape_store.visit(rb.shape, [&](const auto& b) {
-        using A = std::decay_t<decltype(a)>;
-        using B = std::decay_t<decltype(b)>;
         if constexpr (requires(vec3<T> d) { a.support(d); b.support(d); }) {
           narrowphase::toi_options<T> options;
           options.target = state.settings.solver.speculative_distance;
           options.tolerance = options.target * T(0.25);
           return narrowphase::time_of_impact(a, path_a, b, path_b, options).state != narrowphase::toi_state::separated;
         } else {
-          (void)sizeof(A), (void)sizeof(B);
           return true;
         }
       });
