@@ -17248,7 +17248,7 @@ struct body_record {
   T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
   /// How far it may move in the coming step, while it moves (is_moving):
   /// its center's path and its farthest point's turn, m, each at most the
-  /// solver's max_speculative_distance (world_state::reach_of).
+  /// solver's max_speculative_distance (world_state::set_reach).
   vec3<T> reach_path{};
   T reach_turn = T(0);
 };

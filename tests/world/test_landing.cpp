@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
+#include "../error_code_of.hpp"
 #include "scenes.hpp"
 
 using namespace impulse;
@@ -150,5 +152,16 @@ TEST_CASE_TEMPLATE("a ball's rebounds from 10 m follow e squared at each bounce,
       }
     }
     CHECK(bounces == 3);
+  }
+}
+
+TEST_CASE("a reach ahead that is negative or not finite is refused and the world keeps its settings") {
+  world<::test::awake_config> w;
+  for (const float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    CAPTURE(bad);
+    auto settings = w.settings();
+    settings.solver.max_speculative_distance = bad;
+    CHECK(impulse::test::error_code_of([&] { w.set_settings(settings); }) == error_code::invalid_parameter);
+    CHECK(w.settings().solver.max_speculative_distance == 1.0f);
   }
 }
