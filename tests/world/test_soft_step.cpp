@@ -84,39 +84,6 @@ TEST_CASE("soft step: a 100 kg box on a 1 kg box stands for 10 s without sliding
   CHECK(w.body(heavy).position.y > 1.45f);
 }
 
-TEST_CASE("soft step: a box spun about its intermediate axis never gains energy and its loss halves with the step") {
-  // soft_step holds ω through each substep, so the gyroscopic term ω × I·ω
-  // is taken once a step, implicitly (world.hpp, gyroscopic_turn): energy
-  // can only leave, and at first order in the step. Taken explicitly (L
-  // kept, ω = I_w⁻¹·L at the new pose), this box gained 83 % in 20 s, and a
-  // chain's whipped tail spun up to 3 000 rad/s. Measured: 34 % lost at
-  // 1/60 s, 17 % at 1/120 s; the sequential_impulse solver keeps both
-  // invariants to its integrator's order instead (test_world.cpp).
-  struct double_soft : ::test::awake_double_config {
-    using solver = impulse::solver::soft_step;
-  };
-  const auto energy_lost = [](double dt) {
-    world<double_soft>::settings_type settings;
-    settings.gravity = {0, 0, 0};
-    world<double_soft> w(settings);
-    body_def<double> d;
-    d.angular_velocity = {0.01, 2, 0.01};
-    w.create_body(d, box<double>::make({0.2, 0.5, 1.0}));
-    const double e0 = w.kinetic_energy();
-    double highest = e0;
-    for (int i = 0; i < int(std::lround(20 / dt)); ++i) {
-      w.step(dt);
-      highest = std::max(highest, w.kinetic_energy());
-    }
-    CHECK(highest <= e0 * (1 + 1e-12));
-    return 1 - w.kinetic_energy() / e0;
-  };
-  const double coarse = energy_lost(1.0 / 60), fine = energy_lost(1.0 / 120);
-  MESSAGE("energy lost in 20 s: " << coarse << " at 1/60 s, " << fine << " at 1/120 s");
-  CHECK(coarse / fine > 1.8);  // 2 for a first-order method
-  CHECK(coarse / fine < 2.2);
-}
-
 TEST_CASE("soft step's own settings are checked: no substep, a negative stiffness or a NaN damping is refused, the "
           "world's settings kept") {
   soft_world w;

@@ -25,6 +25,7 @@
 #include "../math/quat.hpp"
 #include "../math/vec3.hpp"
 #include "../narrowphase/manifold.hpp"
+#include "free_rotation.hpp"
 
 namespace impulse {
 
@@ -46,6 +47,12 @@ struct solver_body {
   vec3<T> bias_angular{};
   mat3<T> inverse_inertia = mat3<T>::zero();  ///< world, 1/(kg·m²); zero for static and kinematic
   T inverse_mass = T(0);                     ///< 1/kg
+  /// For a solver that moves the bodies itself (contact_solver.hpp): the
+  /// body's angular momentum L (world, kg·m²/s), which it turns the body
+  /// with and keeps in step with ω, and its principal moments and axes
+  /// (free_rotation.hpp). Meaningful when inverse_mass > 0.
+  vec3<T> angular_momentum{};
+  principal_inertia<T> principal{};
 };
 
 /// What a contact has accumulated, kept between steps: the normal impulse

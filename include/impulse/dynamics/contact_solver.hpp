@@ -31,10 +31,11 @@
 //                       settings hold one (world_settings<T, settings_type>)
 //   moves_bodies        false: the world moves the bodies with the solved
 //                       velocities plus bias_linear and bias_angular (the
-//                       position pass's pseudo-velocities), by the
-//                       integrator policy; true: the solver moves them
-//                       itself, holding ω through its substeps, and the
-//                       world takes their poses
+//                       position pass's pseudo-velocities), turning each
+//                       with its L held (free_rotation.hpp); true: the
+//                       solver moves them itself and keeps each body's
+//                       angular_momentum in step with its ω, and the world
+//                       takes their poses and L
 //   impulse_step(settings, dt)
 //                       the time over which one of its impulses acts: dt,
 //                       or a substep's length for a solver whose impulses

@@ -25,6 +25,7 @@
 #include "../math/scalar_traits.hpp"
 #include "../math/transform.hpp"
 #include "../shapes/mass_properties.hpp"
+#include "free_rotation.hpp"
 
 namespace impulse {
 
@@ -45,6 +46,7 @@ struct rigid_body {
   T inverse_mass = T(1);                                ///< 1/kg; 0 for static and kinematic
   mat3<T> inertia = mat3<T>::identity();                ///< I_body about the center of mass, kg·m²
   mat3<T> inverse_inertia = mat3<T>::identity();        ///< I_body⁻¹; zero for static and kinematic
+  principal_inertia<T> principal{};                     ///< I_body's moments and axes (free_rotation.hpp)
 
   // ---- kinematic bodies move at a set velocity (they have no momentum) ----
   vec3<T> kinematic_velocity{};          ///< m/s
@@ -126,6 +128,7 @@ struct rigid_body {
     inverse_mass = T(1) / p.mass;
     inertia = i;
     inverse_inertia = *inverse;
+    principal = principal_inertia_of(i);
   }
 
   // ---- derived quantities ----

@@ -41,7 +41,7 @@
 // sees the drift that a pass planned from the start of the step cannot,
 // and a Newton step on the trees).
 // The world then moves the bodies with the solved velocities plus the
-// pseudo-velocities, by its integrator policy.
+// pseudo-velocities, turning each with its L held (free_rotation.hpp).
 #pragma once
 
 #include <algorithm>

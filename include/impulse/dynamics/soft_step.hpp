@@ -4,7 +4,8 @@
 // Catto, "Solver2D" (2024) and Box2D v3's solver.c/contact_solver.c. The
 // step is cut into n substeps (4). In each: the substep's share of the
 // forces, the carried-over impulses once more (warm start), a sweep of
-// soft rows, the bodies moved, and a sweep of rigid rows without push
+// soft rows, the bodies moved (a straight line, and the torque-free turn
+// with L held: free_rotation.hpp), and a sweep of rigid rows without push
 // (relax). A soft row treats a penetration as a stiff, heavily damped
 // spring (30 Hz, damping ratio 10): it pushes out at a rate set by the
 // spring rather than by a Baumgarte fraction, and its mass and impulse
@@ -80,7 +81,8 @@ class basic_soft_step {
                                     h};
     const joint_pass<T> joint_relax{softness<T>::rigid(), h};
     start_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) start_[i] = bodies[i].position;
+    synced_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) start_[i] = bodies[i].position, synced_[i] = bodies[i].angular_velocity;
 
     detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
                              T(0.5) - T(0.5) * share, dt);
@@ -108,16 +110,14 @@ class basic_soft_step {
         if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, true);
       }
-      for (solver_body<T>& b : bodies) {
-        b.position += b.linear_velocity * h;
-        b.orientation = integrate(b.orientation, b.angular_velocity, h);
-      }
+      for (std::size_t i = 0; i < bodies.size(); ++i) move(bodies[i], synced_[i], h);
       for (int i = 0; i < settings.relax_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
         if (exact) tree_.solve_velocities(bodies, joints);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, false);
       }
     }
+    for (std::size_t i = 0; i < bodies.size(); ++i) sync_momentum(bodies[i], synced_[i]);
   }
 
   /// The joints' drift removed once the step is done, as
@@ -132,6 +132,43 @@ class basic_soft_step {
   }
 
  private:
+  /// L changed by I_w times what forces and rows did to ω since it was
+  /// last in step with it (`synced`). Only that change passes through I_w:
+  /// converting L to ω and back at every substep drifted |L| in float by
+  /// 1.4 % in 10⁴ steps of a free body.
+  static void sync_momentum(solver_body<T>& b, vec3<T>& synced) noexcept {
+    if (b.inverse_mass == T(0)) return;
+    const principal_inertia<T>& p = b.principal;
+    const quat<T> turned = p.own_axes ? b.orientation : b.orientation * p.axes;
+    const vec3<T> change = inverse_rotate(turned, b.angular_velocity - synced);
+    b.angular_momentum += rotate(turned, vec3<T>{change.x * p.moments.x, change.y * p.moments.y, change.z * p.moments.z});
+    synced = b.angular_velocity;
+  }
+
+  /// Moves a body over a substep: a straight line, and the torque-free
+  /// turn with its L held (free_rotation.hpp); ω and I_w⁻¹ are then those
+  /// of the pose reached, so the gyroscopic term is in the turn.
+  static void move(solver_body<T>& b, vec3<T>& synced, T h) noexcept {
+    b.position += b.linear_velocity * h;
+    const principal_inertia<T>& p = b.principal;
+    // A body whose moments are all equal (a sphere, a cube) has the same
+    // I_w at every pose: it turns exactly at the ω it has.
+    if (b.inverse_mass == T(0) || p.isotropic()) {
+      b.orientation = integrate(b.orientation, b.angular_velocity, h);
+      return;
+    }
+    sync_momentum(b, synced);
+    b.orientation = free_turn(b.orientation, p, b.angular_momentum, h);
+    // I_w⁻¹ = Σ (1/I_i)·r_i·r_iᵀ over the principal axes r_i in the world;
+    // 1/I_i is the reference's rate plus axis i's.
+    const mat3<T> axes = to_mat3(p.own_axes ? b.orientation : b.orientation * p.axes);
+    b.inverse_inertia = outer(axes.col[0], axes.col[0] * (p.rate + p.rates.x)) +
+                        outer(axes.col[1], axes.col[1] * (p.rate + p.rates.y)) +
+                        outer(axes.col[2], axes.col[2] * (p.rate + p.rates.z));
+    b.angular_velocity = b.inverse_inertia * b.angular_momentum;
+    synced = b.angular_velocity;
+  }
+
   void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const settings_type& settings,
                      const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
@@ -161,7 +198,8 @@ class basic_soft_step {
     detail::solve_friction(a, b, c);
   }
 
-  std::vector<vec3<T>> start_;  // each body's position at the start of the step
+  std::vector<vec3<T>> start_;   // each body's position at the start of the step
+  std::vector<vec3<T>> synced_;  // each body's ω when its L was last brought in step (sync_momentum)
   detail::joint_tree<T> tree_;
 };
 

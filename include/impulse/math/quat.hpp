@@ -154,9 +154,17 @@ quat<T> from_mat3(const mat3<T>& m) noexcept {
 /// |v| -> 0 (see scalar_traits::series_threshold).
 template <scalar_type T>
 quat<T> exp_pure(const vec3<T>& v) noexcept {
-  const T h = length(v);
-  const T sin_h_over_h = h < scalar_traits<T>::series_threshold ? T(1) - h * h / T(6)
-                                                                : std::sin(h) / h;
+  const T h2 = length_squared(v);
+  constexpr T threshold = scalar_traits<T>::series_threshold;
+  if (h2 < threshold * threshold) {
+    // Horner's form of the two series; a body at rest or turning slowly
+    // (most of a scene) costs no square root and no sin or cos.
+    const T sin_h_over_h = T(1) - h2 / T(6) * (T(1) - h2 / T(20) * (T(1) - h2 / T(42)));
+    const T cos_h = T(1) - h2 / T(2) * (T(1) - h2 / T(12) * (T(1) - h2 / T(30) * (T(1) - h2 / T(56))));
+    return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, cos_h};
+  }
+  const T h = std::sqrt(h2);
+  const T sin_h_over_h = std::sin(h) / h;
   return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, std::cos(h)};
 }
 

@@ -33,10 +33,12 @@ struct scalar_traits<float> {
   static constexpr float unit_tolerance = 1e-5f;
 
   /// Below this argument the exponential map uses the series
-  /// sin(h)/h = 1 - h²/6 instead of the quotient: the next term, h⁴/120, is
-  /// then under epsilon, and the series stays finite as |ω| -> 0 where the
-  /// quotient is 0/0. Solves h⁴/120 = epsilon: (120 · 1.19e-7)^(1/4) = 0.061.
-  static constexpr float series_threshold = 0.061f;
+  /// sin(h)/h = 1 − h²/6 + h⁴/120 − h⁶/5040 and cos h to h⁸/8!, in h² alone,
+  /// instead of a square root, sin and cos: the first term left out,
+  /// h⁸/9!, is then under epsilon, and the series stays finite as
+  /// |ω| -> 0 where the quotient is 0/0. Solves h⁸/362880 = epsilon:
+  /// (362880 · 1.19e-7)^(1/8) = 0.675.
+  static constexpr float series_threshold = 0.67f;
 
   /// Relative tolerance for a determinant or pivot to count as singular.
   static constexpr float singular_tolerance = 1e-6f;
@@ -49,8 +51,8 @@ struct scalar_traits<double> {
   static constexpr double zero_length_squared = 1e-60;
   /// 1e-10: a unit vector given with ten digits passes, rotations are off by < 1e-10 rad.
   static constexpr double unit_tolerance = 1e-10;
-  /// (120 · 2.22e-16)^(1/4) = 4.1e-4.
-  static constexpr double series_threshold = 4.0e-4;
+  /// (362880 · 2.22e-16)^(1/8) = 0.0548.
+  static constexpr double series_threshold = 0.054;
   static constexpr double singular_tolerance = 1e-12;
 };
 

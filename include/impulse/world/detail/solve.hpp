@@ -3,8 +3,8 @@
 // (sequential_impulse, soft_step), which applies this step's forces, solves
 // the contacts and the joints (joint.hpp; trees of joints exactly,
 // joint_tree.hpp) and, if it moves the bodies itself, moves them; then the
-// write-back: the bodies moved by the config's integrator (or as the solver
-// left them), moved back onto their joints (project_joints), the impulses
+// write-back: the bodies moved (or left where the solver moved them),
+// moved back onto their joints (project_joints), the impulses
 // kept for the next step's warm start, and the joints that pulled harder
 // than their thresholds broken.
 //
@@ -12,15 +12,15 @@
 // velocities v = P/m, ω = I_w⁻¹·L taken at the start of the step; the
 // write-back sets P = m·v, and L changed by the torque's impulse and by I_w
 // times what the contacts did to ω, so that with no contact L is constant
-// to the bit. The bodies then move by the integrator policy with L held
-// and ω = R·I⁻¹·Rᵀ·L at each stage: a free body precesses as accurately as
-// the integrator (RK4: fourth order). Forces are held constant over a step,
-// so every integrator gives the same velocity change, F·dt/m; the
-// integrator matters for the rotation, and for forces that depend on the
-// state within a step (springs). A solver that moves the bodies itself
-// (soft_step) holds ω through its substeps: ω is then the state, written
-// back as L = I_w·ω at the pose reached, and the gyroscopic term is taken
-// once a step, implicitly (gyroscopic_turn).
+// to the bit. The bodies then move in a straight line and turn freely with
+// L held (free_rotation.hpp: exact for a symmetric body, second order for
+// any other, fourth under a fourth-order integrator policy), so the
+// gyroscopic motion, ω turning as the body turns, needs no term of its
+// own. Forces are held constant over a step, so every integrator gives the
+// same velocity change, F·dt/m; a world without collision (force_motion.hpp)
+// is where the policies differ. A solver that moves the bodies itself
+// (soft_step) turns them the same way substep by substep, and leaves ω as
+// the state: it is written back as L = I_w·ω at the pose reached.
 //
 // A body that the step would take past the world's speed limits or out of
 // finite numbers is held (step_scratch::hold): before the solve if its
@@ -30,7 +30,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
@@ -72,11 +71,12 @@ struct body_solve {
       if (is_solved(r)) {
         s.inverse_mass = b.inverse_mass;
         s.inverse_inertia = b.inverse_inertia_world();
+        s.angular_momentum = b.angular_momentum;
+        s.principal = b.principal;
         s.linear_velocity = b.linear_momentum * b.inverse_mass;
         s.angular_velocity = s.inverse_inertia * b.angular_momentum;
         s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
         s.force_angular = s.inverse_inertia * (b.torque * dt);
-        if constexpr (solver_type::moves_bodies) s.force_angular += gyroscopic_turn(b, s.angular_velocity, dt);
         // A body its loads would take out of finite numbers, or past the
         // speed limits, is held before anything couples it to another: a
         // joint solved with it would carry the overflow into its partner.
@@ -212,18 +212,16 @@ struct body_solve {
         body_momentum<T> momentum{s.linear_velocity * b.mass,
                                   b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
         if constexpr (!solver_type::moves_bodies) {
-          // Free motion under the solved momenta, by the integrator policy:
-          // with L held, ω = R·I⁻¹·Rᵀ·L turns with the body at each stage,
-          // so the gyroscopic motion is as accurate as the integrator.
-          integrator::advance(x, momentum, dt, free_motion{b, s.bias_linear, s.bias_angular});
+          // Free motion under the solved momenta: a straight line, and the
+          // torque-free turn with L held (free_rotation.hpp), to fourth
+          // order under a fourth-order policy; the position pass's
+          // pseudo-velocities with them.
+          x.position += (s.linear_velocity + s.bias_linear) * dt;
+          x.orientation = free_turn(x.orientation, b.principal, momentum.angular, dt, integrator::order >= 4, s.bias_angular);
         } else {
-          // The solver held ω through each substep while the body turned,
-          // so ω is its state: L = I_w·ω at the pose it reached. Kept as
-          // the change of L instead, a tumbling link's energy grew at each
-          // step (the tail of a swinging chain spun up to 3 000 rad/s).
+          // The solver turned the body substep by substep, with its L.
           x = {s.position, s.orientation};
-          const mat3<T> turn = to_mat3(s.orientation);
-          momentum.angular = turn * b.inertia * transpose(turn) * s.angular_velocity;
+          momentum.angular = s.angular_momentum;
         }
         // What the solve gave it can still overflow (or pass the limits):
         // the body is then held after all, where it started the step.
@@ -327,20 +325,6 @@ struct body_solve {
     std::merge(state.awake_bodies.begin(), state.awake_bodies.end(), scratch.reached.begin(), scratch.reached.end(),
                scratch.solver_dense.begin());
     for (std::uint32_t i = 0; i < scratch.solver_dense.size(); ++i) scratch.solver_place[scratch.solver_dense[i]] = i;
-  }
-
-  /// For a solver that moves the bodies itself, holding ω over each
-  /// substep: the change of ω over the step that keeps L = I_w·ω as the
-  /// body turns (ω × I·ω, the gyroscopic term), taken implicitly by one
-  /// Newton step on I·(ω₂ − ω₁) + dt·ω₂ × I·ω₂ = 0 (Catto, "Numerical
-  /// Methods", GDC 2015). Explicitly, the term adds energy: a thin link
-  /// whipped at the end of a chain spun itself up to 3 000 rad/s.
-  static vec3<T> gyroscopic_turn(const rigid_body<T>& b, const vec3<T>& omega, T dt) noexcept {
-    const mat3<T> inertia = b.inertia_world();
-    const vec3<T> spin = inertia * omega;
-    const mat3<T> slope = inertia + (skew(omega) * inertia - skew(spin)) * dt;
-    const std::optional<mat3<T>> inverse = try_inverse(slope);
-    return inverse ? -(*inverse * (cross(omega, spin) * dt)) : vec3<T>{};
   }
 
   /// The joints' drift removed from where the bodies have moved to
@@ -453,21 +437,6 @@ struct body_solve {
       first = last;
     }
   }
-
-  /// A body moving freely with the momenta the solver left it, plus the
-  /// position pass's pseudo-velocities, as the integrator policy's system
-  /// (body_motion.hpp): momentum constant over the step.
-  struct free_motion {
-    const rigid_body<T>& body;
-    vec3<T> bias_linear, bias_angular;
-    body_pose<T> position_rate(const body_pose<T>& x, const body_momentum<T>& p) const {
-      body_kinematics<T> k = kinematics_of(body, x, p);
-      k.linear_velocity += bias_linear;
-      k.angular_velocity += bias_angular;
-      return pose_rate(k, x.orientation);
-    }
-    body_momentum<T> momentum_rate(const body_pose<T>&, const body_momentum<T>&) const { return {}; }
-  };
 };
 
 }  // namespace impulse::detail
