@@ -14,14 +14,16 @@
 //
 // Configurations: the default solver at 10 to 80 velocity iterations; the
 // same 20 iterations a frame spread over 2 to 20 world steps a frame (each
-// a whole step of 1/(60·n) s: collision, solve, integration); soft_step at
-// its default 4 substeps and at 16.
+// a whole step of 1/(60·n) s: collision, solve, integration); the solve in
+// 2 or 4 parts of a step (sequential_impulse_settings::substeps: collision
+// once); soft_step at its default 4 substeps and at 16.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "impulse/world.hpp"
@@ -151,6 +153,14 @@ int main(int argc, char** argv) {
       world<awake_config> w(s);
       print("sequential_impulse " + std::to_string(steps) + "x" + std::to_string(20 / steps) + " world steps", n,
             run(w, n, steps));
+    }
+  for (const auto& [parts, sweeps] : {std::pair{2, 10}, std::pair{4, 5}, std::pair{4, 8}})
+    for (const int n : heights) {
+      world_settings<float> s;
+      s.solver.substeps = parts;
+      s.solver.velocity_iterations = sweeps;
+      world<awake_config> w(s);
+      print("sequential_impulse " + std::to_string(parts) + " parts x" + std::to_string(sweeps), n, run(w, n, 1));
     }
   for (const int substeps : {4, 16})
     for (const int n : heights) {

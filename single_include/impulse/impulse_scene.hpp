@@ -693,8 +693,7 @@ class scene_parser {
     const std::pair<const char*, int S::*> integers[] = {{"velocity_iterations", &S::velocity_iterations},
                                                          {"position_iterations", &S::position_iterations},
                                                          {"manifold_sweeps", &S::manifold_sweeps}};
-    const std::pair<const char*, int SS::*> soft_integers[] = {{"substeps", &SS::substeps},
-                                                               {"substep_iterations", &SS::substep_iterations},
+    const std::pair<const char*, int SS::*> soft_integers[] = {{"substep_iterations", &SS::substep_iterations},
                                                                {"relax_iterations", &SS::relax_iterations}};
     const std::pair<const char*, T S::*> numbers[] = {{"linear_slop", &S::linear_slop},
                                                       {"max_correction_speed", &S::max_correction_speed},
@@ -717,6 +716,10 @@ class scene_parser {
       bool known = false;
       for (const auto& [key, member] : integers)
         if (item.key() == key) shared(member, int(r_.integer(v, 0, 1000))), known = true;
+      if (item.key() == "substeps") {  // both solvers have them, each its own kind (solver_settings.hpp)
+        const int n = int(r_.integer(v, 0, 1000));
+        out.sequential_impulse.substeps = n, out.soft_step.substeps = n, known = true;
+      }
       for (const auto& [key, member] : soft_integers)
         if (item.key() == key) out.soft_step.*member = int(r_.integer(v, 0, 1000)), known = true;
       for (const auto& [key, member] : numbers)

@@ -276,6 +276,7 @@ TEST_CASE("a scene's solver numbers reach the world of either solver: the shared
   (void)io::add_scene(sequential, scene);
   CHECK(sequential.settings().solver.velocity_iterations == 7);
   CHECK(sequential.settings().solver.rest_depth == doctest::Approx(0.00001f));
+  CHECK(sequential.settings().solver.substeps == 8);  // both solvers have substeps
   struct soft : awake {
     using solver = solver::soft_step;
   };

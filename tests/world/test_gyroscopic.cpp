@@ -42,11 +42,11 @@ struct top {
 };
 
 template <class World>
-top run_top(double spin, double seconds) {
+top run_top(double spin, double seconds, const typename World::settings_type& settings = {}) {
   using T = typename World::scalar;
   constexpr double m = 1, r = 0.3, l = 0.1, theta = 0.5, g = 9.81;
   constexpr double i1 = 0.25 * m * r * r, i3 = 0.5 * m * r * r, i1_pivot = i1 + m * l * l;
-  World w;
+  World w(settings);
   body_def<T> pivot;
   pivot.type = body_type::static_body;
   const body_id anchor = w.create_body(pivot, sphere<T>::make(T(0.01)));
@@ -87,6 +87,21 @@ TEST_CASE("a heavy top precesses at its analytic rate within 1 %: sequential_imp
     const top t = run_top<world<::test::awake_config>>(spin, 2);
     CAPTURE(spin);
     CHECK(std::abs(t.precession_ratio - 1) < 0.01);
+    CHECK(t.tilt_error < 0.01);
+  }
+}
+
+TEST_CASE("a heavy top precesses at its analytic rate within 0.5 %: sequential_impulse in 2 parts of 10 sweeps from 20 to "
+          "300 rad/s") {
+  // The joint solved twice a step holds the nutation (test_substeps.cpp
+  // has the parts). Measured: 1.0043 at 20 rad/s, 1.0011 to 1.0030 from 50.
+  world<::test::awake_config>::settings_type s;
+  s.solver.substeps = 2;
+  s.solver.velocity_iterations = 10;
+  for (const double spin : {20.0, 50.0, 100.0, 150.0, 200.0, 300.0}) {
+    const top t = run_top<world<::test::awake_config>>(spin, 2, s);
+    CAPTURE(spin);
+    CHECK(std::abs(t.precession_ratio - 1) < 0.005);
     CHECK(t.tilt_error < 0.01);
   }
 }
@@ -187,7 +202,10 @@ TEST_CASE("a body whose inertia is given off its principal axes turns as the sam
   // axes, once with its tensor written in a frame turned by t and the body
   // turned by t⁻¹ to match, so both have the same tensor in the world.
   // Spun alike, their world tensors must agree as they tumble: the second
-  // turns through the principal axes that Jacobi rotations found.
+  // turns through the principal axes that Jacobi rotations found. Spun
+  // about the major axis with a wobble, which is stable, so the rounding
+  // of the two paths grows only linearly (about the intermediate axis it
+  // grows exponentially, and the bound would measure the build's rounding).
   const quat<double> t = normalize(quat<double>{0.2, -0.4, 0.7, 0.5});
   const mat3<double> moments = mat3<double>::diagonal({1.25, 1.04, 0.29});
   const auto tumble = [&](bool off_axes) {
@@ -198,7 +216,7 @@ TEST_CASE("a body whose inertia is given off its principal axes turns as the sam
     d.mass = 1;
     d.inertia = off_axes ? to_mat3(t) * moments * transpose(to_mat3(t)) : moments;
     d.pose.rotation = off_axes ? conjugate(t) : quat<double>::identity();
-    d.angular_velocity = {0.05, 10, 0.05};
+    d.angular_velocity = {10, 3, 3};
     const body_id b = w.create_body(d, sphere<double>::make(0.5));
     for (int i = 0; i < 600; ++i) w.step(1.0 / 60);
     return w.body(b).inertia_world();
@@ -207,6 +225,7 @@ TEST_CASE("a body whose inertia is given off its principal axes turns as the sam
   double worst = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(on(r, c) - off(r, c)));
-  CHECK(worst < 1e-9);
+  MESSAGE("largest difference of the world tensors: " << worst);
+  CHECK(worst < 1e-11);
   CHECK(std::abs(on(0, 1)) > 0.01);  // it did tumble: the tensor is no longer diagonal
 }

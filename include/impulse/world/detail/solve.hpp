@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "../../dynamics/body_motion.hpp"
+#include "contact_update.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
@@ -48,8 +49,24 @@ struct body_solve {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
-  /// Solves and moves the bodies over dt (above).
+  /// Solves and moves the bodies over dt (above): in equal parts, for a
+  /// solver whose settings ask for them (sequential_impulse_settings::
+  /// substeps), the contacts carried with the bodies between the parts.
   void run(T dt) {
+    int parts = 1;
+    if constexpr (!solver_type::moves_bodies && requires { state.settings.solver.substeps; })
+      parts = state.settings.solver.substeps;
+    for (int k = 0; k < parts; ++k) {
+      if (k > 0) contact_update<Config>{state, scratch}.carry();
+      run_part(dt / T(parts), k == 0, k + 1 == parts);
+    }
+  }
+
+ private:
+  /// One part of the step, h long: the first keeps where the bodies
+  /// started (interpolation and holds go back to it), the last clears the
+  /// loads, which act on every part.
+  void run_part(T dt, bool first, bool last) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
     state.refresh_awake();
     settle_sleepers();
@@ -198,7 +215,7 @@ struct body_solve {
     for (std::size_t i = 0; i < count; ++i) {
       body_record<T>& r = bodies[scratch.solver_dense[i]];
       rigid_body<T>& b = r.body;
-      r.previous = b.pose();
+      if (first) r.previous = b.pose();
       if (scratch.is_held(std::uint32_t(i))) {
         b.linear_momentum = {};
         b.angular_momentum = {};
@@ -241,12 +258,11 @@ struct body_solve {
       } else if (b.type == body_type::kinematic) {
         if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
       }
-      b.clear_loads();
+      if (last) b.clear_loads();
     }
     if (!scratch.joints.empty()) project_joints();
   }
 
- private:
   /// The springs with a solved body, after the joints: each a distance row
   /// of its stiffness and damping (joint.hpp, soften_absolute), from its
   /// point on A to its point on B or, anchored, to the anchor on the
