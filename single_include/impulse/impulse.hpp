@@ -5639,7 +5639,7 @@ mass_properties<T> polyhedron_mass_properties(std::span<const vec3<T>> vertices,
 //
 // An explicit step, ω = I_w⁻¹·L taken at the start and held, spins a body on
 // its intermediate axis up onto its minor one (energy +259 % over 10⁴ steps
-// at 60 Hz) and precesses a top at 20 rad/s 4.6 times too fast; Catto's
+// at 60 Hz) and precesses a top at 20 rad/s 8.6 times too fast; Catto's
 // implicit gyroscopic step (one Newton step on the implicit Euler
 // equation) is stable but damps: the same top precessed 1.46 times too fast
 // at 100 rad/s.
@@ -19011,8 +19011,8 @@ struct island_update {
 // own. Forces are held constant over a step, so every integrator gives the
 // same velocity change, F·dt/m; a world without collision (force_motion.hpp)
 // is where the policies differ. A solver that moves the bodies itself
-// (soft_step) turns them the same way substep by substep, and leaves ω as
-// the state: it is written back as L = I_w·ω at the pose reached.
+// (soft_step) turns them the same way substep by substep and keeps each
+// body's L in step with the ω its rows change; the world takes that L.
 //
 // A body that the step would take past the world's speed limits or out of
 // finite numbers is held (step_scratch::hold): before the solve if its
@@ -19046,7 +19046,7 @@ struct body_solve {
   }
 
  private:
-  /// One part of the step, h long: the first keeps where the bodies
+  /// One part of the step, dt long: the first keeps where the bodies
   /// started (interpolation and holds go back to it), the last clears the
   /// loads, which act on every part.
   void run_part(T dt, bool first, bool last) {

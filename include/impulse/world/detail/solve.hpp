@@ -19,8 +19,8 @@
 // own. Forces are held constant over a step, so every integrator gives the
 // same velocity change, F·dt/m; a world without collision (force_motion.hpp)
 // is where the policies differ. A solver that moves the bodies itself
-// (soft_step) turns them the same way substep by substep, and leaves ω as
-// the state: it is written back as L = I_w·ω at the pose reached.
+// (soft_step) turns them the same way substep by substep and keeps each
+// body's L in step with the ω its rows change; the world takes that L.
 //
 // A body that the step would take past the world's speed limits or out of
 // finite numbers is held (step_scratch::hold): before the solve if its
@@ -63,7 +63,7 @@ struct body_solve {
   }
 
  private:
-  /// One part of the step, h long: the first keeps where the bodies
+  /// One part of the step, dt long: the first keeps where the bodies
   /// started (interpolation and holds go back to it), the last clears the
   /// loads, which act on every part.
   void run_part(T dt, bool first, bool last) {
