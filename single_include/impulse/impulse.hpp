@@ -9195,9 +9195,9 @@ struct sequential_impulse_settings : solver_settings<T> {
   /// velocity_iterations sweeps, the bodies moved after each and the
   /// contacts carried with them (collision runs once a step). The step's
   /// length, not the number of sweeps, sets how tall a tower stands
-  /// (docs/stacks.md): 4 parts of 5 sweeps hold a tower of 20 boxes and a
-  /// 1:1000 stack, and 2 parts a top spinning at 300 rad/s, where 1 part
-  /// of 20 sweeps lets them fall (docs/world.md, "A step in parts").
+  /// (docs/stacks.md): 4 parts of 8 sweeps hold towers of 20 and 30 boxes
+  /// and a 1:1000 stack, and 2 parts a top spinning at 300 rad/s, where 1
+  /// part of 20 sweeps lets them fall (docs/world.md, "A step in parts").
   int substeps = 1;
 
   void validate() const {
