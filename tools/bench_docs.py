@@ -884,7 +884,7 @@ def render_world_soft_step(ctx):
 
 RAGDOLL_BODIES = 11  # bodies per ragdoll (bench/joints/ragdoll_pile.hpp)
 JOINT_ENGINES = {  # engine -> (grid label, ragdoll label)
-    "impulse": ("impulse, sequential_impulse (20 iterations)", "impulse, sequential_impulse, trees exact"),
+    "impulse": ("impulse, sequential_impulse (4 parts of 8 iterations)", "impulse, sequential_impulse, trees exact"),
     "soft_step": ("impulse, soft_step (4 substeps)", "impulse, soft_step, trees exact"),
     "impulse_gs": ("impulse, sequential_impulse, joint by joint", "impulse, sequential_impulse, joint by joint"),
     "soft_step_gs": ("impulse, soft_step, joint by joint", "impulse, soft_step, joint by joint"),

@@ -20,7 +20,7 @@
 // Bullet: btDiscreteDynamicsWorld out of the box (10 iterations, split
 // impulse, ERP 0.2; bench/scenes/bullet_engine.hpp says more), each joint a
 // btPoint2PointConstraint added with collisions between its bodies
-// disabled. impulse: its defaults (20 iterations; soft_step 4 substeps).
+// disabled. impulse: its defaults (4 parts of 8 iterations; soft_step 4 substeps).
 //
 // Usage: joints [--scene grid|ragdolls]... [--n N] [--steps S] [--runs R]
 //               [--engine impulse|soft_step|impulse_gs|soft_step_gs|bullet]...

@@ -31,6 +31,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -84,19 +85,16 @@ class impulse_engine {
 
   [[nodiscard]] std::string config() const {
     // soft_step's work is its substeps (one soft and one relax sweep
-    // each); sequential_impulse's its velocity iterations.
-    constexpr bool substepping = sleeping_world::solver_type::moves_bodies;
-    const int count = std::visit(
+    // each); sequential_impulse's its velocity iterations, in its parts.
+    constexpr bool substepping = std::is_same_v<typename sleeping_world::solver_policy, impulse::solver::soft_step>;
+    const auto [count, parts] = std::visit(
         [](const auto& w) {
-          if constexpr (substepping) {
-            return settings_of(w).solver.substeps;
-          } else {
-            return settings_of(w).solver.velocity_iterations;
-          }
+          const auto& solver = settings_of(w).solver;
+          return substepping ? std::pair{solver.substeps, 1} : std::pair{solver.velocity_iterations, solver.substeps};
         },
         world_);
     return std::string(detail::solver_name<sleeping_world>()) + (substepping ? " substeps=" : " iterations=") +
-           std::to_string(count) + ' ' +
+           std::to_string(count) + (parts > 1 ? " substeps=" + std::to_string(parts) : std::string()) + ' ' +
            std::string(detail::broad_phase_name<sleeping_world>()) +
            (std::is_same_v<T, double> ? " double" : " float");
   }

@@ -8,15 +8,16 @@
 //
 //   towers            CSV: configuration, boxes, stood, fell_at_s,
 //                     top_drift_m (horizontal), height_lost_m, ms_per_frame
-//   towers --shape    the 20-box tower at default settings after 15 s: each
-//                     box's offset, tilt and vertical speed
+//   towers --shape    the 20-box tower in one part of 20 sweeps after 15 s:
+//                     each box's offset, tilt and vertical speed
 //   towers --sway     the same tower's top drift every 2.5 s until it falls
 //
-// Configurations: the default solver at 10 to 80 velocity iterations; the
-// same 20 iterations a frame spread over 2 to 20 world steps a frame (each
-// a whole step of 1/(60·n) s: collision, solve, integration); the solve in
-// 2 or 4 parts of a step (sequential_impulse_settings::substeps: collision
-// once); soft_step at its default 4 substeps and at 16.
+// Configurations: sequential_impulse in one part of 10 to 80 velocity
+// iterations; the same 20 iterations a frame spread over 2 to 20 world
+// steps a frame (each a whole step of 1/(60·n) s: collision, solve,
+// integration); the step in 2, 4 or 8 parts (sequential_impulse_settings::
+// substeps: collision and preparation once), 4 parts of 8 being the
+// default; soft_step at its default 4 substeps and at 16.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -38,6 +39,14 @@ struct awake_config : default_config {
 struct soft_config : awake_config {
   using solver = impulse::solver::soft_step;
 };
+
+/// sequential_impulse's settings for `parts` parts of `sweeps` sweeps.
+world_settings<float> in_parts(int parts, int sweeps) {
+  world_settings<float> s;
+  s.solver.substeps = parts;
+  s.solver.velocity_iterations = sweeps;
+  return s;
+}
 
 struct outcome {
   bool stood = true;
@@ -96,7 +105,7 @@ void print(const std::string& name, int boxes, const outcome& o) {
 }
 
 void shape() {
-  world<awake_config> w;
+  world<awake_config> w(in_parts(1, 20));
   const std::vector<body_id> ids = build(w, 20);
   for (int i = 0; i < 900; ++i) w.step(1.0f / 60);
   std::printf("box,x_m,z_m,tilt_x,tilt_z,vy_m_per_s\n");
@@ -108,7 +117,7 @@ void shape() {
 }
 
 void sway() {
-  world<awake_config> w;
+  world<awake_config> w(in_parts(1, 20));
   const std::vector<body_id> ids = build(w, 20);
   const vec3<float> start = w.body(ids.back()).position;
   std::printf("t_s,top_drift_m,height_lost_m\n");
@@ -137,29 +146,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s [--shape | --sway] > towers.csv\n", argv[0]);
     return 2;
   }
-  const int heights[] = {10, 12, 14, 16, 18, 20, 25, 30};
+  const int heights[] = {10, 12, 14, 16, 18, 20, 25, 30, 40};
   std::printf("configuration,boxes,stood,fell_at_s,top_drift_m,height_lost_m,ms_per_frame\n");
   for (const int iterations : {10, 20, 40, 80})
     for (const int n : heights) {
-      world_settings<float> s;
-      s.solver.velocity_iterations = iterations;
-      world<awake_config> w(s);
+      world<awake_config> w(in_parts(1, iterations));
       print("sequential_impulse 1x" + std::to_string(iterations), n, run(w, n, 1));
     }
   for (const int steps : {2, 4, 10, 20})
     for (const int n : heights) {
-      world_settings<float> s;
-      s.solver.velocity_iterations = 20 / steps;
-      world<awake_config> w(s);
+      world<awake_config> w(in_parts(1, 20 / steps));
       print("sequential_impulse " + std::to_string(steps) + "x" + std::to_string(20 / steps) + " world steps", n,
             run(w, n, steps));
     }
-  for (const auto& [parts, sweeps] : {std::pair{2, 10}, std::pair{4, 5}, std::pair{4, 8}})
+  for (const auto& [parts, sweeps] : {std::pair{2, 10}, std::pair{4, 5}, std::pair{4, 8}, std::pair{8, 4}})
     for (const int n : heights) {
-      world_settings<float> s;
-      s.solver.substeps = parts;
-      s.solver.velocity_iterations = sweeps;
-      world<awake_config> w(s);
+      world<awake_config> w(in_parts(parts, sweeps));
       print("sequential_impulse " + std::to_string(parts) + " parts x" + std::to_string(sweeps), n, run(w, n, 1));
     }
   for (const int substeps : {4, 16})

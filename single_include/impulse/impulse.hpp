@@ -7676,47 +7676,59 @@ template <scalar_type T>
 // impulse/dynamics/sequential_impulse.hpp — the contact solver by sequential
 // impulses: projected Gauss–Seidel over the velocity rows of every contact,
 // warm started, with a restitution pass before it and a split-impulse
-// position pass after it.
+// position pass after it, in parts of the step.
 //
 // One step (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005;
-// "Fast and Simple Physics using Sequential Impulses", GDC 2006):
+// "Fast and Simple Physics using Sequential Impulses", GDC 2006), taken in
+// `substeps` equal parts (4 by default; solver_settings.hpp):
 //
-// 1. Forces: each body's velocity takes this step's change from gravity and
-//    loads.
-// 2. Restitution: contacts approaching faster than the threshold are made
-//    to separate at e times their approach speed, pairwise and in sequence
-//    (contact_rows.hpp, restitution_pass, says why not inside the
-//    iterations).
-// 3. Warm start: each point's impulses from the last step, matched by
-//    feature id, are applied again.
-// 4. Velocity iterations: per manifold, friction at the patch (two tangent
-//    rows within the Coulomb disc of the patch's normal impulse and a
-//    twist row), then a few passes over the points' normal rows, clamped
-//    to push only (solver_settings.hpp, manifold_sweeps, says why more
-//    than one). A row that starts apart (a speculative contact, depth < 0)
-//    or shallower than the rest depth may sink to that depth within the
-//    step but no further (solver_settings.hpp, rest_depth, says why not to
-//    zero). The manifolds are
-//    visited color by color, W that share no moving body at a time in
+// 1. Forces: each body's velocity takes a part's share of this step's
+//    change from gravity and loads, at the start of each part.
+// 2. Restitution, once, before the first part: contacts approaching faster
+//    than the threshold are made to separate at e times their approach
+//    speed, pairwise and in sequence (contact_rows.hpp, restitution_pass,
+//    says why not inside the iterations).
+// 3. Warm start, each part: each point's impulses from the last part (or
+//    step, matched by feature id) are applied again.
+// 4. Velocity iterations, each part: per manifold, friction at the patch
+//    (two tangent rows within the Coulomb disc of the patch's normal
+//    impulse and a twist row), then a few passes over the points' normal
+//    rows, clamped to push only (solver_settings.hpp, manifold_sweeps,
+//    says why more than one). A row that is apart (a speculative contact,
+//    depth < 0) or shallower than the rest depth may sink to that depth
+//    within the part but no further (solver_settings.hpp, rest_depth, says
+//    why not to zero); each part re-measures the depth from how far the
+//    bodies have moved (contact_batch.hpp, retarget_batch). The manifolds
+//    are visited color by color, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
 //    color could take is solved alone after them.
-// 5. Position pass (split impulses; Catto's "Box2D: the position problem",
-//    Bullet's split impulse): the normal rows once more on separate
-//    pseudo-velocities, pushing penetration beyond the slop out at a
-//    fraction per step. Those velocities move the bodies this step and are
-//    dropped, so correcting a penetration adds no kinetic energy: a
+// 5. Position pass, in the last part (split impulses; Catto's "Box2D: the
+//    position problem", Bullet's split impulse): the normal rows once more
+//    on separate pseudo-velocities, pushing penetration beyond the slop out
+//    at a fraction per step. Those velocities move the bodies this part and
+//    are dropped, so correcting a penetration adds no kinetic energy: a
 //    Baumgarte term in the velocity rows would turn every correction into
 //    a bounce, and a box landing in a stack would pop the one beneath.
 //    Non-linear Gauss–Seidel on positions (Box2D v2) does the same at the
 //    cost of a contact re-evaluation per iteration.
+// 6. Motion, each part: the bodies move with the solved velocities plus
+//    the pseudo-velocities, each turned with its L held (free_rotation.hpp,
+//    solver_parts.hpp).
 // Joints (joint.hpp) take part in steps 3 and 4, before the contacts of
-// each iteration, rigid; those that form trees have their rows solved all
-// at once, exactly (joint_tree.hpp). Their drift is removed once the bodies
-// have moved (project_joints: non-linear Gauss–Seidel on the poses, which
-// sees the drift that a pass planned from the start of the step cannot,
-// and a Newton step on the trees).
-// The world then moves the bodies with the solved velocities plus the
-// pseudo-velocities, turning each with its L held (free_rotation.hpp).
+// each iteration, rigid, prepared where the bodies are at each part; those
+// that form trees have their rows solved all at once, exactly
+// (joint_tree.hpp). Their drift is removed once the step is done
+// (project_joints: non-linear Gauss–Seidel on the poses, which sees the
+// drift that a pass planned from the start of the step cannot, and a Newton
+// step on the trees). Projected between parts as well, they held a top at
+// 300 rad/s no better in 4 parts and cost the ragdoll pile 1.5 times as
+// much (in 2 parts, without it, that top precesses 8 % slow).
+//
+// The rows, their colors and their SIMD batches are worked out once a step,
+// from where the step found the contacts: the parts cost their sweeps, a
+// warm start and a re-aim of the rows, not a new preparation. Why parts at
+// all: a step's length, not its number of sweeps, sets how tall a tower of
+// boxes stands (docs/stacks.md).
 
 
 // ---- begin impulse/dynamics/detail/constraint_graph.hpp ----
@@ -7880,6 +7892,11 @@ batch<T, W> dot(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
 }
 
 template <scalar_type T, int W>
+vec3_batch<T, W> cross(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <scalar_type T, int W>
 batch<T, W> length_squared(const vec3_batch<T, W>& a) noexcept {
   return dot(a, a);
 }
@@ -7908,6 +7925,7 @@ struct contact_batch {
     vectors arm_a, arm_b;    ///< r × n
     vectors turn_a, turn_b;  ///< I⁻¹ (r × n)
     lanes mass;              ///< kg
+    lanes depth;             ///< m: at the start of the step (contact_constraint_point::depth)
     lanes gap_speed;         ///< m/s: the approach the row allows (contact_constraint_point::gap_speed)
     lanes push_speed;        ///< m/s: the position pass's target separation speed
     lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
@@ -7935,6 +7953,10 @@ struct contact_batch {
   lanes tangent_mass11{}, tangent_mass12{}, tangent_mass22{};
   lanes friction{};
   lanes slip_target1{}, slip_target2{};
+  // The patch's middle from each center, and the slip targets the step
+  // began with: a part after the first turns the levers (retarget_batch).
+  vectors anchor_a{}, anchor_b{};
+  lanes slip_base1{}, slip_base2{};
   lanes tangent_impulse1{}, tangent_impulse2{};
   vectors twist_a{}, twist_b{};
   lanes twist_mass{}, twist_radius{}, twist_impulse{};
@@ -7983,6 +8005,7 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
       r.turn_a.set_lane(l, p.turn_a);
       r.turn_b.set_lane(l, p.turn_b);
       r.mass.set(l, p.normal_mass);
+      r.depth.set(l, p.depth);
       r.gap_speed.set(l, p.gap_speed);
       const bool pushed = p.push_speed >= T(0);
       r.push_speed.set(l, pushed ? p.push_speed : T(0));
@@ -8010,6 +8033,10 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.friction.set(l, c.friction);
     out.slip_target1.set(l, c.slip_target1);
     out.slip_target2.set(l, c.slip_target2);
+    out.anchor_a.set_lane(l, c.anchor_a);
+    out.anchor_b.set_lane(l, c.anchor_b);
+    out.slip_base1.set(l, c.slip_target1);
+    out.slip_base2.set(l, c.slip_target2);
     out.tangent_impulse1.set(l, c.tangent_impulse1);
     out.tangent_impulse2.set(l, c.tangent_impulse2);
     out.twist_a.set_lane(l, a.inverse_inertia * c.normal);
@@ -8034,6 +8061,92 @@ void store_batch(const contact_batch<T, W>& in, std::span<const batch_row<T, W>>
     c.tangent_impulse2 = in.tangent_impulse2[l];
     c.twist_impulse = in.twist_impulse[l];
   }
+}
+
+/// How far a body has moved since the start of the step: its center, and
+/// the sum of its turns as angle vectors, m and rad; and its ω at the start
+/// of the step, rad/s.
+template <scalar_type T>
+struct body_displacement {
+  vec3<T> linear{};
+  vec3<T> angular{};
+  vec3<T> spin{};
+};
+
+/// What the rows ask at a substep, from the points' depths then
+/// (sequential_impulse.hpp, row_targets, says what each is).
+template <scalar_type T>
+struct row_target_rule {
+  T rest_depth, linear_slop, position_correction, max_correction_speed;
+  /// 1/s: a gap closes, or a point sinks to the rest depth, within the
+  /// part; the position pass, which runs in the last part, pushes the
+  /// step's fraction of a penetration out within it.
+  T inverse_substep;
+};
+
+/// The rows' targets once the bodies have moved by `moved`: each point's
+/// depth is the depth found less how far its bodies have moved apart along
+/// the normal since, n·(Δx_B − Δx_A) + θ_B·(r_B × n) − θ_A·(r_A × n) (to
+/// first order in their turns, which a part keeps small). The position
+/// pass's impulses start again from zero: its pseudo-velocities are a
+/// part's.
+///
+/// The friction rows keep the step's levers r, while the material points
+/// that met at the patch have turned with their bodies: two such points
+/// moving together are seen by the rows to slip at ω_B×(θ_B×r_B) −
+/// ω_A×(θ_A×r_A), which the slip targets take out. Without it, a box
+/// carried on a platform turning at 1 rad/s took the whole step's turn of
+/// its velocity in the first of 4 parts, where its friction bound is a
+/// quarter of the step's, and crept outward 2 mm/s.
+template <scalar_type T, int W>
+void retarget_batch(contact_batch<T, W>& in, std::span<batch_row<T, W>> rows,
+                    std::span<const body_displacement<T>> moved, const row_target_rule<T>& rule) noexcept {
+  using lanes = batch<T, W>;
+  vec3_batch<T, W> xa{}, ta{}, wa{}, xb{}, tb{}, wb{};
+  for (int l = 0; l < in.size; ++l) {
+    const body_displacement<T>& a = moved[in.body_a[l]];
+    const body_displacement<T>& b = moved[in.body_b[l]];
+    xa.set_lane(l, a.linear), ta.set_lane(l, a.angular), wa.set_lane(l, a.spin);
+    xb.set_lane(l, b.linear), tb.set_lane(l, b.angular), wb.set_lane(l, b.spin);
+  }
+  const vec3_batch<T, W> turned = cross(wb, cross(tb, in.anchor_b)) - cross(wa, cross(ta, in.anchor_a));
+  in.slip_target1 = in.slip_base1 - dot(in.tangent1, turned);
+  in.slip_target2 = in.slip_base2 - dot(in.tangent2, turned);
+  const lanes zero = lanes::broadcast(T(0));
+  const lanes rest = lanes::broadcast(rule.rest_depth), slop = lanes::broadcast(rule.linear_slop);
+  const lanes push_rate = lanes::broadcast(rule.position_correction * rule.inverse_substep);
+  const lanes fastest = lanes::broadcast(rule.max_correction_speed);
+  const lanes close_rate = lanes::broadcast(rule.inverse_substep);
+  const lanes apart_centers = dot(in.normal, xb - xa);
+  for (batch_row<T, W>& r : rows) {
+    const lanes depth = r.depth - (apart_centers + dot(tb, r.arm_b) - dot(ta, r.arm_a));
+    r.gap_speed = max(rest - depth, zero) * close_rate;
+    const auto pushed = depth > slop;
+    r.push_speed = select(pushed, min(push_rate * (depth - slop), fastest), zero);
+    r.position_mass = select(pushed, r.mass, zero);
+    r.bias_impulse = zero;
+  }
+}
+
+/// Applies a batch's accumulated impulses to its bodies' velocities again:
+/// the warm start of each substep.
+template <scalar_type T, int W>
+void warm_start_batch(batch_velocities<T, W>& v, const contact_batch<T, W>& in,
+                      std::span<const batch_row<T, W>> rows) noexcept {
+  using lanes = batch<T, W>;
+  lanes pushed = lanes::broadcast(T(0));
+  vec3_batch<T, W> turn_a{}, turn_b{};
+  for (const batch_row<T, W>& r : rows) {
+    pushed = pushed + r.impulse;
+    turn_a = turn_a + r.turn_a * r.impulse;
+    turn_b = turn_b + r.turn_b * r.impulse;
+  }
+  const lanes j1 = in.tangent_impulse1, j2 = in.tangent_impulse2;
+  const vec3_batch<T, W> j = in.normal * pushed + in.tangent1 * j1 + in.tangent2 * j2;
+  v.va = v.va - j * in.inverse_mass_a;
+  v.wa = v.wa - (turn_a + in.turn_a1 * j1 + in.turn_a2 * j2 + in.twist_a * in.twist_impulse);
+  v.vb = v.vb + j * in.inverse_mass_b;
+  v.wb = v.wb + (turn_b + in.turn_b1 * j1 + in.turn_b2 * j2 + in.twist_b * in.twist_impulse);
 }
 
 #if defined(__GNUC__)
@@ -9045,6 +9158,97 @@ class joint_tree {
 
 }  // namespace impulse::detail
 // ---- end impulse/dynamics/detail/joint_tree.hpp ----
+// ---- begin impulse/dynamics/detail/solver_parts.hpp ----
+// impulse/dynamics/detail/solver_parts.hpp — what both shipped solvers do at
+// each part (substep) of a step, as solvers that move the bodies themselves
+// (contact_solver.hpp, moves_bodies): the joints prepared and warm started
+// where the bodies are, and the bodies moved, with each body's angular
+// momentum kept in step with the ω its rows change.
+//
+// A body moves in a straight line and turns torque-free with its L held
+// (free_rotation.hpp), so the gyroscopic motion, ω turning as the body
+// turns, needs no term of its own; ω and I_w⁻¹ are then those of the pose
+// reached.
+
+
+
+namespace impulse::detail {
+
+/// The joints at the start of a part of h: each prepared where the bodies
+/// are now and its impulses applied again (forgotten first, with
+/// `forget`), and the tree's loads gathered over h and its rows factored
+/// and warm started where it can. True when the tree's rows are solved
+/// exactly in this part.
+template <scalar_type T>
+bool start_joints(joint_tree<T>& tree, std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints, T h,
+                  bool forget) {
+  const std::span<const solver_body<T>> read = bodies;
+  tree.clear_loads();
+  for (joint_constraint<T>& j : joints) {
+    prepare_joint(read, j);
+    tree.add_load(read, j, h);
+    if (forget) forget_impulses(j);
+    warm_start_joint(bodies, j);
+  }
+  const bool exact = !tree.empty() && tree.factor(read, joints);
+  if (exact) tree.warm_start(bodies, joints);
+  return exact;
+}
+
+/// L changed by I_w times what forces and rows did to ω since it was last
+/// in step with it (`synced`). Only that change passes through I_w:
+/// converting L to ω and back at every substep drifted |L| in float by
+/// 1.4 % in 10⁴ steps of a free body, and with nothing acting on the body
+/// its L stays the same to the bit.
+template <scalar_type T>
+void sync_momentum(solver_body<T>& b, vec3<T>& synced) noexcept {
+  if (b.inverse_mass == T(0)) return;
+  const principal_inertia<T>& p = b.principal;
+  const quat<T> turned = p.own_axes ? b.orientation : b.orientation * p.axes;
+  const vec3<T> change = inverse_rotate(turned, b.angular_velocity - synced);
+  b.angular_momentum += rotate(turned, vec3<T>{change.x * p.moments.x, change.y * p.moments.y, change.z * p.moments.z});
+  synced = b.angular_velocity;
+}
+
+/// I_w⁻¹ and ω = I_w⁻¹·L of the pose a body has reached, its L held (in
+/// step with ω beforehand).
+template <scalar_type T>
+void reorient_inertia(solver_body<T>& b, vec3<T>& synced) noexcept {
+  const principal_inertia<T>& p = b.principal;
+  // I_w⁻¹ = Σ (1/I_i)·r_i·r_iᵀ over the principal axes r_i in the world;
+  // 1/I_i is the reference's rate plus axis i's.
+  const mat3<T> axes = to_mat3(p.own_axes ? b.orientation : b.orientation * p.axes);
+  b.inverse_inertia = outer(axes.col[0], axes.col[0] * (p.rate + p.rates.x)) +
+                      outer(axes.col[1], axes.col[1] * (p.rate + p.rates.y)) +
+                      outer(axes.col[2], axes.col[2] * (p.rate + p.rates.z));
+  b.angular_velocity = b.inverse_inertia * b.angular_momentum;
+  synced = b.angular_velocity;
+}
+
+/// Moves a body over h: its center in a straight line at its velocity plus
+/// `push`, and the torque-free turn with its L held, `spin` turned with the
+/// turn about L (`push` and `spin` are a position pass's pseudo-velocities,
+/// sequential_impulse.hpp). Fourth order in the turn under a fourth-order
+/// integrator policy. Static, kinematic and held bodies (no mass) turn at
+/// the ω they have.
+template <scalar_type T>
+void move_body(solver_body<T>& b, vec3<T>& synced, T h, bool fourth_order, const vec3<T>& push = {},
+               const vec3<T>& spin = {}) noexcept {
+  b.position += (b.linear_velocity + push) * h;
+  const principal_inertia<T>& p = b.principal;
+  // A body whose moments are all equal (a sphere, a cube) has the same
+  // I_w at every pose: it turns exactly at the ω it has.
+  if (b.inverse_mass == T(0) || p.isotropic()) {
+    b.orientation = integrate(b.orientation, b.angular_velocity + spin, h);
+    return;
+  }
+  sync_momentum(b, synced);
+  b.orientation = free_turn(b.orientation, p, b.angular_momentum, h, fourth_order, spin);
+  reorient_inertia(b, synced);
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/dynamics/detail/solver_parts.hpp ----
 // ---- begin impulse/dynamics/solver_settings.hpp ----
 // impulse/dynamics/solver_settings.hpp — the contact solvers' numbers, each
 // with its unit and the reason for its value: solver_settings, the ones the
@@ -9066,19 +9270,22 @@ namespace impulse {
 template <scalar_type T>
 struct solver_settings {
   /// Projected Gauss–Seidel sweeps over every contact's velocity rows per
-  /// step (sequential_impulse; soft_step's restitution pass). A 10-box
-  /// tower holds for 80 s at 6 or more (rest_depth says why it did not);
-  /// the 20-row pyramid moves about half a millimetre in 20 s at 10 or
-  /// 20; the 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at
-  /// 10 and 5.5 mm at 20. ODE's quickstep also takes 20, Bullet 10.
+  /// part of a step (sequential_impulse, whose own default is 8 in each of
+  /// its 4 parts: sequential_impulse_settings) and the most sweeps of the
+  /// restitution pass (both solvers). In one part, a 10-box tower holds for
+  /// 80 s at 6 or more (rest_depth says why it did not); the 20-row
+  /// pyramid moves about half a millimetre in 20 s at 10 or 20; the
+  /// 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at 10 and
+  /// 5.5 mm at 20. ODE's quickstep also takes 20, Bullet 10.
   /// docs/world.md has the measurements.
   int velocity_iterations = 20;
-  /// Sweeps of the split-impulse position pass (sequential_impulse): only
-  /// the normal rows, on pseudo-velocities that move the bodies this step
-  /// and are then forgotten. Also the passes that move the bodies back
-  /// onto their joints after each step (both solvers; joint_correction),
-  /// after which joint trees not yet settled take further Newton steps,
-  /// up to 8 per pass in all (joint_tree.hpp, project_joints).
+  /// Sweeps of the split-impulse position pass (sequential_impulse, in
+  /// the last part of its step): only the normal rows, on pseudo-velocities
+  /// that move the bodies this part and are then forgotten. Also the
+  /// passes that move the bodies back onto their joints after each step
+  /// (both solvers; joint_correction), after which joint trees not yet settled take
+  /// further Newton steps, up to 8 per pass in all (joint_tree.hpp,
+  /// project_joints).
   int position_iterations = 4;
   /// Passes over the normal rows of one manifold each time it is visited.
   /// They are coupled through the bodies' rotation (a corner's impulse
@@ -9191,14 +9398,19 @@ struct sequential_impulse_settings : solver_settings<T> {
   /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
   /// 6.1 mm at zero, 10.7 mm at 10 µm.
   T rest_depth = T(0.000003);
-  /// The step's solve taken in this many equal parts, each with
-  /// velocity_iterations sweeps, the bodies moved after each and the
-  /// contacts carried with them (collision runs once a step). The step's
-  /// length, not the number of sweeps, sets how tall a tower stands
-  /// (docs/stacks.md): 4 parts of 8 sweeps hold towers of 20 and 30 boxes
-  /// and a 1:1000 stack, and 2 parts a top spinning at 300 rad/s, where 1
-  /// part of 20 sweeps lets them fall (docs/world.md, "A step in parts").
-  int substeps = 1;
+  /// The step taken in this many equal parts, each with
+  /// velocity_iterations sweeps, the bodies moved after each (collision
+  /// and the rows' preparation once a step; sequential_impulse.hpp). A
+  /// part's length, not the number of sweeps, sets how tall a tower stands
+  /// (docs/stacks.md): 4 parts of 8 sweeps hold towers of 20 and 30 boxes,
+  /// a 1:1000 stack and a top spinning at 300 rad/s, where 1 part of 20
+  /// sweeps lets all three fall; they cost 1.4 times as much on `pile`
+  /// (docs/world.md, "A step in parts").
+  int substeps = 4;
+
+  /// Its sweeps are per part: 8, 32 a step. 6 in 4 parts let a tower of
+  /// 30 boxes fall; 4 in 6 parts let the 1:1000 stack collapse.
+  sequential_impulse_settings() noexcept { this->velocity_iterations = 8; }
 
   void validate() const {
     solver_settings<T>::validate();
@@ -9262,87 +9474,139 @@ class basic_sequential_impulse {
  public:
   /// Its numbers: the shared ones and its own (solver_settings.hpp).
   using settings_type = sequential_impulse_settings<T>;
-  /// The world moves the bodies after the solve (contact_solver.hpp).
-  static constexpr bool moves_bodies = false;
-  /// Its impulses act over the whole step.
-  static T impulse_step(const settings_type&, T dt) noexcept { return dt; }
+  /// It moves the bodies itself, part by part (contact_solver.hpp).
+  static constexpr bool moves_bodies = true;
+  /// Its impulses act over a part of the step (substeps; the whole step
+  /// by default).
+  static T impulse_step(const settings_type& settings, T dt) noexcept { return dt / T(settings.substeps); }
+
+  /// Whether the turns are fourth order (the world asks for them under a
+  /// fourth-order integrator policy; contact_solver.hpp).
+  void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
   }
 
-  /// Steps 1–5 above: the velocities and pseudo-velocities of the step.
-  /// Steps 4 and 5 run on batches of contacts that share no moving body
-  /// (constraint_graph.hpp), W at a time in SIMD lanes (contact_batch.hpp).
+  /// Steps 1–5 above, and the bodies moved: once, or in `substeps` equal
+  /// parts. Steps 4 and 5 run on batches of contacts that share no moving
+  /// body (constraint_graph.hpp), W at a time in SIMD lanes
+  /// (contact_batch.hpp).
+  ///
+  /// In parts, the contacts, their rows and the batches are worked out
+  /// once; each part applies its share of the forces, warm starts, asks of
+  /// each row what the point's depth now asks (re-measured from how far
+  /// the bodies have moved, contact_batch.hpp, retarget_batch), sweeps,
+  /// and moves the bodies. Restitution is applied once, before the first.
   ///
   /// Joints (joint.hpp) are solved rigidly in the same iterations, before
-  /// the contacts of each; project_joints removes their drift once the
-  /// bodies have moved.
+  /// the contacts of each, from where the bodies are at each part;
+  /// project_joints removes their drift once the step is done.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    const T inverse_dt = T(1) / dt;
-    for (solver_body<T>& b : bodies) {
-      b.linear_velocity += b.force_linear;
-      b.angular_velocity += b.force_angular;
-      b.bias_linear = {};
-      b.bias_angular = {};
+    const int parts = settings.substeps;
+    const T h = dt / T(parts), share = T(1) / T(parts);
+    const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
+                                          settings.max_correction_speed, T(1) / h};
+    synced_.resize(bodies.size());
+    moved_.assign(parts > 1 ? bodies.size() : 0, {});
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      solver_body<T>& b = bodies[i];
+      if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
+      synced_[i] = b.angular_velocity;
+      b.linear_velocity += b.force_linear * share;
+      b.angular_velocity += b.force_angular * share;
     }
-    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations, T(1),
-                             dt);
-    for (contact_constraint<T>& c : contacts) {
-      if (settings.warm_starting) {
-        detail::warm_start(bodies, c);
-      } else {
-        detail::forget_impulses(c);
-      }
-    }
+    // Restitution sees the velocities with one part's forces added: ½ +
+    // 1/(2·parts) of the step's change, measured from its start
+    // (contact_rows.hpp, restitution_pass).
+    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
+                             T(0.5) + T(0.5) * share, dt);
+    if (!settings.warm_starting)
+      for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
-    for (joint_constraint<T>& j : joints) {
-      detail::prepare_joint(read, j);
-      tree_.add_load(read, j, dt);
-      if (settings.warm_starting) {
-        detail::warm_start_joint(bodies, j);
-      } else {
-        detail::forget_impulses(j);
-      }
-    }
-    const joint_pass<T> rigid_pass{softness<T>::rigid(), dt};
-    for (contact_constraint<T>& c : contacts) row_targets(c, settings, inverse_dt);
-    if (!tree_.empty() && tree_.factor(read, joints)) tree_.warm_start(bodies, joints);
+    for (contact_constraint<T>& c : contacts) row_targets(c, rule, {});
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    leftover_slips_.clear();
+    if (parts > 1)
+      for (const std::uint32_t i : graph_.leftover())
+        leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
     batches_.resize(graph_.batch_count());
     rows_.clear();
     for (std::size_t k = 0; k < batches_.size(); ++k)
       detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
                          rows_);
+    const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
-    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
-      for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
-      if (!tree_.empty()) tree_.solve_velocities(bodies, joints);
-      // Forward through the colors, then back (symmetric Gauss–Seidel):
-      // always forward, support climbed a 100-row pyramid one color at a
-      // time and its boxes moved 12 cm in 200 steps; alternating, 6 mm.
-      for (std::size_t k = 0; k < batches_.size(); ++k) {
-        batch_type& b = batches_[iteration % 2 == 0 ? k : batches_.size() - 1 - k];
+    int sweeps = 0;  // over all parts so far
+    for (int part = 0; part < parts; ++part) {
+      if (part > 0) {
+        for (solver_body<T>& b : bodies) {
+          b.linear_velocity += b.force_linear * share;
+          b.angular_velocity += b.force_angular * share;
+          b.bias_linear = {};
+          b.bias_angular = {};
+        }
+        for (batch_type& b : batches_) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+        for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
+        for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
+          turn_levers(contacts[graph_.leftover()[k]], leftover_slips_[k]);
+      } else {
+        for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
+      }
+      const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
+      for (batch_type& b : batches_) {
         detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-        // Friction first: it is bounded by the normal impulses, and the
-        // normal rows, solved last, are the ones that must hold (no sinking).
-        detail::solve_batch_friction(v, b, rows_of(b));
-        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
+        detail::warm_start_batch(v, b, rows_of(b));
         detail::scatter(bodies, b, v, real);
       }
-      for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
-    }
-    for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
-      for (batch_type& b : batches_) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-        detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, true);
-        detail::scatter(bodies, b, v, pseudo);
+      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
+      for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
+        if (exact) tree_.solve_velocities(bodies, joints);
+        // Forward through the colors, then back (symmetric Gauss–Seidel):
+        // always forward, support climbed a 100-row pyramid one color at a
+        // time and its boxes moved 12 cm in 200 steps; alternating, 6 mm.
+        for (std::size_t k = 0; k < batches_.size(); ++k) {
+          batch_type& b = batches_[(sweeps + iteration) % 2 == 0 ? k : batches_.size() - 1 - k];
+          detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+          // Friction first: it is bounded by the normal impulses, and the
+          // normal rows, solved last, are the ones that must hold (no
+          // sinking).
+          detail::solve_batch_friction(v, b, rows_of(b));
+          detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
+          detail::scatter(bodies, b, v, real);
+        }
+        for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
-      for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+      sweeps += settings.velocity_iterations;
+      // The position pass, in the last part: it pushes the step's fraction
+      // of each penetration out within it, for the cost of one part's.
+      // Shared among the parts, one sweep each, it stalled a heap of 30
+      // boxes pushed apart without gravity; four sweeps in each part cost
+      // pile 14 % more and held no taller a tower.
+      for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
+        for (batch_type& b : batches_) {
+          detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+          detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, true);
+          detail::scatter(bodies, b, v, pseudo);
+        }
+        for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+      }
+      // The bodies moved with the solved velocities plus the position
+      // pass's pseudo-velocities, each turned with its L held.
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        solver_body<T>& b = bodies[i];
+        if (!moved_.empty()) {
+          moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
+          moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+        }
+        detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
+      }
     }
     for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
+    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
   }
 
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
@@ -9359,10 +9623,26 @@ class basic_sequential_impulse {
   using batch_type = detail::contact_batch<T, width>;
   using row_type = detail::batch_row<T, width>;
 
+  using displacement = detail::body_displacement<T>;
+
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   std::vector<batch_type> batches_;
   std::vector<row_type> rows_;
+  std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start, in parts
+  std::vector<displacement> moved_;  // each body's displacement since the start of the step, in parts
+  std::vector<vec3<T>> synced_;      // each body's ω when its L was last brought in step (solver_parts.hpp)
+  bool fourth_order_ = false;
+
+  /// A leftover manifold's slip targets in a later part, from those the
+  /// step began with (`base`), as retarget_batch.
+  void turn_levers(contact_constraint<T>& c, const std::pair<T, T>& base) const noexcept {
+    const displacement& a = moved_[c.body_a];
+    const displacement& b = moved_[c.body_b];
+    const vec3<T> turned = cross(b.spin, cross(b.angular, c.anchor_b)) - cross(a.spin, cross(a.angular, c.anchor_a));
+    c.slip_target1 = base.first - dot(c.tangent1, turned);
+    c.slip_target2 = base.second - dot(c.tangent2, turned);
+  }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
@@ -9384,19 +9664,30 @@ class basic_sequential_impulse {
       }
   }
 
-  /// What the rows ask of each point. The velocity row: vn ≥ −gap_speed,
-  /// a point shallower than the rest depth (or apart by a gap) may sink to
-  /// it within the step but no further. The position pass: to separate at
-  /// a fraction of the penetration beyond the slop per step; < 0 when the
+  /// What the rows ask of each point, as deep as it now lies: the depth
+  /// found, less how far the bodies have moved apart along the normal
+  /// since (`moved`, empty before they have moved; to first order in their
+  /// turns, as retarget_batch). The velocity row: vn ≥ −gap_speed, a point
+  /// shallower than the rest depth (or apart by a gap) may sink to it
+  /// within the part but no further. The position pass: to separate at a
+  /// fraction of the penetration beyond the slop per step; < 0 when the
   /// point lies within the slop and takes no part.
-  static void row_targets(contact_constraint<T>& c, const settings_type& settings, T inverse_dt) noexcept {
+  static void row_targets(contact_constraint<T>& c, const detail::row_target_rule<T>& rule,
+                          std::span<const displacement> moved) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
-      p.gap_speed = p.depth < settings.rest_depth ? (settings.rest_depth - p.depth) * inverse_dt : T(0);
-      p.push_speed = p.depth > settings.linear_slop
-                         ? std::min(settings.position_correction * (p.depth - settings.linear_slop) * inverse_dt,
-                                    settings.max_correction_speed)
+      T depth = p.depth;
+      if (!moved.empty()) {
+        const displacement& a = moved[c.body_a];
+        const displacement& b = moved[c.body_b];
+        depth -= detail::normal_speed(a.linear, a.angular, b.linear, b.angular, c.normal, p);
+      }
+      p.gap_speed = depth < rule.rest_depth ? (rule.rest_depth - depth) * rule.inverse_substep : T(0);
+      p.push_speed = depth > rule.linear_slop
+                         ? std::min(rule.position_correction * (depth - rule.linear_slop) * rule.inverse_substep,
+                                    rule.max_correction_speed)
                          : T(-1);
+      p.bias_impulse = T(0);
     }
   }
 
@@ -9464,6 +9755,10 @@ class basic_soft_step {
   /// Its impulses are per substep.
   static T impulse_step(const settings_type& settings, T dt) noexcept { return dt / T(settings.substeps); }
 
+  /// Whether the turns are fourth order (the world asks for them under a
+  /// fourth-order integrator policy; contact_solver.hpp).
+  void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
     for (contact_constraint<T>& c : contacts)
@@ -9511,29 +9806,21 @@ class basic_soft_step {
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
       }
-      tree_.clear_loads();
-      for (joint_constraint<T>& j : joints) {
-        detail::prepare_joint(read, j);
-        tree_.add_load(read, j, h);
-        if (substep == 0 && !settings.warm_starting) detail::forget_impulses(j);
-        detail::warm_start_joint(bodies, j);
-      }
-      const bool exact = !tree_.empty() && tree_.factor(read, joints);
-      if (exact) tree_.warm_start(bodies, joints);
+      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
       for (contact_constraint<T>& c : contacts) detail::warm_start(bodies, c);
       for (int i = 0; i < settings.substep_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
         if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, true);
       }
-      for (std::size_t i = 0; i < bodies.size(); ++i) move(bodies[i], synced_[i], h);
+      for (std::size_t i = 0; i < bodies.size(); ++i) detail::move_body(bodies[i], synced_[i], h, fourth_order_);
       for (int i = 0; i < settings.relax_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
         if (exact) tree_.solve_velocities(bodies, joints);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, false);
       }
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) sync_momentum(bodies[i], synced_[i]);
+    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
   }
 
   /// The joints' drift removed once the step is done, as
@@ -9548,43 +9835,6 @@ class basic_soft_step {
   }
 
  private:
-  /// L changed by I_w times what forces and rows did to ω since it was
-  /// last in step with it (`synced`). Only that change passes through I_w:
-  /// converting L to ω and back at every substep drifted |L| in float by
-  /// 1.4 % in 10⁴ steps of a free body.
-  static void sync_momentum(solver_body<T>& b, vec3<T>& synced) noexcept {
-    if (b.inverse_mass == T(0)) return;
-    const principal_inertia<T>& p = b.principal;
-    const quat<T> turned = p.own_axes ? b.orientation : b.orientation * p.axes;
-    const vec3<T> change = inverse_rotate(turned, b.angular_velocity - synced);
-    b.angular_momentum += rotate(turned, vec3<T>{change.x * p.moments.x, change.y * p.moments.y, change.z * p.moments.z});
-    synced = b.angular_velocity;
-  }
-
-  /// Moves a body over a substep: a straight line, and the torque-free
-  /// turn with its L held (free_rotation.hpp); ω and I_w⁻¹ are then those
-  /// of the pose reached, so the gyroscopic term is in the turn.
-  static void move(solver_body<T>& b, vec3<T>& synced, T h) noexcept {
-    b.position += b.linear_velocity * h;
-    const principal_inertia<T>& p = b.principal;
-    // A body whose moments are all equal (a sphere, a cube) has the same
-    // I_w at every pose: it turns exactly at the ω it has.
-    if (b.inverse_mass == T(0) || p.isotropic()) {
-      b.orientation = integrate(b.orientation, b.angular_velocity, h);
-      return;
-    }
-    sync_momentum(b, synced);
-    b.orientation = free_turn(b.orientation, p, b.angular_momentum, h);
-    // I_w⁻¹ = Σ (1/I_i)·r_i·r_iᵀ over the principal axes r_i in the world;
-    // 1/I_i is the reference's rate plus axis i's.
-    const mat3<T> axes = to_mat3(p.own_axes ? b.orientation : b.orientation * p.axes);
-    b.inverse_inertia = outer(axes.col[0], axes.col[0] * (p.rate + p.rates.x)) +
-                        outer(axes.col[1], axes.col[1] * (p.rate + p.rates.y)) +
-                        outer(axes.col[2], axes.col[2] * (p.rate + p.rates.z));
-    b.angular_velocity = b.inverse_inertia * b.angular_momentum;
-    synced = b.angular_velocity;
-  }
-
   void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const settings_type& settings,
                      const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
@@ -9616,6 +9866,7 @@ class basic_soft_step {
 
   std::vector<vec3<T>> start_;   // each body's position at the start of the step
   std::vector<vec3<T>> synced_;  // each body's ω when its L was last brought in step (sync_momentum)
+  bool fourth_order_ = false;
   detail::joint_tree<T> tree_;
 };
 
@@ -17259,6 +17510,12 @@ class shape_store<shape_list<Shapes...>, T> {
 //                       are per substep (the world turns a joint's impulse
 //                       into its force with it, and guesses new contacts'
 //                       first impulses from the weight over it)
+//
+// and, where the solver has it, calls set_fourth_order_turns(bool) before
+// each solve: true under a fourth-order integrator policy (RK4), for a
+// solver that turns the bodies itself to turn them to fourth order
+// (free_rotation.hpp, free_turn). Both shipped solvers move the bodies
+// themselves, in parts or substeps of the step.
 
 
 
@@ -18029,20 +18286,6 @@ struct contact_update {
     state.refresh_awake();
     update_broad_phase(h);
     update_contacts();
-  }
-
-  /// Carries every awake touching pair's manifolds with its bodies, with
-  /// no pair test (reuse_manifolds, whatever the distance moved): between
-  /// the parts of a step solved in parts (solve.hpp), so each part sees
-  /// the contacts as the last one left them.
-  void carry() {
-    const reuse_limits any{std::numeric_limits<T>::infinity(), T(-1)};
-    for (const std::uint32_t k : state.awake_contacts) {
-      contact_record<T>& c = state.contacts[k];
-      if (!c.tested || c.manifold_count == 0) continue;
-      const transform<T> pose_a = shape_pose_of(state.bodies[c.a]), pose_b = shape_pose_of(state.bodies[c.b]);
-      reuse_manifolds(c, pose_a, {inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation}, any);
-    }
   }
 
  private:
@@ -19030,24 +19273,8 @@ struct body_solve {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
-  /// Solves and moves the bodies over dt (above): in equal parts, for a
-  /// solver whose settings ask for them (sequential_impulse_settings::
-  /// substeps), the contacts carried with the bodies between the parts.
+  /// Solves and moves the bodies over dt (above).
   void run(T dt) {
-    int parts = 1;
-    if constexpr (!solver_type::moves_bodies && requires { state.settings.solver.substeps; })
-      parts = state.settings.solver.substeps;
-    for (int k = 0; k < parts; ++k) {
-      if (k > 0) contact_update<Config>{state, scratch}.carry();
-      run_part(dt / T(parts), k == 0, k + 1 == parts);
-    }
-  }
-
- private:
-  /// One part of the step, dt long: the first keeps where the bodies
-  /// started (interpolation and holds go back to it), the last clears the
-  /// loads, which act on every part.
-  void run_part(T dt, bool first, bool last) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
     state.refresh_awake();
     settle_sleepers();
@@ -19085,7 +19312,7 @@ struct body_solve {
       }
     }
     // How long the bodies move in a straight line at a time: the solver's
-    // impulse step (a substepping solver's substep).
+    // impulse step (a part's or substep's length).
     const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
     scratch.constraints.clear();
     scratch.sources.clear();
@@ -19137,8 +19364,9 @@ struct body_solve {
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept
         // outward 1.7 cm/s. Friction holds the patch at the relative
-        // velocity that cancels it (per substep, for a substepping solver,
-        // which moves the bodies in straight lines that much shorter).
+        // velocity that cancels it, over the solver's impulse step (a part
+        // or substep: sequential_impulse turns the levers between its
+        // parts, contact_batch.hpp, retarget_batch).
         const solver_body<T>& sa = scratch.solver_bodies[ia];
         const solver_body<T>& sb = scratch.solver_bodies[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
@@ -19182,6 +19410,8 @@ struct body_solve {
     state.counts.solved_manifolds = scratch.constraints.size();
     state.counts.solved_joints = scratch.joint_sources.size();
     state.counts.solved_springs = scratch.spring_sources.size();
+    if constexpr (requires { scratch.solver.set_fourth_order_turns(true); })
+      scratch.solver.set_fourth_order_turns(integrator::order >= 4);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -19196,7 +19426,7 @@ struct body_solve {
     for (std::size_t i = 0; i < count; ++i) {
       body_record<T>& r = bodies[scratch.solver_dense[i]];
       rigid_body<T>& b = r.body;
-      if (first) r.previous = b.pose();
+      r.previous = b.pose();
       if (scratch.is_held(std::uint32_t(i))) {
         b.linear_momentum = {};
         b.angular_momentum = {};
@@ -19239,11 +19469,12 @@ struct body_solve {
       } else if (b.type == body_type::kinematic) {
         if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
       }
-      if (last) b.clear_loads();
+      b.clear_loads();
     }
     if (!scratch.joints.empty()) project_joints();
   }
 
+ private:
   /// The springs with a solved body, after the joints: each a distance row
   /// of its stiffness and damping (joint.hpp, soften_absolute), from its
   /// point on A to its point on B or, anchored, to the anchor on the

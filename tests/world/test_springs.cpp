@@ -42,18 +42,20 @@ body_id add_box(World& w, vec3<typename World::scalar> at, typename World::scala
 }  // namespace
 
 TEST_CASE("an undamped spring to an anchor swings with implicit Euler's period and decay: 2*pi*h/atan(h*w) and "
-          "(1 + h^2 w^2)^(-1/2) a step") {
-  // 1 kg, k = 100 N/m: w = 10 rad/s, h*w = 1/6. The soft row gives
-  // v1 = (v0 − h·w²·x0)/(1 + h²w²), then x1 = x0 + h·v1: per step the state
-  // turns by atan(h·w) and shrinks by (1 + h²w²)^(−1/2), the implicit Euler
-  // step of the oscillator (softness.hpp).
+          "(1 + h^2 w^2)^(-1/2) a part") {
+  // 1 kg, k = 100 N/m: w = 10 rad/s. The soft row gives
+  // v1 = (v0 − h·w²·x0)/(1 + h²w²), then x1 = x0 + h·v1, h a part of the
+  // step (the solver's 4 by default; 1/240 s, h·w = 1/24): per part the
+  // state turns by atan(h·w) and shrinks by (1 + h²w²)^(−1/2), the
+  // implicit Euler step of the oscillator (softness.hpp).
   awake_double_world w(weightless<awake_double_world>());
   const body_id b = add_box(w, {1.5, 0, 0}, 1.0);
   w.create_spring(body_spring<double>::to_anchor(b, {}, {0, 0, 0}, 100.0, 0.0, 1.0));
-  const double h = 1.0 / 60, omega = 10;
+  const int parts = w.settings().solver.substeps;
+  const double dt = 1.0 / 60, h = dt / parts, omega = 10;
   std::vector<double> x;
   for (int i = 0; i < 120; ++i) {
-    w.step(h);
+    w.step(dt);
     x.push_back(w.body(b).position.x - 1);
   }
   // The amplitude: x² + (v/ω_d)² is not conserved by the scheme, but the
@@ -63,12 +65,12 @@ TEST_CASE("an undamped spring to an anchor swings with implicit Euler's period a
   for (std::size_t i = 1; i + 1 < x.size(); ++i)
     if (std::abs(x[i]) >= std::abs(x[i - 1]) && std::abs(x[i]) >= std::abs(x[i + 1])) peaks.push_back({int(i), std::abs(x[i])});
   REQUIRE(peaks.size() >= 4);
-  const double turn = std::atan(h * omega);  // per step
-  const double half_period_steps = std::numbers::pi / turn;  // 19.02 steps
+  const double turn = parts * std::atan(h * omega);  // per step
+  const double half_period_steps = std::numbers::pi / turn;  // 18.86 steps
   const int n = peaks.back().first - peaks.front().first;
   const double half_turns = double(peaks.size() - 1);
   CHECK(double(n) / half_turns == doctest::Approx(half_period_steps).epsilon(0.01));  // peaks fall on whole steps
-  const double decay = std::pow(1 + h * h * omega * omega, -0.5 * double(n));
+  const double decay = std::pow(1 + h * h * omega * omega, -0.5 * double(n * parts));
   CHECK(peaks.back().second / peaks.front().second == doctest::Approx(decay).epsilon(0.005));  // sampled peaks: up to half a step off
   CHECK(w.body(b).position.y == 0.0);
 }
@@ -86,16 +88,24 @@ TEST_CASE("a box hanging from a damped spring settles where k*x = m*g, and the s
 }
 
 TEST_CASE("a spring of 1e6 N/m on a 1 kg box at 60 Hz takes the implicit step, is stable and settles at m*g/k") {
-  // An explicit step of this spring diverges (h·w = 16.7); the soft row is
-  // the implicit step, stable at any stiffness: from 0.2 m stretched and
-  // at rest, the first step's speed is h·(k·x − m·g)/(m + h²·k), and each
-  // step after shrinks the motion by (1 + h²·w²)^(−1/2) = 0.06.
+  // An explicit step of this spring diverges (h·w = 4.2 at a part of
+  // 1/240 s); the soft row is the implicit step, stable at any stiffness:
+  // from a stretch x and speed v, a part of h ends at speed
+  // v' = (v + h·(k·x − m·g)/m)/(1 + h²·k/m) and stretch x − h·v', and each
+  // part shrinks the motion by (1 + h²·w²)^(−1/2) = 0.23.
   awake_world w;
   const body_id b = add_box(w, {0, 4, 0}, 1.0f);
   w.create_spring(body_spring<float>::to_anchor(b, {}, {0, 5.2f, 0}, 1e6f, 0.0f, 1.0f));
-  const float h = ::test::step_dt<float>;
-  w.step(h);
-  CHECK(w.body(b).linear_velocity().y == doctest::Approx(h * (1e6f * 0.2f - 9.81f) / (1 + h * h * 1e6f)).epsilon(1e-3));
+  const float dt = ::test::step_dt<float>;
+  const int parts = w.settings().solver.substeps;
+  const double h = double(dt) / parts;
+  double v = 0, x = 0.2;
+  for (int k = 0; k < parts; ++k) {
+    v = (v + h * (1e6 * x - 9.81)) / (1 + h * h * 1e6);
+    x -= h * v;
+  }
+  w.step(dt);
+  CHECK(w.body(b).linear_velocity().y == doctest::Approx(v).epsilon(1e-3));
   ::test::run(w, 60);
   CHECK(length(w.body(b).linear_velocity()) < 1e-3f);
   CHECK(w.body(b).position.y == doctest::Approx(4.2f - 9.81f / 1e6f).epsilon(1e-5));

@@ -42,6 +42,12 @@
 //                       are per substep (the world turns a joint's impulse
 //                       into its force with it, and guesses new contacts'
 //                       first impulses from the weight over it)
+//
+// and, where the solver has it, calls set_fourth_order_turns(bool) before
+// each solve: true under a fourth-order integrator policy (RK4), for a
+// solver that turns the bodies itself to turn them to fourth order
+// (free_rotation.hpp, free_turn). Both shipped solvers move the bodies
+// themselves, in parts or substeps of the step.
 #pragma once
 
 #include <concepts>

@@ -33,6 +33,7 @@
 #include "detail/contact_rows.hpp"
 #include "joint.hpp"
 #include "detail/joint_tree.hpp"
+#include "detail/solver_parts.hpp"
 #include "softness.hpp"
 #include "solver_settings.hpp"
 
@@ -47,6 +48,10 @@ class basic_soft_step {
   static constexpr bool moves_bodies = true;
   /// Its impulses are per substep.
   static T impulse_step(const settings_type& settings, T dt) noexcept { return dt / T(settings.substeps); }
+
+  /// Whether the turns are fourth order (the world asks for them under a
+  /// fourth-order integrator policy; contact_solver.hpp).
+  void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -95,29 +100,21 @@ class basic_soft_step {
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
       }
-      tree_.clear_loads();
-      for (joint_constraint<T>& j : joints) {
-        detail::prepare_joint(read, j);
-        tree_.add_load(read, j, h);
-        if (substep == 0 && !settings.warm_starting) detail::forget_impulses(j);
-        detail::warm_start_joint(bodies, j);
-      }
-      const bool exact = !tree_.empty() && tree_.factor(read, joints);
-      if (exact) tree_.warm_start(bodies, joints);
+      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
       for (contact_constraint<T>& c : contacts) detail::warm_start(bodies, c);
       for (int i = 0; i < settings.substep_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
         if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, true);
       }
-      for (std::size_t i = 0; i < bodies.size(); ++i) move(bodies[i], synced_[i], h);
+      for (std::size_t i = 0; i < bodies.size(); ++i) detail::move_body(bodies[i], synced_[i], h, fourth_order_);
       for (int i = 0; i < settings.relax_iterations; ++i) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
         if (exact) tree_.solve_velocities(bodies, joints);
         for (contact_constraint<T>& c : contacts) solve_contact(bodies, c, settings, moving, fixed, inverse_h, false);
       }
     }
-    for (std::size_t i = 0; i < bodies.size(); ++i) sync_momentum(bodies[i], synced_[i]);
+    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
   }
 
   /// The joints' drift removed once the step is done, as
@@ -132,43 +129,6 @@ class basic_soft_step {
   }
 
  private:
-  /// L changed by I_w times what forces and rows did to ω since it was
-  /// last in step with it (`synced`). Only that change passes through I_w:
-  /// converting L to ω and back at every substep drifted |L| in float by
-  /// 1.4 % in 10⁴ steps of a free body.
-  static void sync_momentum(solver_body<T>& b, vec3<T>& synced) noexcept {
-    if (b.inverse_mass == T(0)) return;
-    const principal_inertia<T>& p = b.principal;
-    const quat<T> turned = p.own_axes ? b.orientation : b.orientation * p.axes;
-    const vec3<T> change = inverse_rotate(turned, b.angular_velocity - synced);
-    b.angular_momentum += rotate(turned, vec3<T>{change.x * p.moments.x, change.y * p.moments.y, change.z * p.moments.z});
-    synced = b.angular_velocity;
-  }
-
-  /// Moves a body over a substep: a straight line, and the torque-free
-  /// turn with its L held (free_rotation.hpp); ω and I_w⁻¹ are then those
-  /// of the pose reached, so the gyroscopic term is in the turn.
-  static void move(solver_body<T>& b, vec3<T>& synced, T h) noexcept {
-    b.position += b.linear_velocity * h;
-    const principal_inertia<T>& p = b.principal;
-    // A body whose moments are all equal (a sphere, a cube) has the same
-    // I_w at every pose: it turns exactly at the ω it has.
-    if (b.inverse_mass == T(0) || p.isotropic()) {
-      b.orientation = integrate(b.orientation, b.angular_velocity, h);
-      return;
-    }
-    sync_momentum(b, synced);
-    b.orientation = free_turn(b.orientation, p, b.angular_momentum, h);
-    // I_w⁻¹ = Σ (1/I_i)·r_i·r_iᵀ over the principal axes r_i in the world;
-    // 1/I_i is the reference's rate plus axis i's.
-    const mat3<T> axes = to_mat3(p.own_axes ? b.orientation : b.orientation * p.axes);
-    b.inverse_inertia = outer(axes.col[0], axes.col[0] * (p.rate + p.rates.x)) +
-                        outer(axes.col[1], axes.col[1] * (p.rate + p.rates.y)) +
-                        outer(axes.col[2], axes.col[2] * (p.rate + p.rates.z));
-    b.angular_velocity = b.inverse_inertia * b.angular_momentum;
-    synced = b.angular_velocity;
-  }
-
   void solve_contact(std::span<solver_body<T>> bodies, contact_constraint<T>& c, const settings_type& settings,
                      const softness<T>& moving, const softness<T>& fixed, T inverse_h, bool push_out) const noexcept {
     solver_body<T>& a = bodies[c.body_a];
@@ -200,6 +160,7 @@ class basic_soft_step {
 
   std::vector<vec3<T>> start_;   // each body's position at the start of the step
   std::vector<vec3<T>> synced_;  // each body's ω when its L was last brought in step (sync_momentum)
+  bool fourth_order_ = false;
   detail::joint_tree<T> tree_;
 };
 

@@ -22,19 +22,22 @@ namespace impulse {
 template <scalar_type T>
 struct solver_settings {
   /// Projected Gauss–Seidel sweeps over every contact's velocity rows per
-  /// step (sequential_impulse; soft_step's restitution pass). A 10-box
-  /// tower holds for 80 s at 6 or more (rest_depth says why it did not);
-  /// the 20-row pyramid moves about half a millimetre in 20 s at 10 or
-  /// 20; the 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at
-  /// 10 and 5.5 mm at 20. ODE's quickstep also takes 20, Bullet 10.
+  /// part of a step (sequential_impulse, whose own default is 8 in each of
+  /// its 4 parts: sequential_impulse_settings) and the most sweeps of the
+  /// restitution pass (both solvers). In one part, a 10-box tower holds for
+  /// 80 s at 6 or more (rest_depth says why it did not); the 20-row
+  /// pyramid moves about half a millimetre in 20 s at 10 or 20; the
+  /// 100-row pyramid of 100 kg boxes moves 5.5 cm in 200 steps at 10 and
+  /// 5.5 mm at 20. ODE's quickstep also takes 20, Bullet 10.
   /// docs/world.md has the measurements.
   int velocity_iterations = 20;
-  /// Sweeps of the split-impulse position pass (sequential_impulse): only
-  /// the normal rows, on pseudo-velocities that move the bodies this step
-  /// and are then forgotten. Also the passes that move the bodies back
-  /// onto their joints after each step (both solvers; joint_correction),
-  /// after which joint trees not yet settled take further Newton steps,
-  /// up to 8 per pass in all (joint_tree.hpp, project_joints).
+  /// Sweeps of the split-impulse position pass (sequential_impulse, in
+  /// the last part of its step): only the normal rows, on pseudo-velocities
+  /// that move the bodies this part and are then forgotten. Also the
+  /// passes that move the bodies back onto their joints after each step
+  /// (both solvers; joint_correction), after which joint trees not yet settled take
+  /// further Newton steps, up to 8 per pass in all (joint_tree.hpp,
+  /// project_joints).
   int position_iterations = 4;
   /// Passes over the normal rows of one manifold each time it is visited.
   /// They are coupled through the bodies' rotation (a corner's impulse
@@ -147,14 +150,19 @@ struct sequential_impulse_settings : solver_settings<T> {
   /// 100-row pyramid of 100 kg boxes sags 5.5 mm in 200 steps at 3 µm,
   /// 6.1 mm at zero, 10.7 mm at 10 µm.
   T rest_depth = T(0.000003);
-  /// The step's solve taken in this many equal parts, each with
-  /// velocity_iterations sweeps, the bodies moved after each and the
-  /// contacts carried with them (collision runs once a step). The step's
-  /// length, not the number of sweeps, sets how tall a tower stands
-  /// (docs/stacks.md): 4 parts of 8 sweeps hold towers of 20 and 30 boxes
-  /// and a 1:1000 stack, and 2 parts a top spinning at 300 rad/s, where 1
-  /// part of 20 sweeps lets them fall (docs/world.md, "A step in parts").
-  int substeps = 1;
+  /// The step taken in this many equal parts, each with
+  /// velocity_iterations sweeps, the bodies moved after each (collision
+  /// and the rows' preparation once a step; sequential_impulse.hpp). A
+  /// part's length, not the number of sweeps, sets how tall a tower stands
+  /// (docs/stacks.md): 4 parts of 8 sweeps hold towers of 20 and 30 boxes,
+  /// a 1:1000 stack and a top spinning at 300 rad/s, where 1 part of 20
+  /// sweeps lets all three fall; they cost 1.4 times as much on `pile`
+  /// (docs/world.md, "A step in parts").
+  int substeps = 4;
+
+  /// Its sweeps are per part: 8, 32 a step. 6 in 4 parts let a tower of
+  /// 30 boxes fall; 4 in 6 parts let the 1:1000 stack collapse.
+  sequential_impulse_settings() noexcept { this->velocity_iterations = 8; }
 
   void validate() const {
     solver_settings<T>::validate();

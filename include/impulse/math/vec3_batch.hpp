@@ -55,6 +55,11 @@ batch<T, W> dot(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
 }
 
 template <scalar_type T, int W>
+vec3_batch<T, W> cross(const vec3_batch<T, W>& a, const vec3_batch<T, W>& b) noexcept {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <scalar_type T, int W>
 batch<T, W> length_squared(const vec3_batch<T, W>& a) noexcept {
   return dot(a, a);
 }

@@ -43,20 +43,6 @@ struct contact_update {
     update_contacts();
   }
 
-  /// Carries every awake touching pair's manifolds with its bodies, with
-  /// no pair test (reuse_manifolds, whatever the distance moved): between
-  /// the parts of a step solved in parts (solve.hpp), so each part sees
-  /// the contacts as the last one left them.
-  void carry() {
-    const reuse_limits any{std::numeric_limits<T>::infinity(), T(-1)};
-    for (const std::uint32_t k : state.awake_contacts) {
-      contact_record<T>& c = state.contacts[k];
-      if (!c.tested || c.manifold_count == 0) continue;
-      const transform<T> pose_a = shape_pose_of(state.bodies[c.a]), pose_b = shape_pose_of(state.bodies[c.b]);
-      reuse_manifolds(c, pose_a, {inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation}, any);
-    }
-  }
-
  private:
   void update_broad_phase(T h) {
     for (const std::uint32_t i : state.awake_bodies) {

@@ -49,24 +49,8 @@ struct body_solve {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
-  /// Solves and moves the bodies over dt (above): in equal parts, for a
-  /// solver whose settings ask for them (sequential_impulse_settings::
-  /// substeps), the contacts carried with the bodies between the parts.
+  /// Solves and moves the bodies over dt (above).
   void run(T dt) {
-    int parts = 1;
-    if constexpr (!solver_type::moves_bodies && requires { state.settings.solver.substeps; })
-      parts = state.settings.solver.substeps;
-    for (int k = 0; k < parts; ++k) {
-      if (k > 0) contact_update<Config>{state, scratch}.carry();
-      run_part(dt / T(parts), k == 0, k + 1 == parts);
-    }
-  }
-
- private:
-  /// One part of the step, dt long: the first keeps where the bodies
-  /// started (interpolation and holds go back to it), the last clears the
-  /// loads, which act on every part.
-  void run_part(T dt, bool first, bool last) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
     state.refresh_awake();
     settle_sleepers();
@@ -104,7 +88,7 @@ struct body_solve {
       }
     }
     // How long the bodies move in a straight line at a time: the solver's
-    // impulse step (a substepping solver's substep).
+    // impulse step (a part's or substep's length).
     const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
     scratch.constraints.clear();
     scratch.sources.clear();
@@ -156,8 +140,9 @@ struct body_solve {
         // level part over the step by ½dt²·(ω_B×(ω_B×r_B) − ω_A×(ω_A×r_A)):
         // a box stuck 2 m out on a platform turning at 1 rad/s crept
         // outward 1.7 cm/s. Friction holds the patch at the relative
-        // velocity that cancels it (per substep, for a substepping solver,
-        // which moves the bodies in straight lines that much shorter).
+        // velocity that cancels it, over the solver's impulse step (a part
+        // or substep: sequential_impulse turns the levers between its
+        // parts, contact_batch.hpp, retarget_batch).
         const solver_body<T>& sa = scratch.solver_bodies[ia];
         const solver_body<T>& sb = scratch.solver_bodies[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
@@ -201,6 +186,8 @@ struct body_solve {
     state.counts.solved_manifolds = scratch.constraints.size();
     state.counts.solved_joints = scratch.joint_sources.size();
     state.counts.solved_springs = scratch.spring_sources.size();
+    if constexpr (requires { scratch.solver.set_fourth_order_turns(true); })
+      scratch.solver.set_fourth_order_turns(integrator::order >= 4);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -215,7 +202,7 @@ struct body_solve {
     for (std::size_t i = 0; i < count; ++i) {
       body_record<T>& r = bodies[scratch.solver_dense[i]];
       rigid_body<T>& b = r.body;
-      if (first) r.previous = b.pose();
+      r.previous = b.pose();
       if (scratch.is_held(std::uint32_t(i))) {
         b.linear_momentum = {};
         b.angular_momentum = {};
@@ -258,11 +245,12 @@ struct body_solve {
       } else if (b.type == body_type::kinematic) {
         if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
       }
-      if (last) b.clear_loads();
+      b.clear_loads();
     }
     if (!scratch.joints.empty()) project_joints();
   }
 
+ private:
   /// The springs with a solved body, after the joints: each a distance row
   /// of its stiffness and damping (joint.hpp, soften_absolute), from its
   /// point on A to its point on B or, anchored, to the anchor on the
