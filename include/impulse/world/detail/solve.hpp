@@ -3,7 +3,8 @@
 // (sequential_impulse, soft_step), which applies this step's forces, solves
 // the contacts and the joints (joint.hpp; trees of joints exactly,
 // joint_tree.hpp) and, if it moves the bodies itself, moves them; then the
-// write-back: the bodies moved (or left where the solver moved them),
+// write-back: the bodies left where the solver moved them (or moved, for a
+// user's solver that leaves the motion to the world),
 // moved back onto their joints (project_joints), the impulses
 // kept for the next step's warm start, and the joints that pulled harder
 // than their thresholds broken.
@@ -18,9 +19,10 @@
 // gyroscopic motion, ω turning as the body turns, needs no term of its
 // own. Forces are held constant over a step, so every integrator gives the
 // same velocity change, F·dt/m; a world without collision (force_motion.hpp)
-// is where the policies differ. A solver that moves the bodies itself
-// (soft_step) turns them the same way substep by substep and keeps each
-// body's L in step with the ω its rows change; the world takes that L.
+// is where the policies differ. Both shipped solvers move the bodies
+// themselves (sequential_impulse part by part, soft_step substep by
+// substep), turning them the same way and keeping each body's L in step
+// with the ω their rows change; the world takes that L.
 //
 // A body that the step would take past the world's speed limits or out of
 // finite numbers is held (step_scratch::hold): before the solve if its
