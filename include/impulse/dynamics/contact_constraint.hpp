@@ -76,9 +76,6 @@ struct contact_constraint_point {
   // body's spin, I⁻¹·(r × n): worked out once per step, so that an
   // iteration is dot products and additions.
   vec3<T> arm_a{}, arm_b{};
-  /// The offsets in each body's own frame at the start of the step
-  /// (soft_step turns them with the body between substeps).
-  vec3<T> local_a{}, local_b{};
   vec3<T> turn_a{}, turn_b{};
   T normal_mass = T(0);     ///< 1 / (J M⁻¹ Jᵀ) of the normal row, kg
   T depth = T(0);           ///< at the start of the step, m (< 0: a gap, up to max_speculative_distance)

@@ -156,7 +156,8 @@ class basic_sequential_impulse {
           detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
-          turn_levers(contacts[graph_.leftover()[k]], leftover_slips_[k]);
+          detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
+                                    leftover_slips_[k]);
       } else {
         for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
@@ -183,7 +184,7 @@ class basic_sequential_impulse {
           // normal rows, solved last, are the ones that must hold (no
           // sinking).
           detail::solve_batch_friction(v, b, rows_of(b));
-          detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, false);
+          detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, real);
         }
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
@@ -197,7 +198,7 @@ class basic_sequential_impulse {
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
         for (batch_type& b : batches_) {
           detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-          detail::solve_batch_normals(v, b, rows_of(b), settings.manifold_sweeps, true);
+          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, pseudo);
         }
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
@@ -273,16 +274,6 @@ class basic_sequential_impulse {
     }
   }
 
-  /// A leftover manifold's slip targets in a later part, from those the
-  /// step began with (`base`), as retarget_batch.
-  void turn_levers(contact_constraint<T>& c, const std::pair<T, T>& base) const noexcept {
-    const displacement& a = moved_[c.body_a];
-    const displacement& b = moved_[c.body_b];
-    const vec3<T> turned = cross(b.spin, cross(b.angular, c.anchor_b)) - cross(a.spin, cross(a.angular, c.anchor_a));
-    c.slip_target1 = base.first - dot(c.tangent1, turned);
-    c.slip_target2 = base.second - dot(c.tangent2, turned);
-  }
-
   std::span<row_type> rows_of(const batch_type& b) noexcept {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
   }
@@ -315,12 +306,7 @@ class basic_sequential_impulse {
                           std::span<const displacement> moved) noexcept {
     for (int i = 0; i < c.count; ++i) {
       contact_constraint_point<T>& p = c.points[i];
-      T depth = p.depth;
-      if (!moved.empty()) {
-        const displacement& a = moved[c.body_a];
-        const displacement& b = moved[c.body_b];
-        depth -= detail::normal_speed(a.linear, a.angular, b.linear, b.angular, c.normal, p);
-      }
+      const T depth = moved.empty() ? p.depth : detail::depth_now(c, p, moved);
       p.gap_speed = depth < rule.rest_depth ? (rule.rest_depth - depth) * rule.inverse_substep : T(0);
       p.push_speed = depth > rule.linear_slop
                          ? std::min(rule.position_correction * (depth - rule.linear_slop) * rule.inverse_substep,

@@ -22,11 +22,13 @@
 #include <limits>
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../../core/batch.hpp"
 #include "../../math/vec3_batch.hpp"
 #include "../contact_constraint.hpp"
+#include "../softness.hpp"
 
 namespace impulse::detail {
 
@@ -46,7 +48,10 @@ struct contact_batch {
     lanes mass;              ///< kg
     lanes depth;             ///< m: at the start of the step (contact_constraint_point::depth)
     lanes gap_speed;         ///< m/s: the approach the row allows (contact_constraint_point::gap_speed)
-    lanes push_speed;        ///< m/s: the position pass's target separation speed
+    /// m/s: the speed a pushing pass asks the point to separate at:
+    /// sequential_impulse's position pass, or soft_step's soft sweep
+    /// (soft_targets_batch)
+    lanes push_speed;
     lanes position_mass;     ///< kg: `mass` where the point is deeper than the slop, else 0
     lanes impulse;           ///< N·s
     lanes bias_impulse;      ///< N·s, of the position pass
@@ -79,6 +84,9 @@ struct contact_batch {
   lanes tangent_impulse1{}, tangent_impulse2{};
   vectors twist_a{}, twist_b{};
   lanes twist_mass{}, twist_radius{}, twist_impulse{};
+  /// soft_step's softness of each lane's pushing rows: its rate, mass
+  /// scale and leak (softness.hpp; soften_batch).
+  lanes soft_rate{}, soft_mass_scale{}, soft_leak{};
 };
 
 /// The velocities of a batch's bodies, in lanes.
@@ -203,13 +211,26 @@ struct row_target_rule {
   T inverse_substep;
 };
 
-/// The rows' targets once the bodies have moved by `moved`: each point's
-/// depth is the depth found less how far its bodies have moved apart along
-/// the normal since, n·(Δx_B − Δx_A) + θ_B·(r_B × n) − θ_A·(r_A × n) (to
-/// first order in their turns, which a part keeps small). The position
-/// pass's impulses start again from zero: its pseudo-velocities are a
-/// part's.
-///
+/// How far a batch's bodies have moved since the start of the step, in
+/// lanes (body_displacement).
+template <scalar_type T, int W>
+struct batch_displacement {
+  vec3_batch<T, W> linear_a{}, angular_a{}, spin_a{}, linear_b{}, angular_b{}, spin_b{};
+};
+
+template <scalar_type T, int W>
+[[nodiscard]] batch_displacement<T, W> gather_displacement(const contact_batch<T, W>& in,
+                                                           std::span<const body_displacement<T>> moved) noexcept {
+  batch_displacement<T, W> d;
+  for (int l = 0; l < in.size; ++l) {
+    const body_displacement<T>& a = moved[in.body_a[l]];
+    const body_displacement<T>& b = moved[in.body_b[l]];
+    d.linear_a.set_lane(l, a.linear), d.angular_a.set_lane(l, a.angular), d.spin_a.set_lane(l, a.spin);
+    d.linear_b.set_lane(l, b.linear), d.angular_b.set_lane(l, b.angular), d.spin_b.set_lane(l, b.spin);
+  }
+  return d;
+}
+
 /// The friction rows keep the step's levers r, while the material points
 /// that met at the patch have turned with their bodies: two such points
 /// moving together are seen by the rows to slip at ω_B×(θ_B×r_B) −
@@ -218,32 +239,107 @@ struct row_target_rule {
 /// its velocity in the first of 4 parts, where its friction bound is a
 /// quarter of the step's, and crept outward 2 mm/s.
 template <scalar_type T, int W>
+void turn_slip_targets(contact_batch<T, W>& in, const batch_displacement<T, W>& d) noexcept {
+  const vec3_batch<T, W> turned =
+      cross(d.spin_b, cross(d.angular_b, in.anchor_b)) - cross(d.spin_a, cross(d.angular_a, in.anchor_a));
+  in.slip_target1 = in.slip_base1 - dot(in.tangent1, turned);
+  in.slip_target2 = in.slip_base2 - dot(in.tangent2, turned);
+}
+
+/// Each of a batch's points' depth once the bodies have moved by `d`: the
+/// depth found less how far its bodies have moved apart along the normal
+/// since, n·(Δx_B − Δx_A) + θ_B·(r_B × n) − θ_A·(r_A × n) (to first order
+/// in their turns, which a part keeps small). `depths` holds one per row.
+template <scalar_type T, int W>
+void depths_now(const contact_batch<T, W>& in, std::span<const batch_row<T, W>> rows,
+                const batch_displacement<T, W>& d, batch<T, W>* depths) noexcept {
+  const batch<T, W> apart_centers = dot(in.normal, d.linear_b - d.linear_a);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    depths[i] = rows[i].depth - (apart_centers + dot(d.angular_b, rows[i].arm_b) - dot(d.angular_a, rows[i].arm_a));
+}
+
+/// A manifold solved alone (one the coloring left over): its slip targets
+/// once the bodies have moved by `moved`, from those the step began with
+/// (`base`), as turn_slip_targets.
+template <scalar_type T>
+void turn_slip_targets(contact_constraint<T>& c, std::span<const body_displacement<T>> moved,
+                       const std::pair<T, T>& base) noexcept {
+  const body_displacement<T>& a = moved[c.body_a];
+  const body_displacement<T>& b = moved[c.body_b];
+  const vec3<T> turned = cross(b.spin, cross(b.angular, c.anchor_b)) - cross(a.spin, cross(a.angular, c.anchor_a));
+  c.slip_target1 = base.first - dot(c.tangent1, turned);
+  c.slip_target2 = base.second - dot(c.tangent2, turned);
+}
+
+/// A manifold's point's depth once the bodies have moved by `moved`, as
+/// depths_now.
+template <scalar_type T>
+[[nodiscard]] T depth_now(const contact_constraint<T>& c, const contact_constraint_point<T>& p,
+                          std::span<const body_displacement<T>> moved) noexcept {
+  const body_displacement<T>& a = moved[c.body_a];
+  const body_displacement<T>& b = moved[c.body_b];
+  return p.depth - (dot(c.normal, b.linear - a.linear) + dot(b.angular, p.arm_b) - dot(a.angular, p.arm_a));
+}
+
+/// The rows' targets once the bodies have moved by `moved` (depths_now,
+/// turn_slip_targets). The position pass's impulses start again from
+/// zero: its pseudo-velocities are a part's.
+template <scalar_type T, int W>
 void retarget_batch(contact_batch<T, W>& in, std::span<batch_row<T, W>> rows,
                     std::span<const body_displacement<T>> moved, const row_target_rule<T>& rule) noexcept {
   using lanes = batch<T, W>;
-  vec3_batch<T, W> xa{}, ta{}, wa{}, xb{}, tb{}, wb{};
-  for (int l = 0; l < in.size; ++l) {
-    const body_displacement<T>& a = moved[in.body_a[l]];
-    const body_displacement<T>& b = moved[in.body_b[l]];
-    xa.set_lane(l, a.linear), ta.set_lane(l, a.angular), wa.set_lane(l, a.spin);
-    xb.set_lane(l, b.linear), tb.set_lane(l, b.angular), wb.set_lane(l, b.spin);
-  }
-  const vec3_batch<T, W> turned = cross(wb, cross(tb, in.anchor_b)) - cross(wa, cross(ta, in.anchor_a));
-  in.slip_target1 = in.slip_base1 - dot(in.tangent1, turned);
-  in.slip_target2 = in.slip_base2 - dot(in.tangent2, turned);
+  const batch_displacement<T, W> d = gather_displacement(in, moved);
+  turn_slip_targets(in, d);
+  lanes depths[contact_manifold<T>::capacity];
+  depths_now(in, std::span<const batch_row<T, W>>(rows), d, depths);
   const lanes zero = lanes::broadcast(T(0));
   const lanes rest = lanes::broadcast(rule.rest_depth), slop = lanes::broadcast(rule.linear_slop);
   const lanes push_rate = lanes::broadcast(rule.position_correction * rule.inverse_substep);
   const lanes fastest = lanes::broadcast(rule.max_correction_speed);
   const lanes close_rate = lanes::broadcast(rule.inverse_substep);
-  const lanes apart_centers = dot(in.normal, xb - xa);
-  for (batch_row<T, W>& r : rows) {
-    const lanes depth = r.depth - (apart_centers + dot(tb, r.arm_b) - dot(ta, r.arm_a));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    batch_row<T, W>& r = rows[i];
+    const lanes depth = depths[i];
     r.gap_speed = max(rest - depth, zero) * close_rate;
     const auto pushed = depth > slop;
     r.push_speed = select(pushed, min(push_rate * (depth - slop), fastest), zero);
     r.position_mass = select(pushed, r.mass, zero);
     r.bias_impulse = zero;
+  }
+}
+
+/// soft_step's softness in each lane of a batch: `fixed` where a body
+/// cannot move, `moving` elsewhere.
+template <scalar_type T, int W>
+void soften_batch(contact_batch<T, W>& in, const softness<T>& moving, const softness<T>& fixed) noexcept {
+  for (int l = 0; l < in.size; ++l) {
+    const softness<T>& s = in.inverse_mass_a[l] == T(0) || in.inverse_mass_b[l] == T(0) ? fixed : moving;
+    in.soft_rate.set(l, s.bias_rate);
+    in.soft_mass_scale.set(l, s.mass_scale);
+    in.soft_leak.set(l, s.impulse_scale);
+  }
+}
+
+/// What soft_step's rows ask, from each point's depth now (depths_now):
+/// a point apart closes its gap within the substep and no more (gap
+/// speed); one that is not, in the soft sweep, is pushed out at the lane's
+/// soft rate times its depth beyond the slop, at most `fastest` (push
+/// speed; soft_step.hpp). The relax sweep asks the gap speed alone. The
+/// bodies do not move between a relax sweep and the next substep's soft
+/// sweep, so one call serves both.
+template <scalar_type T, int W>
+void soft_targets_batch(contact_batch<T, W>& in, std::span<batch_row<T, W>> rows,
+                        std::span<const body_displacement<T>> moved, T slop, T fastest, T inverse_substep) noexcept {
+  using lanes = batch<T, W>;
+  const batch_displacement<T, W> d = gather_displacement(in, moved);
+  turn_slip_targets(in, d);
+  lanes depths[contact_manifold<T>::capacity];
+  depths_now(in, std::span<const batch_row<T, W>>(rows), d, depths);
+  const lanes zero = lanes::broadcast(T(0)), close_rate = lanes::broadcast(inverse_substep);
+  const lanes slop_lanes = lanes::broadcast(slop), fastest_lanes = lanes::broadcast(fastest);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].gap_speed = max(-depths[i], zero) * close_rate;
+    rows[i].push_speed = min(in.soft_rate * max(depths[i] - slop_lanes, zero), fastest_lanes);
   }
 }
 
@@ -400,10 +496,17 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
   }
 }
 
+/// The passes solve_batch_normals makes: sequential_impulse's velocity
+/// rows and its position pass, and soft_step's soft and relax sweeps.
+enum class normal_pass { velocity, position, soft, relax };
+
 /// `sweeps` passes over the normal rows (sequential_impulse.hpp says why
-/// more than one): on the velocities, each row closing at most its gap
-/// (`position` false), or on the pseudo-velocities, pushing points deeper
-/// than the slop apart (`position` true).
+/// more than one). On the velocities (`velocity`, `relax`), each row
+/// closing at most its gap; on the pseudo-velocities (`position`), pushing
+/// points deeper than the slop apart; in soft_step's soft sweep (`soft`),
+/// a row that is not apart (gap speed 0, soft_targets_batch) is a soft row
+/// (softness.hpp), pushed out at its push speed, its mass scaled and part
+/// of its impulse leaked at each update.
 ///
 /// Within the passes the rows see the bodies only through each other: an
 /// impulse d on row i changes row k's normal speed by K_ki·d, K the
@@ -411,28 +514,37 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
 /// numbers) rather than on the bodies' velocities (twelve), and the
 /// impulses reach the bodies once, summed, at the end. The result is the
 /// same; each row's step waits on three operations instead of a dozen.
-template <scalar_type T, int W>
+template <normal_pass Pass, scalar_type T, int W>
 void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& in, std::span<batch_row<T, W>> rows,
-                         int sweeps, bool position) noexcept {
+                         int sweeps) noexcept {
   using lanes = batch<T, W>;
   constexpr int capacity = contact_manifold<T>::capacity;
+  constexpr bool position = Pass == normal_pass::position, soft = Pass == normal_pass::soft;
   const lanes zero = lanes::broadcast(T(0));
   const int n = int(rows.size());
-  // A single row is solved exactly by its first pass.
-  if (n == 1) sweeps = 1;
+  // A single rigid row is solved exactly by its first pass.
+  if (n == 1 && !soft) sweeps = 1;
   const vec3_batch<T, W> dv = v.vb - v.va;
-  lanes speed[capacity], first[capacity];
+  lanes speed[capacity], first[capacity], mass[capacity], target[capacity], leak[capacity];
   for (int i = 0; i < n; ++i) {
     const batch_row<T, W>& r = rows[std::size_t(i)];
     speed[i] = dot(in.normal, dv) + dot(v.wb, r.arm_b) - dot(v.wa, r.arm_a);
     first[i] = position ? r.bias_impulse : r.impulse;
+    target[i] = position ? -r.push_speed : soft ? r.gap_speed - r.push_speed : r.gap_speed;
+    mass[i] = position ? r.position_mass : r.mass;
+    if constexpr (soft) {
+      const auto pushing = r.gap_speed <= zero;
+      mass[i] = select(pushing, r.mass * in.soft_mass_scale, r.mass);
+      leak[i] = select(pushing, in.soft_leak, zero);
+    }
   }
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int i = 0; i < n; ++i) {
       batch_row<T, W>& r = rows[std::size_t(i)];
       lanes& total = position ? r.bias_impulse : r.impulse;
-      const lanes next = position ? max(total - r.position_mass * (speed[i] - r.push_speed), zero)
-                                  : max(total - r.mass * (speed[i] + r.gap_speed), zero);
+      lanes next = total - mass[i] * (speed[i] + target[i]);
+      if constexpr (soft) next = next - leak[i] * total;
+      next = max(next, zero);
       const lanes delta = next - total;
       total = next;
       for (int k = 0; k < n; ++k) speed[k] = speed[k] + r.coupling[k] * delta;
