@@ -17,6 +17,9 @@
 //       N unit boxes stacked as docs/stacks.md's tower, 60 s: prints the
 //       top's drift and height lost every 10 s, or when it falls;
 //       `norecycle` turns Box3D's contact recycling off
+//   box3d_scenes stack R [pair]
+//       unit boxes of 1, R, 1, R kg stacked (two, 1 under R, with `pair`),
+//       10 s: prints the top's greatest sink and slide
 //
 // World defaults (4 substeps, 30 Hz contacts, one worker), sleeping off,
 // gravity (0, -9.81, 0), dt 1/60 s; mass 1 per body unless a scene says.
@@ -100,6 +103,28 @@ static int tower(int n, bool no_recycling) {
   return 0;
 }
 
+/// Four unit boxes stacked light, heavy, light, heavy (bottom first; the
+/// light ones 1 kg, the heavy ones `ratio` kg), 10 s: the top's greatest
+/// sink and slide, as tests/world/test_substeps.cpp measures them; or two,
+/// light under heavy, with `pair`.
+static int stack(float ratio, bool pair) {
+  world = make_world();
+  add_box(b3_staticBody, (b3Vec3){0, -1, 0}, (b3Vec3){100, 1, 100}, 1);
+  b3BodyId top = b3_nullBodyId;
+  const int n = pair ? 2 : 4;
+  for (int k = 0; k < n; ++k) top = add_box(b3_dynamicBody, (b3Vec3){0, 0.5f + k, 0}, (b3Vec3){0.5f, 0.5f, 0.5f}, k % 2 ? ratio : 1);
+  const b3Pos start = b3Body_GetPosition(top);
+  float sink = 0, slide = 0;
+  for (int frame = 1; frame <= 600; ++frame) {
+    b3World_Step(world, 1.0f / 60, 4);
+    const b3Pos p = b3Body_GetPosition(top);
+    sink = fmaxf(sink, start.y - p.y);
+    slide = fmaxf(slide, hypotf(p.x - start.x, p.z - start.z));
+  }
+  printf("box3d stack 1:%g%s sink=%.3e slide=%.3e\n", ratio, pair ? " pair" : "", sink, slide);
+  return 0;
+}
+
 /// The standard scene `name` built in `world`; its number of steps.
 static int build(const char* name) {
   const bool large = strcmp(name, "large_pyramid") == 0;
@@ -145,11 +170,12 @@ static int build(const char* name) {
 
 int main(int argc, char** argv) {
   const char* name = argc > 1 ? argv[1] : "pile_nosleep";
+  if (strcmp(name, "stack") == 0) return stack(argc > 2 ? (float)atof(argv[2]) : 1000, argc > 3 && strcmp(argv[3], "pair") == 0);
   if (strcmp(name, "tower") == 0) return tower(argc > 2 ? atoi(argv[2]) : 20, argc > 3 && strcmp(argv[3], "norecycle") == 0);
   world = make_world();
   const int steps = build(name);
   if (steps == 0) {
-    fprintf(stderr, "usage: %s pile_nosleep | pyramid_nosleep | spheres_nosleep | large_pyramid | tower N [norecycle]\n",
+    fprintf(stderr, "usage: %s pile_nosleep | pyramid_nosleep | spheres_nosleep | large_pyramid | tower N [norecycle] | stack R [pair]\n",
             argv[0]);
     return 2;
   }

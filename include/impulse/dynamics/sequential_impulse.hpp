@@ -27,6 +27,10 @@
 //    are visited color by color, W that share no moving body at a time in
 //    SIMD lanes (constraint_graph.hpp, contact_batch.hpp); a manifold no
 //    color could take is solved alone after them.
+//    Each part's sweeps end with the support sweep (support_sweep.hpp):
+//    the normal rows once more from the ground up, each manifold solved as
+//    if its lower body could not move, which stops a stack in one pass
+//    whatever its masses (settings.support_sweep).
 // 5. Position pass, in the last part (split impulses; Catto's "Box2D: the
 //    position problem", Bullet's split impulse): the normal rows once more
 //    on separate pseudo-velocities, pushing penetration beyond the slop out
@@ -35,7 +39,8 @@
 //    Baumgarte term in the velocity rows would turn every correction into
 //    a bounce, and a box landing in a stack would pop the one beneath.
 //    Non-linear Gauss–Seidel on positions (Box2D v2) does the same at the
-//    cost of a contact re-evaluation per iteration.
+//    cost of a contact re-evaluation per iteration. It too ends with a
+//    support sweep.
 // 6. Motion, each part: the bodies move with the solved velocities plus
 //    the pseudo-velocities, each turned with its L held (free_rotation.hpp,
 //    solver_parts.hpp).
@@ -68,6 +73,7 @@
 #include "joint.hpp"
 #include "detail/joint_tree.hpp"
 #include "detail/solver_parts.hpp"
+#include "detail/support_sweep.hpp"
 #include "solver_settings.hpp"
 
 namespace impulse {
@@ -141,6 +147,7 @@ class basic_sequential_impulse {
     for (std::size_t k = 0; k < batches_.size(); ++k)
       detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
                          rows_);
+    if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
@@ -189,6 +196,10 @@ class basic_sequential_impulse {
         }
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
+      if (settings.support_sweep)
+        support_.template sweep<detail::support_kind::velocity>(bodies, std::span<const batch_type>(batches_),
+                                                                std::span<const row_type>(rows_),
+                                                                settings.manifold_sweeps);
       sweeps += settings.velocity_iterations;
       // The position pass, in the last part: it pushes the step's fraction
       // of each penetration out within it, for the cost of one part's.
@@ -203,6 +214,10 @@ class basic_sequential_impulse {
         }
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
       }
+      if (part + 1 == parts && settings.support_sweep)
+        support_.template sweep<detail::support_kind::position>(bodies, std::span<const batch_type>(batches_),
+                                                                std::span<const row_type>(rows_),
+                                                                settings.manifold_sweeps);
       // The bodies moved with the solved velocities plus the position
       // pass's pseudo-velocities, each turned with its L held.
       for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -241,6 +256,7 @@ class basic_sequential_impulse {
 
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
+  detail::support_order support_;
   std::vector<batch_type> batches_;
   std::vector<row_type> rows_;
   std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start, in parts
