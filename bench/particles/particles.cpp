@@ -11,7 +11,7 @@
 // fraction of what the machine can move, not as a lone time.
 //
 // Output: CSV on stdout,
-//   integrator,scalar,width,n,msteps_per_s,gb_per_s,bandwidth_fraction
+//   integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction
 // width is the batch width, or "aos" for the baseline.
 //
 // The cost of a step depends on the state (a particle on a plane takes the
@@ -19,7 +19,18 @@
 // steps 10 to 40 (t = 1/12 s to 1/3 s), restarted from a copy of the state
 // at step 10 for each timed run. Each figure is the median of the runs
 // (7, or 3 at N ≥ 10^6), with enough runs at small N that ≥ 0.1 s is timed.
-// --quick runs N ≤ 10^5, for a smoke test.
+//
+// Options:
+//   --quick            N ≤ 10^5, for a smoke test
+//   --n A,B,...        these N only
+//   --integrators L    a comma list of euler, symplectic_euler, midpoint, rk4
+//   --scalars L        float, double or both
+//   --no-aos           the SoA kernel only (no baseline, no copy roof)
+//   --steady           time the settled scene instead: 600 steps (5 s)
+//                      first, then 5 runs of at least 0.1 s each going on
+//                      from where the last stopped, median; the way a
+//                      kernel timed in a loop over many steps sees it
+// The threads column is the number of threads the kernel ran on (1).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -36,9 +47,31 @@ namespace ps = particles_scene;
 
 struct settings {
   std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000, 4000000};
+  std::vector<std::string> integrators{"euler", "symplectic_euler", "midpoint", "rk4"};
+  std::vector<std::string> scalars{"float", "double"};
   int repeats = 7;
   double min_seconds = 0.1;
+  bool aos = true, steady = false;
 };
+
+bool listed(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+std::vector<std::string> split(const char* text) {
+  std::vector<std::string> out;
+  std::string item;
+  for (const char* c = text;; ++c) {
+    if (*c == ',' || *c == 0) {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+      if (*c == 0) break;
+    } else {
+      item += *c;
+    }
+  }
+  return out;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -62,7 +95,23 @@ double seconds_per_call(F&& f, const settings& s) {
   return median(runs);
 }
 
-inline constexpr int warm_steps = 10, timed_steps = 30;
+inline constexpr int warm_steps = 10, timed_steps = 30, settle_steps = 600;
+
+/// Seconds per step of the settled scene (--steady): the runs go on from
+/// where the last one stopped, as a kernel timed in a loop over many steps
+/// sees it.
+template <class System>
+double seconds_per_steady_step(System& system, std::size_t n) {
+  using T = typename System::scalar;
+  const long steps = std::max(1L, long(2e7 / double(n)));
+  std::vector<double> per_step;
+  for (int r = 0; r < 5; ++r) {
+    const auto t0 = clock_type::now();
+    for (long k = 0; k < steps; ++k) system.step(T(particles_scene::dt));
+    per_step.push_back(std::chrono::duration<double>(clock_type::now() - t0).count() / double(steps));
+  }
+  return median(per_step);
+}
 
 /// Seconds per step over the scene's steps warm_steps … warm_steps +
 /// timed_steps, each run restarted from a copy of `start` (not timed).
@@ -164,8 +213,9 @@ struct row {
 
 void print(const row& r) {
   const double gb_per_s = r.steps_per_s * r.bytes_per_step / 1e9;
-  std::printf("%s,%s,%s,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.n,
-              r.steps_per_s / 1e6, gb_per_s, gb_per_s * 1e9 / r.roof);
+  const double fraction = r.roof > 0 ? gb_per_s * 1e9 / r.roof : 0.0;
+  std::printf("%s,%s,%s,1,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.n,
+              r.steps_per_s / 1e6, gb_per_s, fraction);
   std::fflush(stdout);
 }
 
@@ -176,13 +226,13 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
   const T dt = T(ps::dt);
   {
     system_type system = ps::make<config<T, I>>(n);
-    for (int k = 0; k < warm_steps; ++k) system.step(dt);
-    const double t = seconds_per_scene_step(system, n, s);
+    for (int k = 0; k < (s.steady ? settle_steps : warm_steps); ++k) system.step(dt);
+    const double t = s.steady ? seconds_per_steady_step(system, n) : seconds_per_scene_step(system, n, s);
     // Read and written: x, y, z, vx, vy, vz; read: inverse mass.
     print({integrator_name, scalar_name, std::to_string(system_type::width), n, double(n) / t,
            double(13 * sizeof(T)), roof_soa});
   }
-  {
+  if (s.aos) {
     aos_system<T, I> aos;
     impulse::lcg32 random{12345};
     aos.particles.resize(n);
@@ -198,15 +248,18 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
 
 template <class T>
 void run_scalar(std::size_t n, const settings& s) {
-  const double roof_soa = copy_bandwidth(n * 13 * sizeof(T), s);
-  const double roof_aos = copy_bandwidth(n * 2 * sizeof(particle<T>), s);
+  if (!listed(s.scalars, sizeof(T) == 4 ? "float" : "double")) return;
+  const double roof_soa = s.aos ? copy_bandwidth(n * 13 * sizeof(T), s) : 0.0;
+  const double roof_aos = s.aos ? copy_bandwidth(n * 2 * sizeof(particle<T>), s) : 0.0;
   namespace in = impulse::integrators;
-  run<T, in::euler>("euler", n, roof_soa, roof_aos, s);
-  run<T, in::symplectic_euler>("symplectic_euler", n, roof_soa, roof_aos, s);
-  run<T, in::midpoint>("midpoint", n, roof_soa, roof_aos, s);
-  run<T, in::rk4>("rk4", n, roof_soa, roof_aos, s);
-  std::fprintf(stderr, "copy roof at n = %zu (%s): %.2f GB/s soa footprint, %.2f GB/s aos footprint\n", n,
-               sizeof(T) == 4 ? "float" : "double", roof_soa / 1e9, roof_aos / 1e9);
+  if (listed(s.integrators, "euler")) run<T, in::euler>("euler", n, roof_soa, roof_aos, s);
+  if (listed(s.integrators, "symplectic_euler"))
+    run<T, in::symplectic_euler>("symplectic_euler", n, roof_soa, roof_aos, s);
+  if (listed(s.integrators, "midpoint")) run<T, in::midpoint>("midpoint", n, roof_soa, roof_aos, s);
+  if (listed(s.integrators, "rk4")) run<T, in::rk4>("rk4", n, roof_soa, roof_aos, s);
+  if (s.aos)
+    std::fprintf(stderr, "copy roof at n = %zu (%s): %.2f GB/s soa footprint, %.2f GB/s aos footprint\n", n,
+                 sizeof(T) == 4 ? "float" : "double", roof_soa / 1e9, roof_aos / 1e9);
 }
 
 }  // namespace
@@ -214,16 +267,31 @@ void run_scalar(std::size_t n, const settings& s) {
 int main(int argc, char** argv) {
   settings s;
   for (int i = 1; i < argc; ++i) {
+    const bool value = i + 1 < argc;
     if (std::strcmp(argv[i], "--quick") == 0) {
       s.sizes = {1000, 10000, 100000};
       s.repeats = 3;
       s.min_seconds = 0.02;
+    } else if (std::strcmp(argv[i], "--n") == 0 && value) {
+      s.sizes.clear();
+      for (const std::string& n : split(argv[++i])) s.sizes.push_back(std::size_t(std::stoull(n)));
+    } else if (std::strcmp(argv[i], "--integrators") == 0 && value) {
+      s.integrators = split(argv[++i]);
+    } else if (std::strcmp(argv[i], "--scalars") == 0 && value) {
+      s.scalars = split(argv[++i]);
+    } else if (std::strcmp(argv[i], "--no-aos") == 0) {
+      s.aos = false;
+    } else if (std::strcmp(argv[i], "--steady") == 0) {
+      s.steady = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--quick]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--quick] [--n A,B,...] [--integrators euler,symplectic_euler,midpoint,rk4] "
+                   "[--scalars float,double] [--no-aos] [--steady]\n",
+                   argv[0]);
       return 2;
     }
   }
-  std::printf("integrator,scalar,width,n,msteps_per_s,gb_per_s,bandwidth_fraction\n");
+  std::printf("integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction\n");
   for (std::size_t n : s.sizes) {
     run_scalar<float>(n, s);
     run_scalar<double>(n, s);

@@ -4810,15 +4810,18 @@ concept mechanical_system = requires(System& s, const X& x, const P& p) {
 };
 
 /// The second-order form x'' = a(x, v) as a mechanical system: p = v.
+/// Always inlined, as the integrators' steps are: the particle kernel
+/// calls them once a batch, and RK4's stages, left as calls by GCC 12,
+/// passed their states through memory.
 template <class Accel>
 struct second_order_system {
   Accel& accel;
   template <class S>
-  constexpr const S& position_rate(const S&, const S& v) const noexcept {
+  [[gnu::always_inline]] constexpr const S& position_rate(const S&, const S& v) const noexcept {
     return v;
   }
   template <class S>
-  constexpr S momentum_rate(const S& x, const S& v) const {
+  [[gnu::always_inline]] constexpr S momentum_rate(const S& x, const S& v) const {
     return accel(x, v);
   }
 };
@@ -4835,14 +4838,14 @@ struct symplectic_euler {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     p = p + system.momentum_rate(x, p) * h;
     x = drift(x, system.position_rate(x, p), h);
   }
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
@@ -5056,15 +5059,33 @@ struct batch_mask {
 
 namespace detail {
 
-/// Whether any lane of an all-ones/all-zeros integer vector is set: halves
-/// OR-ed together down to 16 bytes, then one byte-mask move (pmovmskb), in
-/// place of W lane extractions and branches.
+/// Whether any lane of an all-ones/all-zeros integer vector is set: one
+/// test instruction for 64 bytes (vptestmd, AVX-512) and 32 (vptest, AVX);
+/// otherwise halves OR-ed together down to 16 bytes, then one byte-mask move
+/// (pmovmskb), in place of W lane extractions and branches.
 template <class I, int W>
 bool any_lane_set(const lanes<I, W>& v) noexcept {
   constexpr int bytes = int(sizeof(I)) * W;
   if constexpr (W == 1) {
     return v != 0;
-  } else if constexpr (bytes > 16) {
+  }
+#if defined(__AVX512F__) && !defined(__clang__)  // clang has no builtin for vptestmd; it folds the halves
+  else if constexpr (bytes == 64) {
+    using ints16 = int __attribute__((vector_size(64)));
+    ints16 w;
+    __builtin_memcpy(&w, &v, 64);
+    return __builtin_ia32_ptestmd512(w, w, static_cast<unsigned short>(0xffff)) != 0;
+  }
+#endif
+#if defined(__AVX__)
+  else if constexpr (bytes == 32) {
+    using longs4 = long long __attribute__((vector_size(32)));
+    longs4 w;
+    __builtin_memcpy(&w, &v, 32);
+    return !__builtin_ia32_ptestz256(w, w);
+  }
+#endif
+  else if constexpr (bytes > 16) {
     lanes<I, W / 2> half[2];
     __builtin_memcpy(half, &v, sizeof v);
     const lanes<I, W / 2> either = half[0] | half[1];
@@ -5249,14 +5270,23 @@ batch<T, W> sqrt(batch<T, W> a) noexcept {
 
 namespace detail {
 
-/// The hardware estimate of 1/√a (relative error ≤ 1.5·2⁻¹², rsqrtps) for
-/// float lanes, in place; false when the target has none for this width.
+/// The hardware estimate of 1/√a for float lanes, in place: rsqrt14ps
+/// (relative error ≤ 2⁻¹⁴) for 16 lanes under AVX-512, rsqrtps (≤ 1.5·2⁻¹²)
+/// for 8 and 4; false when the target has none for this width. Without the
+/// AVX-512 instruction 16 lanes went through two 8-lane halves and the
+/// stack, and the particle kernel in float ran no faster than in double.
 template <class T, int W>
 bool lane_rsqrt_estimate(lanes<T, W>& a) noexcept {
   constexpr int bytes = int(sizeof(T)) * W;
   if constexpr (!std::is_same_v<T, float> || W == 1) {
     return false;
   }
+#if defined(__AVX512F__)
+  else if constexpr (bytes == 64) {
+    a = __builtin_ia32_rsqrt14ps512_mask(a, a, static_cast<unsigned short>(0xffff));
+    return true;
+  }
+#endif
 #if defined(__AVX__)
   else if constexpr (bytes == 32) {
     a = __builtin_ia32_rsqrtps256(a);
@@ -5276,6 +5306,36 @@ bool lane_rsqrt_estimate(lanes<T, W>& a) noexcept {
     lane_rsqrt_estimate<T, W / 2>(half[1]);
     __builtin_memcpy(&a, half, sizeof a);
     return true;
+  } else {
+    return false;
+  }
+}
+
+/// Whether lane_rsqrt_estimate has an estimate for W lanes of T on this
+/// target, known at compile time.
+template <class T, int W>
+constexpr bool has_rsqrt_estimate() noexcept {
+  constexpr int bytes = int(sizeof(T)) * W;
+  if constexpr (!std::is_same_v<T, float> || W == 1) {
+    return false;
+  }
+#if defined(__AVX512F__)
+  else if constexpr (bytes == 64) {
+    return true;
+  }
+#endif
+#if defined(__AVX__)
+  else if constexpr (bytes == 32) {
+    return true;
+  }
+#endif
+#if defined(__SSE__)
+  else if constexpr (bytes == 16) {
+    return true;
+  }
+#endif
+  else if constexpr (bytes > 16) {
+    return has_rsqrt_estimate<T, W / 2>();
   } else {
     return false;
   }
@@ -10310,7 +10370,7 @@ struct euler {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     const auto& dx = system.position_rate(x, p);
     const P dp = system.momentum_rate(x, p);
     x = drift(x, dx, h);
@@ -10319,7 +10379,7 @@ struct euler {
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
@@ -10354,7 +10414,7 @@ struct midpoint {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     const H half = h * H(0.5);
     const auto& dx0 = system.position_rate(x, p);
     const X x_mid = drift(x, dx0, half);
@@ -10367,7 +10427,7 @@ struct midpoint {
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
@@ -10382,6 +10442,7 @@ struct midpoint {
 // drift along the weighted mean of the four position rates.
 
 
+
 namespace impulse::integrators {
 
 struct rk4 {
@@ -10391,32 +10452,42 @@ struct rk4 {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     const H half = h * H(0.5);
-    // Stage states are named, so a rate returned by reference (the
-    // second-order adapter returns p itself) outlives its use.
+    // The stages' rates are summed as they come, k1 + 2·k2 + 2·k3 + k4,
+    // so at most one stage's state and rates are alive beside the sums:
+    // summed at the end, the particle kernel kept all eight rates and spilled
+    // them to the stack (it ran at 0.69 times a hand-written kernel's speed
+    // in float). Stage states are named, so a rate returned by reference
+    // (the second-order adapter returns p itself) outlives its use.
     const auto& k1x = system.position_rate(x, p);
     const P k1p = system.momentum_rate(x, p);
+    std::remove_cvref_t<decltype(k1x)> sum_x = k1x;
     const X x2 = drift(x, k1x, half);
     const P p2 = p + k1p * half;
+    P sum_p = k1p;
     const auto& k2x = system.position_rate(x2, p2);
     const P k2p = system.momentum_rate(x2, p2);
+    sum_x = sum_x + k2x * H(2);
+    sum_p = sum_p + k2p * H(2);
     const X x3 = drift(x, k2x, half);
     const P p3 = p + k2p * half;
     const auto& k3x = system.position_rate(x3, p3);
     const P k3p = system.momentum_rate(x3, p3);
+    sum_x = sum_x + k3x * H(2);
+    sum_p = sum_p + k3p * H(2);
     const X x4 = drift(x, k3x, h);
     const P p4 = p + k3p * h;
     const auto& k4x = system.position_rate(x4, p4);
     const P k4p = system.momentum_rate(x4, p4);
     const H sixth = h / H(6);
-    x = drift(x, k1x + (k2x + k3x) * H(2) + k4x, sixth);
-    p = p + (k1p + (k2p + k3p) * H(2) + k4p) * sixth;
+    x = drift(x, sum_x + k4x, sixth);
+    p = p + (sum_p + k4p) * sixth;
   }
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };
@@ -16523,31 +16594,48 @@ struct plane_collider {
 namespace detail {
 
 /// Velocity after contact with a plane of unit normal n (facing the particle)
-/// in the lanes of `touching`. Always inlined: as a call, its vector
-/// arguments go through memory (GCC 12 outlines it otherwise).
+/// in the lanes of `touching`: the normal speed into the plane times −e
+/// (`minus_restitution`), the tangential velocity times 1 − μ (`keep`).
+/// Always inlined: as a call, its vector arguments go through memory (GCC
+/// 12 outlines it otherwise).
 template <class T, int W>
-[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
-                    const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
+[[gnu::always_inline]] inline void plane_response(T minus_restitution, T keep, batch_mask<T, W> touching,
+                                                  const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
   const batch<T, W> vn = dot(v, n);
   const vec3_batch<T, W> tangential = v - n * vn;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
-  const batch<T, W> vn_after = select(touching & (vn < zero), vn * -plane.restitution, vn);
-  const batch<T, W> keep = select(touching, batch<T, W>::broadcast(T(1) - plane.friction),
-                                  batch<T, W>::broadcast(T(1)));
-  v = tangential * keep + n * vn_after;
+  const batch<T, W> vn_after = select(touching & (vn < zero), vn * minus_restitution, vn);
+  const batch<T, W> kept = select(touching, batch<T, W>::broadcast(keep), batch<T, W>::broadcast(T(1)));
+  v = tangential * kept + n * vn_after;
 }
 
-/// Half-space: lanes behind are projected onto the plane. Returns whether any was.
+/// A half-space as the particle kernel uses it, made from a plane_collider
+/// once a step: its normal and offset, −e, and 1 − μ (the tangential
+/// velocity kept); `risky` when pushing a lane out of it can leave the lane
+/// behind a plane checked before it (particle_system::prepare_planes).
+template <class T>
+struct half_space_rule {
+  vec3<T> normal;
+  T offset, minus_restitution, keep;
+  bool risky;
+
+  static half_space_rule of(const plane_collider<T>& plane, bool risky) noexcept {
+    return {plane.normal, plane.offset, -plane.restitution, T(1) - plane.friction, risky};
+  }
+};
+
+/// Half-space: lanes behind are projected onto the plane, and their
+/// velocities answered (plane_response). Returns whether any was.
 template <class T, int W>
-bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
-                        vec3_batch<T, W>& v) noexcept {
-  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
-  const batch<T, W> s = dot(x, n) + plane.offset;
+[[gnu::always_inline]] inline bool collide_half_space(const half_space_rule<T>& h, vec3_batch<T, W>& x,
+                                                      vec3_batch<T, W>& v) noexcept {
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
+  const batch<T, W> s = dot(x, n) + h.offset;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
   const batch_mask<T, W> behind = s < zero;
   if (none(behind)) return false;
   x = x - n * select(behind, s, zero);
-  plane_response(plane, behind, n, v);
+  plane_response(h.minus_restitution, h.keep, behind, n, v);
   return true;
 }
 
@@ -16617,7 +16705,7 @@ void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x
                  (T(1) + max_component(abs(plane.center)) + plane.half_u + plane.half_v);
   const vec3_batch<T, W> placed = p + n_side * skin;
   x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
-  plane_response(plane, hit, n_side, v);
+  plane_response(-plane.restitution, T(1) - plane.friction, hit, n_side, v);
 }
 
 }  // namespace detail
@@ -16834,9 +16922,13 @@ class particle_system {
   }
 
   /// Acceleration of a batch: the accelerations as they are plus the forces
-  /// over the mass. Only the listed forces are compiled in.
-  state acceleration(const state& x, const state& v, const lanes& inverse_mass,
-                     const particle_lanes<T, width>& p) const noexcept {
+  /// over the mass. Only the listed forces are compiled in. Always inlined:
+  /// called four times a step by RK4, GCC 12 outlined it, and each call
+  /// passed six batches and returned three through memory (35 % of RK4's
+  /// time in float).
+  [[gnu::always_inline]] static state acceleration(const std::tuple<Forces<T>...>& forces, const state& x,
+                                                  const state& v, const lanes& inverse_mass,
+                                                  const particle_lanes<T, width>& p) noexcept {
     state accel{}, force{};
     bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
     auto add = [&]<class F>(const F& f) {
@@ -16848,7 +16940,7 @@ class particle_system {
         have_force = true;
       }
     };
-    std::apply([&](const auto&... f) { (add(f), ...); }, forces_);
+    std::apply([&](const auto&... f) { (add(f), ...); }, forces);
     if (!have_force) return have_accel ? accel : state::broadcast({});
     return have_accel ? accel + force * inverse_mass : force * inverse_mass;
   }
@@ -16864,7 +16956,8 @@ class particle_system {
 
   /// Planes, then age: the part of a step after integration. x0 is where the
   /// batch started the step. Records the batch if a particle in it died.
-  void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v, T dt) {
+  [[gnu::always_inline]] void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v,
+                                           T dt) {
     if (!planes_.empty()) collide(x0, x, v);
     x.store(s.x, s.y, s.z);
     v.store(s.vx, s.vy, s.vz);
@@ -16875,17 +16968,37 @@ class particle_system {
     }
   }
 
-  void collide(const state& x0, state& x, state& v) const noexcept {
-    for (const plane_collider<T>& plane : planes_)
-      if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+  /// The planes: rectangles, then half-spaces, then the creases between
+  /// them when a projection may have left a lane behind another plane.
+  /// The rare parts take copies: a state passed by reference to a function
+  /// not inlined lives in memory, and the whole kernel then loaded and
+  /// stored it around every operation (the force and motion part of a
+  /// float Euler step ran at 0.45 times a hand-written kernel's speed).
+  [[gnu::always_inline]] void collide(const state& x0, state& x, state& v) const noexcept {
+    if (any_rectangle_) {
+      state xr = x, vr = v;
+      collide_rectangles(state(x0), xr, vr);
+      x = xr, v = vr;
+    }
     // Moving a lane out of plane k along n_k lowers its distance to plane j
     // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
     // checked before k (risky_[k]). The floor and its walls meet at right
     // angles, so most contacts skip the check below.
     bool check = false;
-    for (std::size_t k = 0; k < planes_.size(); ++k)
-      if (!planes_[k].finite && detail::collide_half_space(planes_[k], x, v)) check |= risky_[k] != 0;
+    for (const detail::half_space_rule<T>& h : half_spaces_)
+      if (detail::collide_half_space(h, x, v)) check |= h.risky;
     if (!check) return;
+    state xr = x, vr = v;
+    settle_creases(state(x0), xr, vr);
+    x = xr, v = vr;
+  }
+
+  [[gnu::noinline]] void collide_rectangles(const state& x0, state& x, state& v) const noexcept {
+    for (const plane_collider<T>& plane : planes_)
+      if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+  }
+
+  [[gnu::noinline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
     // Projecting onto one half-space can push a particle back behind another
     // that meets it at an acute angle (a crease). Cyclic projection would
     // converge there only geometrically, by cos² of the angle per sweep, so
@@ -16925,6 +17038,11 @@ class particle_system {
   }
 
   void step_fused(T dt) {
+    // The forces' parameters copied here: the columns are T too, so the
+    // compiler must assume that a store to a column may change a
+    // member's, and reloaded every parameter for every batch. A local copy
+    // it can keep in registers across the loop.
+    const std::tuple<Forces<T>...> forces = forces_;
     const std::size_t used = padded(size_);
     for (std::size_t first = 0; first < used; first += width) {
       const slice s = at(first);
@@ -16933,8 +17051,8 @@ class particle_system {
       state v = state::load(s.vx, s.vy, s.vz);
       const lanes inverse_mass = load_inverse_mass(s);
       const particle_lanes<T, width> p = load_lanes(s);
-      integrator::step(x, v, dt, [&](const state& xs, const state& vs) {
-        return acceleration(xs, vs, inverse_mass, p);
+      integrator::step(x, v, dt, [&](const state& xs, const state& vs) __attribute__((always_inline)) {
+        return acceleration(forces, xs, vs, inverse_mass, p);
       });
       finish_batch(s, first, x0, x, v, dt);
     }
@@ -16957,7 +17075,7 @@ class particle_system {
         for (std::size_t first = 0; first < used; first += width) {
           const slice s = at(first);
           const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-          acceleration(xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+          acceleration(forces_, xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
               a.data() + stride_ + first, a.data() + 2 * stride_ + first);
         }
         pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
@@ -16994,6 +17112,9 @@ class particle_system {
     const std::size_t k = planes_.size();
     crease_.assign(k * k, 0);
     risky_.assign(k, 0);
+    any_rectangle_ = false;
+    for (const plane_collider<T>& plane : planes_) any_rectangle_ |= plane.finite;
+    half_spaces_.clear();
     for (std::size_t a = 0; a < k; ++a)
       for (std::size_t b = 0; b < k; ++b) {
         if (a == b || planes_[a].finite || planes_[b].finite) continue;
@@ -17001,6 +17122,8 @@ class particle_system {
         crease_[a * k + b] = std::abs(c) < T(1) - T(1e-3);
         if (b < a && c < T(0)) risky_[a] = 1;
       }
+    for (std::size_t a = 0; a < k; ++a)
+      if (!planes_[a].finite) half_spaces_.push_back(detail::half_space_rule<T>::of(planes_[a], risky_[a] != 0));
   }
 
   // ---- storage upkeep -----------------------------------------------------------
@@ -17129,6 +17252,11 @@ class particle_system {
   aligned_array<T> x_, y_, z_, vx_, vy_, vz_, inverse_mass_, variation_, age_, lifetime_;
   std::vector<plane_collider<T>> planes_;
   std::vector<unsigned char> crease_, risky_;
+  bool any_rectangle_ = false;  // whether a plane is a rectangle (prepare_planes)
+  /// The half-spaces in the kernel's terms, made once a step
+  /// (prepare_planes): the loop over them reads 24 bytes a plane and no
+  /// flag, where it read each plane_collider's 60 and tested `finite`.
+  std::vector<detail::half_space_rule<T>> half_spaces_;
   std::vector<emitter<T>> emitters_;
   std::vector<std::size_t> died_batches_;
   std::array<aligned_array<T>*, 10> columns_{};
@@ -17222,10 +17350,17 @@ struct point_forces {
     for (std::size_t i = 0; i < count; ++i) {
       if (!points[i].enabled) continue;
       const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
-      // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
-      // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
-      const batch<T, W> inverse_r = rsqrt(length_squared(d) + softening);
-      f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      const batch<T, W> r2 = length_squared(d) + softening;
+      if constexpr (impulse::detail::has_rsqrt_estimate<T, W>()) {
+        // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
+        // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
+        const batch<T, W> inverse_r = rsqrt(r2);
+        f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      } else {
+        // Without an estimate, one square root and one division, as few as
+        // the law allows: 1/√ cubed took a division and three products.
+        f = f + d * (points[i].strength / (r2 * sqrt(r2)));
+      }
     }
     return f;
   }

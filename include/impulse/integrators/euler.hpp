@@ -17,7 +17,7 @@ struct euler {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     const auto& dx = system.position_rate(x, p);
     const P dp = system.momentum_rate(x, p);
     x = drift(x, dx, h);
@@ -26,7 +26,7 @@ struct euler {
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };

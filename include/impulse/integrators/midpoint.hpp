@@ -15,7 +15,7 @@ struct midpoint {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     const H half = h * H(0.5);
     const auto& dx0 = system.position_rate(x, p);
     const X x_mid = drift(x, dx0, half);
@@ -28,7 +28,7 @@ struct midpoint {
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };

@@ -58,15 +58,18 @@ concept mechanical_system = requires(System& s, const X& x, const P& p) {
 };
 
 /// The second-order form x'' = a(x, v) as a mechanical system: p = v.
+/// Always inlined, as the integrators' steps are: the particle kernel
+/// calls them once a batch, and RK4's stages, left as calls by GCC 12,
+/// passed their states through memory.
 template <class Accel>
 struct second_order_system {
   Accel& accel;
   template <class S>
-  constexpr const S& position_rate(const S&, const S& v) const noexcept {
+  [[gnu::always_inline]] constexpr const S& position_rate(const S&, const S& v) const noexcept {
     return v;
   }
   template <class S>
-  constexpr S momentum_rate(const S& x, const S& v) const {
+  [[gnu::always_inline]] constexpr S momentum_rate(const S& x, const S& v) const {
     return accel(x, v);
   }
 };

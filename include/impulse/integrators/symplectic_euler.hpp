@@ -20,14 +20,14 @@ struct symplectic_euler {
 
   template <class X, class P, class H, class System>
     requires ode_state<P, H> && mechanical_system<System, X, P>
-  static constexpr void advance(X& x, P& p, H h, System&& system) {
+  [[gnu::always_inline]] static constexpr void advance(X& x, P& p, H h, System&& system) {
     p = p + system.momentum_rate(x, p) * h;
     x = drift(x, system.position_rate(x, p), h);
   }
 
   template <class S, class H, class Accel>
     requires ode_state<S, H> && acceleration_field<Accel, S>
-  static constexpr void step(S& x, S& v, H h, Accel&& accel) {
+  [[gnu::always_inline]] static constexpr void step(S& x, S& v, H h, Accel&& accel) {
     advance(x, v, h, second_order_system<Accel>{accel});
   }
 };

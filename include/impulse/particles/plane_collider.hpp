@@ -102,31 +102,48 @@ struct plane_collider {
 namespace detail {
 
 /// Velocity after contact with a plane of unit normal n (facing the particle)
-/// in the lanes of `touching`. Always inlined: as a call, its vector
-/// arguments go through memory (GCC 12 outlines it otherwise).
+/// in the lanes of `touching`: the normal speed into the plane times −e
+/// (`minus_restitution`), the tangential velocity times 1 − μ (`keep`).
+/// Always inlined: as a call, its vector arguments go through memory (GCC
+/// 12 outlines it otherwise).
 template <class T, int W>
-[[gnu::always_inline]] inline void plane_response(const plane_collider<T>& plane, batch_mask<T, W> touching,
-                    const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
+[[gnu::always_inline]] inline void plane_response(T minus_restitution, T keep, batch_mask<T, W> touching,
+                                                  const vec3_batch<T, W>& n, vec3_batch<T, W>& v) noexcept {
   const batch<T, W> vn = dot(v, n);
   const vec3_batch<T, W> tangential = v - n * vn;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
-  const batch<T, W> vn_after = select(touching & (vn < zero), vn * -plane.restitution, vn);
-  const batch<T, W> keep = select(touching, batch<T, W>::broadcast(T(1) - plane.friction),
-                                  batch<T, W>::broadcast(T(1)));
-  v = tangential * keep + n * vn_after;
+  const batch<T, W> vn_after = select(touching & (vn < zero), vn * minus_restitution, vn);
+  const batch<T, W> kept = select(touching, batch<T, W>::broadcast(keep), batch<T, W>::broadcast(T(1)));
+  v = tangential * kept + n * vn_after;
 }
 
-/// Half-space: lanes behind are projected onto the plane. Returns whether any was.
+/// A half-space as the particle kernel uses it, made from a plane_collider
+/// once a step: its normal and offset, −e, and 1 − μ (the tangential
+/// velocity kept); `risky` when pushing a lane out of it can leave the lane
+/// behind a plane checked before it (particle_system::prepare_planes).
+template <class T>
+struct half_space_rule {
+  vec3<T> normal;
+  T offset, minus_restitution, keep;
+  bool risky;
+
+  static half_space_rule of(const plane_collider<T>& plane, bool risky) noexcept {
+    return {plane.normal, plane.offset, -plane.restitution, T(1) - plane.friction, risky};
+  }
+};
+
+/// Half-space: lanes behind are projected onto the plane, and their
+/// velocities answered (plane_response). Returns whether any was.
 template <class T, int W>
-bool collide_half_space(const plane_collider<T>& plane, vec3_batch<T, W>& x,
-                        vec3_batch<T, W>& v) noexcept {
-  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(plane.normal);
-  const batch<T, W> s = dot(x, n) + plane.offset;
+[[gnu::always_inline]] inline bool collide_half_space(const half_space_rule<T>& h, vec3_batch<T, W>& x,
+                                                      vec3_batch<T, W>& v) noexcept {
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
+  const batch<T, W> s = dot(x, n) + h.offset;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
   const batch_mask<T, W> behind = s < zero;
   if (none(behind)) return false;
   x = x - n * select(behind, s, zero);
-  plane_response(plane, behind, n, v);
+  plane_response(h.minus_restitution, h.keep, behind, n, v);
   return true;
 }
 
@@ -196,7 +213,7 @@ void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x
                  (T(1) + max_component(abs(plane.center)) + plane.half_u + plane.half_v);
   const vec3_batch<T, W> placed = p + n_side * skin;
   x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
-  plane_response(plane, hit, n_side, v);
+  plane_response(-plane.restitution, T(1) - plane.friction, hit, n_side, v);
 }
 
 }  // namespace detail

@@ -64,10 +64,17 @@ struct point_forces {
     for (std::size_t i = 0; i < count; ++i) {
       if (!points[i].enabled) continue;
       const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
-      // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
-      // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
-      const batch<T, W> inverse_r = rsqrt(length_squared(d) + softening);
-      f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      const batch<T, W> r2 = length_squared(d) + softening;
+      if constexpr (impulse::detail::has_rsqrt_estimate<T, W>()) {
+        // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
+        // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
+        const batch<T, W> inverse_r = rsqrt(r2);
+        f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      } else {
+        // Without an estimate, one square root and one division, as few as
+        // the law allows: 1/√ cubed took a division and three products.
+        f = f + d * (points[i].strength / (r2 * sqrt(r2)));
+      }
     }
     return f;
   }
