@@ -17038,10 +17038,8 @@ class particle_system {
   }
 
   void step_fused(T dt) {
-    // The forces' parameters copied here: the columns are T too, so the
-    // compiler must assume that a store to a column may change a
-    // member's, and reloaded every parameter for every batch. A local copy
-    // it can keep in registers across the loop.
+    // The forces' parameters, copied: the columns hold T too, so a store
+    // to a column could otherwise be taken to change them.
     const std::tuple<Forces<T>...> forces = forces_;
     const std::size_t used = padded(size_);
     for (std::size_t first = 0; first < used; first += width) {
