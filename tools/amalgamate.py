@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generate the single headers in single_include/impulse/ from include/.
 
-Four headers, each a layer over one before it:
+Five headers, each a layer over one before it:
 
   impulse.hpp        the core: everything reachable from include/impulse/impulse.hpp
                      (math, shapes, broad and narrow phase, dynamics, the world,
@@ -13,6 +13,8 @@ Four headers, each a layer over one before it:
   impulse_scene.hpp  #include "impulse_io.hpp", then io/scene.hpp (scene files),
                      which needs nlohmann-json: <nlohmann/json.hpp> stays a
                      system include, found on the include path.
+  impulse_thread_pool.hpp  #include "impulse.hpp", then impulse/thread_pool.hpp:
+                     a std::thread pool implementing the task hook.
   instantiate.hpp    #include "impulse.hpp", then impulse/instantiate.hpp: the
                      default configurations compiled in the one .cpp file of a
                      program built with IMPULSE_EXTERN_TEMPLATES=1.
@@ -78,6 +80,13 @@ LAYERS = [
         "nlohmann-json: <nlohmann/json.hpp> must be on the include path (Debian:",
         "nlohmann-json3-dev). Includes impulse_io.hpp and impulse.hpp, which must",
         "sit beside this file.",
+    ]),
+    ("impulse_thread_pool.hpp", "impulse.hpp", ["impulse/thread_pool.hpp"], [
+        "impulse::thread_pool, a small std::thread pool that implements the task",
+        "hook (core/task_system.hpp) for programs without a scheduler of their own.",
+        "Includes impulse.hpp, which must sit beside this file. Kept out of",
+        "impulse.hpp so that a program that brings its own scheduler, or runs on",
+        "one thread, never parses <thread>, <mutex> and <condition_variable>.",
     ]),
     ("instantiate.hpp", "impulse.hpp", ["impulse/instantiate.hpp"], [
         "Compiles the default configurations' world, rigid-body system and particle",

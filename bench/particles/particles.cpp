@@ -30,14 +30,29 @@
 //                      first, then 5 runs of at least 0.1 s each going on
 //                      from where the last stopped, median; the way a
 //                      kernel timed in a loop over many steps sees it
-// The threads column is the number of threads the kernel ran on (1).
+//   --emitter          instead of the above: the cost of ageing and of an
+//                      emitter at a steady population against the plain
+//                      scene, in the same run (its own CSV, below)
+//   --budget           instead of the above: the most particles stepped
+//                      within 1, 4 and 16 ms (one 60 Hz frame's share) per
+//                      integrator, scalar and thread count (its own CSV)
+//   --springs          instead of the above: a 320 × 320 cloth of springs
+//                      (102 400 particles, 203 520 springs) per integrator,
+//                      scalar and thread count (its own CSV)
+//   --threads A,B,...  step the SoA kernel on each of these worker counts
+//                      (impulse::thread_pool; 1, the default, runs on the
+//                      calling thread with no pool)
+// The threads column is the number of workers the kernel ran on.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "impulse/thread_pool.hpp"
 #include "particles_scene.hpp"
 
 namespace {
@@ -49,9 +64,10 @@ struct settings {
   std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000, 4000000};
   std::vector<std::string> integrators{"euler", "symplectic_euler", "midpoint", "rk4"};
   std::vector<std::string> scalars{"float", "double"};
+  std::vector<std::uint32_t> threads{1};
   int repeats = 7;
   double min_seconds = 0.1;
-  bool aos = true, steady = false;
+  bool aos = true, steady = false, emitter = false, budget = false, springs = false;
 };
 
 bool listed(const std::vector<std::string>& list, const std::string& name) {
@@ -153,6 +169,7 @@ struct config : impulse::default_config {
   using scalar = T;
   using integrator = I;
   static constexpr bool particle_lifetime = false;  // the scene has no ageing
+  static constexpr bool particle_masses = false;    // and unit masses
 };
 
 // ---- the array-of-structs baseline ----------------------------------------------
@@ -207,6 +224,7 @@ struct row {
   const char* integrator;
   const char* scalar;
   std::string width;
+  std::uint32_t threads;
   std::size_t n;
   double steps_per_s, bytes_per_step, roof;
 };
@@ -214,7 +232,7 @@ struct row {
 void print(const row& r) {
   const double gb_per_s = r.steps_per_s * r.bytes_per_step / 1e9;
   const double fraction = r.roof > 0 ? gb_per_s * 1e9 / r.roof : 0.0;
-  std::printf("%s,%s,%s,1,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.n,
+  std::printf("%s,%s,%s,%u,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.threads, r.n,
               r.steps_per_s / 1e6, gb_per_s, fraction);
   std::fflush(stdout);
 }
@@ -224,13 +242,15 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
   using system_type = ps::system<config<T, I>>;
   const char* scalar_name = sizeof(T) == 4 ? "float" : "double";
   const T dt = T(ps::dt);
-  {
+  for (std::uint32_t threads : s.threads) {
+    impulse::thread_pool pool{threads};
     system_type system = ps::make<config<T, I>>(n);
+    system.set_task_system(pool.tasks());
     for (int k = 0; k < (s.steady ? settle_steps : warm_steps); ++k) system.step(dt);
     const double t = s.steady ? seconds_per_steady_step(system, n) : seconds_per_scene_step(system, n, s);
-    // Read and written: x, y, z, vx, vy, vz; read: inverse mass.
-    print({integrator_name, scalar_name, std::to_string(system_type::width), n, double(n) / t,
-           double(13 * sizeof(T)), roof_soa});
+    // Read and written: x, y, z, vx, vy, vz (unit masses: no mass column).
+    print({integrator_name, scalar_name, std::to_string(system_type::width), threads, n, double(n) / t,
+           double(12 * sizeof(T)), roof_soa});
   }
   if (s.aos) {
     aos_system<T, I> aos;
@@ -242,14 +262,14 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
     }
     for (int k = 0; k < warm_steps; ++k) aos.step(dt);
     const double t = seconds_per_scene_step(aos, n, s);
-    print({integrator_name, scalar_name, "aos", n, double(n) / t, double(2 * sizeof(particle<T>)), roof_aos});
+    print({integrator_name, scalar_name, "aos", 1, n, double(n) / t, double(2 * sizeof(particle<T>)), roof_aos});
   }
 }
 
 template <class T>
 void run_scalar(std::size_t n, const settings& s) {
   if (!listed(s.scalars, sizeof(T) == 4 ? "float" : "double")) return;
-  const double roof_soa = s.aos ? copy_bandwidth(n * 13 * sizeof(T), s) : 0.0;
+  const double roof_soa = s.aos ? copy_bandwidth(n * 12 * sizeof(T), s) : 0.0;
   const double roof_aos = s.aos ? copy_bandwidth(n * 2 * sizeof(particle<T>), s) : 0.0;
   namespace in = impulse::integrators;
   if (listed(s.integrators, "euler")) run<T, in::euler>("euler", n, roof_soa, roof_aos, s);
@@ -260,6 +280,177 @@ void run_scalar(std::size_t n, const settings& s) {
   if (s.aos)
     std::fprintf(stderr, "copy roof at n = %zu (%s): %.2f GB/s soa footprint, %.2f GB/s aos footprint\n", n,
                  sizeof(T) == 4 ? "float" : "double", roof_soa / 1e9, roof_aos / 1e9);
+}
+
+// ---- --emitter: what ageing and recycling cost ------------------------------------
+
+template <class T, class I>
+struct life_config : config<T, I> {
+  static constexpr bool particle_lifetime = true;
+};
+
+/// The scene's particles with lives spread evenly over (0, 2 s], and an
+/// emitter that replaces them at n / 2 s, drawing in the scene's start box:
+/// the population stays at n while n / 240 particles die and are born at
+/// every step. With `recycle` false the lives are infinite and the emitter
+/// is off: the age and lifetime columns are paid for, nothing dies.
+template <class T, class I>
+ps::system<life_config<T, I>> make_recycling(std::size_t n, bool recycle) {
+  using C = life_config<T, I>;
+  const T life = T(2);
+  ps::system<C> system{n + n / 16 + 64, ps::scene_gravity<T>(), ps::scene_drag<T>(), ps::scene_attractors<T>()};
+  for (const auto& p : ps::scene_planes<T>())
+    system.add_plane(impulse::particles::plane_collider<T>::half_space(p.normal, p.offset, T(ps::restitution),
+                                                                       T(ps::friction)));
+  impulse::lcg32 random{12345};
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto start = ps::draw<T>(random);
+    const T lifetime = recycle ? life * T(i + 1) / T(n) : std::numeric_limits<T>::infinity();
+    system.add(start.position, start.velocity, T(1), lifetime);
+  }
+  if (recycle) {
+    impulse::particles::emitter<T> source;
+    source.position = {T(0), T(7.75), T(0)};
+    source.half_extents = {T(8), T(7.25), T(8)};
+    source.velocity_spread = {T(5), T(5), T(5)};
+    source.rate = T(double(n) / double(life));
+    source.lifetime = life;
+    system.add_emitter(source);
+  }
+  return system;
+}
+
+template <class T, class I>
+void emitter_rows(const char* integrator_name, std::size_t n, std::uint32_t threads) {
+  const char* scalar_name = sizeof(T) == 4 ? "float" : "double";
+  impulse::thread_pool pool{threads};
+  auto plain = ps::make<config<T, I>>(n);
+  auto ageing = make_recycling<T, I>(n, false);
+  auto recycling = make_recycling<T, I>(n, true);
+  plain.set_task_system(pool.tasks());
+  ageing.set_task_system(pool.tasks());
+  recycling.set_task_system(pool.tasks());
+  for (int k = 0; k < settle_steps; ++k) {
+    plain.step(T(ps::dt));
+    ageing.step(T(ps::dt));
+    recycling.step(T(ps::dt));
+  }
+  // Three rounds taking turns, so that the machine's drift falls on all three.
+  std::vector<double> t_plain, t_ageing, t_recycling;
+  for (int round = 0; round < 3; ++round) {
+    t_plain.push_back(seconds_per_steady_step(plain, n));
+    t_ageing.push_back(seconds_per_steady_step(ageing, n));
+    t_recycling.push_back(seconds_per_steady_step(recycling, n));
+  }
+  const double base = median(t_plain);
+  auto print_row = [&](const char* scene, double t, std::size_t size) {
+    std::printf("%s,%s,%s,%u,%zu,%.1f,%.3f\n", scene, integrator_name, scalar_name, threads, size,
+                double(size) / t / 1e6, t / base);
+  };
+  print_row("plain", base, plain.size());
+  print_row("ageing", median(t_ageing), ageing.size());
+  print_row("emitter", median(t_recycling), recycling.size());
+  std::fflush(stdout);
+}
+
+/// Calls f.operator()<T, I>(name) for the scalar and integrator named.
+template <class F>
+void with_types(const std::string& scalar, const std::string& integrator, F&& f) {
+  namespace in = impulse::integrators;
+  auto with = [&]<class T>() {
+    if (integrator == "euler") f.template operator()<T, in::euler>("euler");
+    if (integrator == "symplectic_euler") f.template operator()<T, in::symplectic_euler>("symplectic_euler");
+    if (integrator == "midpoint") f.template operator()<T, in::midpoint>("midpoint");
+    if (integrator == "rk4") f.template operator()<T, in::rk4>("rk4");
+  };
+  if (scalar == "float") with.template operator()<float>();
+  if (scalar == "double") with.template operator()<double>();
+}
+
+int run_emitter_table(const settings& s) {
+  std::printf("scene,integrator,scalar,threads,n,msteps_per_s,time_relative_to_plain\n");
+  for (std::size_t n : s.sizes)
+    for (std::uint32_t threads : s.threads)
+      for (const std::string& scalar : s.scalars)
+        for (const std::string& integrator : s.integrators)
+          with_types(scalar, integrator,
+                     [&]<class T, class I>(const char* name) { emitter_rows<T, I>(name, n, threads); });
+  return 0;
+}
+
+// ---- --budget: how many particles fit a frame's share ---------------------------
+
+/// Seconds per step of the scene with n particles, settled for 1 s.
+template <class T, class I>
+double budget_step(std::size_t n, std::uint32_t threads) {
+  impulse::thread_pool pool{threads};
+  auto system = ps::make<config<T, I>>(n);
+  system.set_task_system(pool.tasks());
+  for (int k = 0; k < 120; ++k) system.step(T(ps::dt));
+  return seconds_per_steady_step(system, n);
+}
+
+/// The most particles (to 1 000) stepped within `budget` seconds: an
+/// estimate from the rate at 10^5, corrected once by the time measured at
+/// it; the row gives the corrected n and the time measured at that n.
+template <class T, class I>
+void budget_rows(const char* integrator_name, std::uint32_t threads) {
+  const char* scalar_name = sizeof(T) == 4 ? "float" : "double";
+  const double rate = 1e5 / budget_step<T, I>(100000, threads);
+  for (double budget : {1e-3, 4e-3, 16e-3}) {
+    double n = rate * budget, t = 0;
+    for (int k = 0; k < 2; ++k) {
+      n = std::max(1000.0, std::floor(n / 1000) * 1000);
+      t = budget_step<T, I>(std::size_t(n), threads);
+      if (k == 0) n *= budget / t;
+    }
+    std::printf("%s,%s,%u,%.0f,%.0f,%.3f\n", integrator_name, scalar_name, threads, budget * 1e3, n, t * 1e3);
+    std::fflush(stdout);
+  }
+}
+
+int run_budget_table(const settings& s) {
+  std::printf("integrator,scalar,threads,budget_ms,n,ms_per_step\n");
+  for (std::uint32_t threads : s.threads)
+    for (const std::string& scalar : s.scalars)
+      for (const std::string& integrator : s.integrators)
+        with_types(scalar, integrator, [&]<class T, class I>(const char* name) { budget_rows<T, I>(name, threads); });
+  return 0;
+}
+
+// ---- --springs: a cloth, the staged path ---------------------------------------------
+
+template <class T, class I>
+void springs_row(const char* integrator_name, std::uint32_t threads) {
+  using namespace impulse::particles;
+  const std::uint32_t side = 320;
+  impulse::thread_pool pool{threads};
+  particle_system<config<T, I>, gravity, drag, springs> cloth{side * side, ps::scene_gravity<T>(),
+                                                              ps::scene_drag<T>(), springs<T>{}};
+  cloth.set_task_system(pool.tasks());
+  for (std::uint32_t i = 0; i < side; ++i)
+    for (std::uint32_t j = 0; j < side; ++j) cloth.add({T(0.1) * T(i), T(5), T(0.1) * T(j)});
+  auto& list = cloth.template force<springs>();
+  for (std::uint32_t i = 0; i < side; ++i)
+    for (std::uint32_t j = 0; j < side; ++j) {
+      if (i + 1 < side) list.add(i * side + j, (i + 1) * side + j, T(0.1), T(200), T(0.5));
+      if (j + 1 < side) list.add(i * side + j, i * side + j + 1, T(0.1), T(200), T(0.5));
+    }
+  cloth.add_plane(plane_collider<T>::half_space({T(0), T(1), T(0)}, T(0), T(0.2), T(0.5)));
+  for (int k = 0; k < 60; ++k) cloth.step(T(ps::dt));
+  const double t = seconds_per_steady_step(cloth, cloth.size());
+  std::printf("%s,%s,%u,%zu,%zu,%.1f\n", integrator_name, sizeof(T) == 4 ? "float" : "double", threads,
+              cloth.size(), list.list.size(), double(cloth.size()) / t / 1e6);
+  std::fflush(stdout);
+}
+
+int run_springs_table(const settings& s) {
+  std::printf("integrator,scalar,threads,n,springs,msteps_per_s\n");
+  for (const std::string& scalar : s.scalars)
+    for (const std::string& integrator : s.integrators)
+      for (std::uint32_t threads : s.threads)
+        with_types(scalar, integrator, [&]<class T, class I>(const char* name) { springs_row<T, I>(name, threads); });
+  return 0;
 }
 
 }  // namespace
@@ -279,18 +470,30 @@ int main(int argc, char** argv) {
       s.integrators = split(argv[++i]);
     } else if (std::strcmp(argv[i], "--scalars") == 0 && value) {
       s.scalars = split(argv[++i]);
+    } else if (std::strcmp(argv[i], "--threads") == 0 && value) {
+      s.threads.clear();
+      for (const std::string& t : split(argv[++i])) s.threads.push_back(std::uint32_t(std::stoul(t)));
     } else if (std::strcmp(argv[i], "--no-aos") == 0) {
       s.aos = false;
     } else if (std::strcmp(argv[i], "--steady") == 0) {
       s.steady = true;
+    } else if (std::strcmp(argv[i], "--emitter") == 0) {
+      s.emitter = true;
+    } else if (std::strcmp(argv[i], "--budget") == 0) {
+      s.budget = true;
+    } else if (std::strcmp(argv[i], "--springs") == 0) {
+      s.springs = true;
     } else {
       std::fprintf(stderr,
                    "usage: %s [--quick] [--n A,B,...] [--integrators euler,symplectic_euler,midpoint,rk4] "
-                   "[--scalars float,double] [--no-aos] [--steady]\n",
+                   "[--scalars float,double] [--threads 1,2] [--no-aos] [--steady] [--emitter | --budget | --springs]\n",
                    argv[0]);
       return 2;
     }
   }
+  if (s.emitter) return run_emitter_table(s);
+  if (s.budget) return run_budget_table(s);
+  if (s.springs) return run_springs_table(s);
   std::printf("integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction\n");
   for (std::size_t n : s.sizes) {
     run_scalar<float>(n, s);

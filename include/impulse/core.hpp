@@ -10,4 +10,5 @@
 #include "core/policy.hpp"
 #include "core/random.hpp"
 #include "core/slot_map.hpp"
+#include "core/task_system.hpp"
 #include "core/version.hpp"

@@ -5431,6 +5431,74 @@ constexpr T hash_signed_unit(std::uint32_t x) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/core/random.hpp ----
+// ---- begin impulse/core/task_system.hpp ----
+// impulse/core/task_system.hpp — the hook through which a program lends
+// impulse its worker threads.
+//
+// impulse never creates a thread. A step that can spread over cores hands
+// each parallel loop to two callbacks the program provides: `enqueue` starts
+// a loop over items [0, item_count) on the program's own scheduler (a job
+// system, TBB, enkiTS, or impulse/thread_pool.hpp), split into ranges of at
+// least `min_range` items however it likes, and `finish` returns once every
+// range has run. Without callbacks, or with one worker, a loop runs on the
+// calling thread as a plain call.
+//
+// What impulse runs through the hook does not depend on how the items are
+// split or which worker runs which range: each range writes only its own
+// items, and whatever is gathered across items is gathered in item order
+// afterwards. So the results are bit-identical for any worker count and any
+// scheduler.
+//
+//   impulse::thread_pool pool{2};
+//   particles.set_task_system(pool.tasks());
+
+
+namespace impulse {
+
+/// One range of a parallel loop: items [begin, end), run by worker
+/// `worker` (0 ≤ worker < task_system::workers), with the loop's context.
+using task_function = void(std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* task_context);
+
+struct task_system {
+  /// How many threads may run a loop's ranges at once, the calling thread
+  /// included; a worker index is below it.
+  std::uint32_t workers = 1;
+  /// Starts `task` over [0, item_count) in ranges of at least min_range
+  /// items (the last may be shorter) and returns a handle for `finish`.
+  /// It may run ranges before it returns, on any thread.
+  void* (*enqueue)(task_function* task, std::uint32_t item_count, std::uint32_t min_range,
+                   void* task_context, void* user_context) = nullptr;
+  /// Returns when every range of the loop `handle` names has run.
+  void (*finish)(void* handle, void* user_context) = nullptr;
+  /// Passed back to both callbacks.
+  void* user_context = nullptr;
+
+  /// Whether loops go through the callbacks at all.
+  [[nodiscard]] bool parallel() const noexcept { return workers > 1 && enqueue != nullptr && finish != nullptr; }
+};
+
+namespace detail {
+
+/// Runs body(begin, end, worker) over [0, count): through the hook when it
+/// has more than one worker and the loop more than one range, else as one
+/// call on this thread.
+template <class Body>
+void parallel_for(const task_system& tasks, std::uint32_t count, std::uint32_t min_range, Body& body) {
+  if (count == 0) return;
+  if (!tasks.parallel() || count <= min_range) {
+    body(std::uint32_t(0), count, std::uint32_t(0));
+    return;
+  }
+  task_function* run = [](std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* context) {
+    (*static_cast<Body*>(context))(begin, end, worker);
+  };
+  void* handle = tasks.enqueue(run, count, min_range, &body, tasks.user_context);
+  tasks.finish(handle, tasks.user_context);
+}
+
+}  // namespace detail
+}  // namespace impulse
+// ---- end impulse/core/task_system.hpp ----
 // ---- begin impulse/core/version.hpp ----
 // impulse/core/version.hpp — the library version, one place for it.
 //
@@ -16370,6 +16438,11 @@ struct gravity {
 // stage sweeps all batches and then the springs. The same integrator code
 // runs both paths.
 //
+// With a task system (set_task_system, core/task_system.hpp) the batches
+// are split across workers, and the particles come out bit-identical for any
+// worker count: each range writes only its own batches, and what crosses
+// batches (deaths, emission, the springs' sums) is done in a fixed order.
+//
 // Indices are positions in the columns. Killing a particle, or its death by
 // age, moves the last particle into its slot, so the columns stay dense and
 // the kernel never spends lanes on the dead; a spring follows the particle
@@ -16414,6 +16487,9 @@ class buffer_pool {
   [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
   [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
   [[nodiscard]] std::size_t used() const noexcept { return used_; }
+  /// Workers to split the states' arithmetic across, or null for this thread.
+  void set_tasks(const task_system* tasks) noexcept { tasks_ = tasks; }
+  [[nodiscard]] const task_system* tasks() const noexcept { return tasks_; }
 
   std::size_t acquire() {
     if (free_.empty()) {
@@ -16433,6 +16509,7 @@ class buffer_pool {
   std::vector<aligned_array<E>> buffers_;
   std::vector<std::size_t> free_;
   std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+  const task_system* tasks_ = nullptr;
 };
 
 /// E needs E + E and E * S for the scalar S the integrator steps with.
@@ -16459,12 +16536,18 @@ class pooled_state {
   const E& operator[](std::size_t i) const noexcept { return data()[i]; }
   [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
 
-  /// Calls f(i) for the index of every live element of every segment.
+  /// Calls f(i) for the index of every live element of every segment,
+  /// split across the pool's workers when it has them: each element's
+  /// result is the same whoever computes it.
   template <class F>
   void for_each(F&& f) const {
-    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
-    for (std::size_t s = 0; s < segments; ++s)
-      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
+    const std::size_t segments = pool_->segments(), stride = pool_->stride();
+    auto range = [&](std::size_t begin, std::size_t end, std::uint32_t) {
+      for (std::size_t s = 0; s < segments; ++s)
+        for (std::size_t i = s * stride + begin; i < s * stride + end; ++i) f(i);
+    };
+    if (const task_system* tasks = pool_->tasks()) parallel_for(*tasks, std::uint32_t(pool_->used()), 4096, range);
+    else range(0, pool_->used(), 0);
   }
 
   // An rvalue operand lends its buffer to the result, so `a + b * h` uses
@@ -16731,6 +16814,17 @@ inline constexpr bool particle_lifetime_of = [] {
   else return true;
 }();
 
+/// Whether each particle has its own mass: Config::particle_masses, default
+/// true. Without it every particle has unit mass, forces are accelerations,
+/// and the inverse-mass column does not exist: a step of the standard
+/// `particles` scene then reads 24 bytes a float particle, not 28 (at
+/// 4·10⁶ particles, past the caches, the column cost 7 % of the step).
+template <class Config>
+inline constexpr bool particle_masses_of = [] {
+  if constexpr (requires { Config::particle_masses; }) return bool(Config::particle_masses);
+  else return true;
+}();
+
 /// Read-only view of three columns as vectors.
 template <class T>
 struct vec3_columns {
@@ -16747,6 +16841,7 @@ class particle_system {
   using integrator = typename Config::integrator;
   static constexpr int width = particle_width_of<Config>;
   static constexpr bool has_lifetime = particle_lifetime_of<Config>;
+  static constexpr bool has_masses = particle_masses_of<Config>;
   /// The most particles a system may be created for: 2^26, about 6.7e7.
   /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
   /// double), allocated and zeroed when the system is made, so this many is
@@ -16774,7 +16869,8 @@ class particle_system {
   template <class F>
   static constexpr bool is_pairwise = F::effect == force_effect::pairwise;
   static constexpr bool has_pairwise = (is_pairwise<Forces<T>> || ...);
-  static constexpr bool needs_inverse_mass = ((Forces<T>::effect != force_effect::acceleration) || ...);
+  static constexpr bool needs_inverse_mass =
+      has_masses && ((Forces<T>::effect != force_effect::acceleration) || ...);
   static constexpr bool needs_variation = (uses_variation<Forces<T>>() || ...);
 
  public:
@@ -16790,12 +16886,11 @@ class particle_system {
         capacity_(checked_capacity(capacity)),
         stride_((capacity + width - 1) / width * width),
         x_(stride_), y_(stride_), z_(stride_), vx_(stride_), vy_(stride_), vz_(stride_),
-        inverse_mass_(stride_),
+        inverse_mass_(has_masses ? stride_ : 0),
         variation_(needs_variation ? stride_ : 0),
         age_(has_lifetime ? stride_ : 0),
-        lifetime_(has_lifetime ? stride_ : 0) {
-    died_batches_.reserve(stride_ / width);
-  }
+        lifetime_(has_lifetime ? stride_ : 0),
+        died_(has_lifetime ? stride_ / width : 0) {}
 
   // ---- particles --------------------------------------------------------------
 
@@ -16804,7 +16899,7 @@ class particle_system {
   [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
 
   /// Adds a particle and returns its index. Lifetime in s (has_lifetime only);
-  /// an infinite lifetime never dies.
+  /// an infinite lifetime never dies. Without has_masses the mass must be 1.
   std::uint32_t add(const vec3<T>& position, const vec3<T>& velocity = {}, T mass = T(1),
                     T lifetime = std::numeric_limits<T>::infinity()) {
     check_particle(position, velocity, mass, no_object);
@@ -16820,7 +16915,7 @@ class particle_system {
   /// Adds `count` particles drawn from the emitter's distribution now, as far
   /// as they fit; returns how many were added.
   std::size_t emit(emitter<T>& source, std::size_t count) {
-    source.validate();
+    check_emitter(source, no_object);
     return emit_unchecked(source, count);
   }
 
@@ -16840,7 +16935,11 @@ class particle_system {
 
   [[nodiscard]] vec3<T> position(std::uint32_t i) const { check_index(i); return {x_[i], y_[i], z_[i]}; }
   [[nodiscard]] vec3<T> velocity(std::uint32_t i) const { check_index(i); return {vx_[i], vy_[i], vz_[i]}; }
-  [[nodiscard]] T mass(std::uint32_t i) const { check_index(i); return T(1) / inverse_mass_[i]; }
+  [[nodiscard]] T mass(std::uint32_t i) const {
+    check_index(i);
+    if constexpr (has_masses) return T(1) / inverse_mass_[i];
+    else return T(1);
+  }
   [[nodiscard]] T age(std::uint32_t i) const requires has_lifetime { check_index(i); return age_[i]; }
   [[nodiscard]] T lifetime(std::uint32_t i) const requires has_lifetime { check_index(i); return lifetime_[i]; }
 
@@ -16854,7 +16953,7 @@ class particle_system {
     detail::require_finite(v, "particle_system: velocity is not finite", i);
     vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
   }
-  void set_mass(std::uint32_t i, T m) {
+  void set_mass(std::uint32_t i, T m) requires has_masses {
     check_index(i);
     check_mass(m, i);
     inverse_mass_[i] = T(1) / m;
@@ -16862,7 +16961,9 @@ class particle_system {
 
   [[nodiscard]] vec3_columns<T> positions() const noexcept { return {column(x_), column(y_), column(z_)}; }
   [[nodiscard]] vec3_columns<T> velocities() const noexcept { return {column(vx_), column(vy_), column(vz_)}; }
-  [[nodiscard]] std::span<const T> inverse_masses() const noexcept { return column(inverse_mass_); }
+  [[nodiscard]] std::span<const T> inverse_masses() const noexcept requires has_masses {
+    return column(inverse_mass_);
+  }
   [[nodiscard]] std::span<const T> ages() const noexcept requires has_lifetime { return column(age_); }
   [[nodiscard]] std::span<const T> lifetimes() const noexcept requires has_lifetime { return column(lifetime_); }
 
@@ -16886,7 +16987,7 @@ class particle_system {
   std::span<const plane_collider<T>> planes() const noexcept { return planes_; }
 
   std::uint32_t add_emitter(const emitter<T>& source) {
-    source.validate(std::uint32_t(emitters_.size()));
+    check_emitter(source, std::uint32_t(emitters_.size()));
     emitters_.push_back(source);
     return std::uint32_t(emitters_.size() - 1);
   }
@@ -16895,6 +16996,20 @@ class particle_system {
 
   /// Simulated time, s: the sum of the steps taken.
   [[nodiscard]] double time() const noexcept { return time_; }
+
+  // ---- threads ----------------------------------------------------------------------
+
+  /// Steps the batches (and the springs) across the hook's workers
+  /// (core/task_system.hpp); the default runs on the calling thread. The
+  /// particles come out bit-identical for any worker count.
+  void set_task_system(const task_system& tasks) {
+    detail::require(tasks.workers >= 1, error_code::invalid_parameter,
+                    "particle_system: a task system needs at least one worker");
+    detail::require((tasks.enqueue == nullptr) == (tasks.finish == nullptr), error_code::invalid_parameter,
+                    "particle_system: a task system needs both enqueue and finish, or neither");
+    tasks_ = tasks;
+  }
+  [[nodiscard]] const task_system& tasks() const noexcept { return tasks_; }
 
   // ---- stepping ---------------------------------------------------------------------
 
@@ -16915,7 +17030,8 @@ class particle_system {
   /// Which columns exist is known at compile time, so this has no branches.
   slice at(std::size_t first) noexcept {
     slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
-            vy_.data() + first, vz_.data() + first, inverse_mass_.data() + first, nullptr, nullptr, nullptr};
+            vy_.data() + first, vz_.data() + first, nullptr, nullptr, nullptr, nullptr};
+    if constexpr (has_masses) s.inverse_mass = inverse_mass_.data() + first;
     if constexpr (needs_variation) s.variation = variation_.data() + first;
     if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
     return s;
@@ -16955,7 +17071,8 @@ class particle_system {
   }
 
   /// Planes, then age: the part of a step after integration. x0 is where the
-  /// batch started the step. Records the batch if a particle in it died.
+  /// batch started the step. Flags the batch when a particle in it died (a
+  /// flag per batch, so that workers never write the same place).
   [[gnu::always_inline]] void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v,
                                            T dt) {
     if (!planes_.empty()) collide(x0, x, v);
@@ -16964,7 +17081,7 @@ class particle_system {
     if constexpr (has_lifetime) {
       const lanes age = lanes::load(s.age) + dt;
       age.store(s.age);
-      if (any(age >= lanes::load(s.lifetime))) died_batches_.push_back(first / width);
+      died_[first / width] = any(age >= lanes::load(s.lifetime));
     }
   }
 
@@ -17037,12 +17154,31 @@ class particle_system {
     v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
   }
 
+  /// Batches per range of a parallel loop: 64 batches of the standard
+  /// scene take about 2 µs in float Euler, as long as handing a range to a
+  /// worker can take.
+  static constexpr std::uint32_t min_batches = 64;
+
+  /// Runs body(first, end) over the used batches' particle indices, split
+  /// across the task system's workers.
+  template <class Body>
+  void for_batches(const Body& body) {
+    auto ranges = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      body(std::size_t(begin) * width, std::size_t(end) * width);
+    };
+    impulse::detail::parallel_for(tasks_, std::uint32_t(padded(size_) / width), min_batches, ranges);
+  }
+
   void step_fused(T dt) {
+    for_batches([this, dt](std::size_t begin, std::size_t end) { step_batches(begin, end, dt); });
+  }
+
+  /// The fused kernel over particles [begin, end), whole batches.
+  void step_batches(std::size_t begin, std::size_t end, T dt) {
     // The forces' parameters, copied: the columns hold T too, so a store
     // to a column could otherwise be taken to change them.
     const std::tuple<Forces<T>...> forces = forces_;
-    const std::size_t used = padded(size_);
-    for (std::size_t first = 0; first < used; first += width) {
+    for (std::size_t first = begin; first < end; first += width) {
       const slice s = at(first);
       const state x0 = state::load(s.x, s.y, s.z);
       state x = x0;
@@ -17063,28 +17199,44 @@ class particle_system {
     if constexpr (has_pairwise) {
       const std::size_t used = padded(size_);
       pool_.resize(3, stride_, used);
+      pool_.set_tasks(tasks_.parallel() ? &tasks_ : nullptr);
       using whole = impulse::detail::pooled_state<T>;
       whole x(pool_), v(pool_);
       copy_columns(x.data(), x_, y_, z_, used);
       copy_columns(v.data(), vx_, vy_, vz_, used);
-      const auto& pairwise = std::get<pairwise_index()>(forces_);
+      auto& pairwise = std::get<pairwise_index()>(forces_);
+      const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
+      pairwise.prepare_colours(size_);
       integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
         whole a(pool_);
-        for (std::size_t first = 0; first < used; first += width) {
-          const slice s = at(first);
-          const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-          acceleration(forces_, xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
-              a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+        for_batches([&](std::size_t begin, std::size_t end) {
+          for (std::size_t first = begin; first < end; first += width) {
+            const slice s = at(first);
+            const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
+            acceleration(forces_, xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+                a.data() + stride_ + first, a.data() + 2 * stride_ + first);
+          }
+        });
+        for (std::size_t c = 0; c < pairwise.colour_count(); ++c) {
+          const std::uint32_t first = pairwise.colour_begin(c), count = pairwise.colour_begin(c + 1) - first;
+          auto springs = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+            pairwise.add_forces(first + begin, first + end, xs.data(), vs.data(), inverse_mass, stride_,
+                                a.data());
+          };
+          // The overflow group's springs may share particles: one range.
+          const std::uint32_t range = pairwise.colour_is_shared(c) ? count : min_batches * width;
+          impulse::detail::parallel_for(tasks_, count, range, springs);
         }
-        pairwise.accumulate(xs.data(), vs.data(), inverse_mass_.data(), stride_, a.data());
         return a;
       });
-      for (std::size_t first = 0; first < used; first += width) {
-        const slice s = at(first);
-        const state x0 = state::load(s.x, s.y, s.z);
-        state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-        finish_batch(s, first, x0, xb, vb, dt);
-      }
+      for_batches([&](std::size_t begin, std::size_t end) {
+        for (std::size_t first = begin; first < end; first += width) {
+          const slice s = at(first);
+          const state x0 = state::load(s.x, s.y, s.z);
+          state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
+          finish_batch(s, first, x0, xb, vb, dt);
+        }
+      });
     }
   }
 
@@ -17154,7 +17306,7 @@ class particle_system {
   void write(std::size_t i, const vec3<T>& p, const vec3<T>& v, T inverse_mass, T lifetime) noexcept {
     x_[i] = p.x, y_[i] = p.y, z_[i] = p.z;
     vx_[i] = v.x, vy_[i] = v.y, vz_[i] = v.z;
-    inverse_mass_[i] = inverse_mass;
+    if constexpr (has_masses) inverse_mass_[i] = inverse_mass;
     if constexpr (needs_variation) variation_[i] = hash_signed_unit<T>(serial_);
     ++serial_;
     if constexpr (has_lifetime) age_[i] = T(0), lifetime_[i] = lifetime;
@@ -17198,15 +17350,19 @@ class particle_system {
   /// visited from the end so that the particle moved into a hole is always
   /// one already known to be alive.
   void remove_dead() requires has_lifetime {
-    if (died_batches_.empty()) return;
+    const std::size_t batches = padded(size_) / width;
+    std::size_t b = batches;
+    while (b > 0 && !died_[b - 1]) --b;
+    if (b == 0) return;
     begin_removals();
-    for (auto b = died_batches_.rbegin(); b != died_batches_.rend(); ++b)
+    for (; b > 0; --b) {
+      if (!died_[b - 1]) continue;
       for (int lane = width - 1; lane >= 0; --lane) {
-        const std::size_t i = *b * width + std::size_t(lane);
+        const std::size_t i = (b - 1) * width + std::size_t(lane);
         if (i < size_ && age_[i] >= lifetime_[i]) remove(i);
       }
+    }
     end_removals();
-    died_batches_.clear();
   }
 
   // ---- checks ---------------------------------------------------------------------
@@ -17227,6 +17383,15 @@ class particle_system {
     detail::require(mass > T(0), error_code::non_positive_mass, "particle_system: mass must be positive", i);
     detail::require(mass >= min_particle_mass<T>, error_code::invalid_parameter,
                     "particle_system: mass is below min_particle_mass (denormal: its inverse overflows)", i);
+    if constexpr (!has_masses)
+      detail::require(mass == T(1), error_code::invalid_parameter,
+                      "particle_system: this configuration stores no masses (Config::particle_masses is "
+                      "false), so every particle's mass is 1",
+                      i);
+  }
+  static void check_emitter(const emitter<T>& source, std::uint32_t index) {
+    source.validate(index);
+    check_mass(source.mass, index);
   }
   static void check_particle(const vec3<T>& p, const vec3<T>& v, T mass, std::uint32_t i) {
     detail::require_finite(p, "particle_system: position is not finite", i);
@@ -17240,7 +17405,7 @@ class particle_system {
     std::apply([](const auto&... f) { (f.validate(), ...); }, forces_);
     if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).validate_indices(size_);
     for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
-    for (std::size_t i = 0; i < emitters_.size(); ++i) emitters_[i].validate(std::uint32_t(i));
+    for (std::size_t i = 0; i < emitters_.size(); ++i) check_emitter(emitters_[i], std::uint32_t(i));
   }
 
   std::span<const T> column(const aligned_array<T>& c) const noexcept { return {c.data(), size_}; }
@@ -17256,7 +17421,9 @@ class particle_system {
   /// flag, where it read each plane_collider's 60 and tested `finite`.
   std::vector<detail::half_space_rule<T>> half_spaces_;
   std::vector<emitter<T>> emitters_;
-  std::vector<std::size_t> died_batches_;
+  /// Per batch, whether a particle in it died this step (has_lifetime only).
+  std::vector<unsigned char> died_;
+  task_system tasks_{};
   std::array<aligned_array<T>*, 10> columns_{};
   std::vector<std::uint32_t> origin_, remap_;
   std::size_t removed_from_ = 0;
@@ -17376,7 +17543,9 @@ struct point_forces {
 // not lane-parallel (it reads two arbitrary particles), so it runs as its own
 // gather/scatter pass over the whole system at every integrator stage: RK4
 // with springs evaluates them four times a step, which is what gives it RK4's
-// stability limit (docs/particles.md lists the limit per integrator).
+// stability limit (docs/particles.md lists the limit per integrator). The
+// springs are coloured so that no two of a colour share a particle: workers
+// split a colour with no two writing the same value.
 
 
 
@@ -17415,22 +17584,67 @@ struct springs {
                       "springs: a spring names a particle that does not exist", std::uint32_t(i));
   }
 
-  /// Adds each spring's force, divided by its particle's mass, to acc.
-  /// Positions, velocities and accelerations are three columns (x | y | z)
-  /// of `stride` values each.
-  void accumulate(const T* position, const T* velocity, const T* inverse_mass,
-                  std::size_t stride, T* acc) const noexcept {
-    for (const spring<T>& s : list) {
-      const vec3<T> d = column_vec(position, stride, s.a) - column_vec(position, stride, s.b);
-      const T length = impulse::length(d);
-      // Coincident endpoints have no direction to push along; the spring
-      // does nothing until they separate (a rest length of 0 is then exact).
-      if (!(length > T(0))) continue;
-      const vec3<T> u = d / length;
-      const vec3<T> dv = column_vec(velocity, stride, s.a) - column_vec(velocity, stride, s.b);
-      const vec3<T> f = u * -(s.stiffness * (length - s.rest_length) + s.damping * dot(dv, u));
-      add_to(acc, stride, s.a, f * inverse_mass[s.a]);
-      add_to(acc, stride, s.b, f * -inverse_mass[s.b]);
+  // Each spring's force, divided by its particle's mass, is added to its
+  // ends' accelerations colour by colour: no two springs of a colour share
+  // a particle, so a colour's springs can be split across workers with no
+  // two writing the same value, and each particle receives its springs'
+  // forces in colour order whatever the split. One thread runs the same
+  // colours in the same order, so the sums are the same bits for any
+  // worker count. Positions, velocities and accelerations are three
+  // columns (x | y | z) of `stride` values each; a null inverse_mass means
+  // unit masses.
+
+  /// The most colours: a particle with more springs than this sends the
+  /// springs that find no colour to a last group, run on one thread.
+  static constexpr std::size_t max_colours = 64;
+
+  /// Colours the springs (greedily, each the lowest colour neither end has
+  /// yet) and orders them by colour; once a step, before add_forces(). The
+  /// colours are kept while no spring's ends change: on a 300 × 300 cloth
+  /// the check took 1.3 % of an RK4 step where colouring took 8.9 %.
+  void prepare_colours(std::size_t particles) {
+    bool same = coloured_ends_.size() == list.size();
+    for (std::size_t k = 0; same && k < list.size(); ++k)
+      same = coloured_ends_[k] == (std::uint64_t(list[k].a) << 32 | list[k].b);
+    if (same) return;
+    coloured_ends_.resize(list.size());
+    for (std::size_t k = 0; k < list.size(); ++k) coloured_ends_[k] = std::uint64_t(list[k].a) << 32 | list[k].b;
+    taken_.assign(particles, 0);
+    colour_.resize(list.size());
+    std::array<std::uint32_t, max_colours + 2> count{};
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::uint64_t taken = taken_[list[k].a] | taken_[list[k].b];
+      const unsigned c = taken == ~std::uint64_t(0) ? unsigned(max_colours) : unsigned(std::countr_one(taken));
+      if (c < max_colours) taken_[list[k].a] |= std::uint64_t(1) << c, taken_[list[k].b] |= std::uint64_t(1) << c;
+      colour_[k] = std::uint8_t(c);
+      ++count[c + 1];
+    }
+    for (std::size_t c = 0; c <= max_colours; ++c) count[c + 1] += count[c];
+    colours_ = 0;
+    for (std::size_t c = 0; c <= max_colours; ++c) {
+      colour_first_[c] = count[c];
+      if (count[c + 1] > count[c]) colours_ = c + 1;
+    }
+    colour_first_[max_colours + 1] = count[max_colours + 1];
+    order_.resize(list.size());
+    for (std::size_t k = 0; k < list.size(); ++k) order_[count[colour_[k]]++] = std::uint32_t(k);
+  }
+  /// Colour groups after prepare_colours(): colour c is springs
+  /// [colour_begin(c), colour_begin(c + 1)) of the colour order. The last
+  /// group, max_colours, is the overflow one.
+  [[nodiscard]] std::size_t colour_count() const noexcept { return colours_; }
+  [[nodiscard]] std::uint32_t colour_begin(std::size_t c) const noexcept { return colour_first_[c]; }
+  [[nodiscard]] static constexpr bool colour_is_shared(std::size_t c) noexcept { return c == max_colours; }
+
+  /// Adds the forces of springs [begin, end) of the colour order to their ends.
+  void add_forces(std::size_t begin, std::size_t end, const T* position, const T* velocity,
+                  const T* inverse_mass, std::size_t stride, T* acc) const noexcept {
+    for (std::size_t j = begin; j < end; ++j) {
+      const spring<T>& s = list[order_[j]];
+      vec3<T> f;
+      if (!force_of(s, position, velocity, stride, f)) continue;
+      add_to(acc, stride, s.a, inverse_mass ? f * inverse_mass[s.a] : f);
+      add_to(acc, stride, s.b, inverse_mass ? f * -inverse_mass[s.b] : -f);
     }
   }
 
@@ -17447,6 +17661,20 @@ struct springs {
   }
 
  private:
+  /// The force on s's a end (−f on its b end); false, and f untouched, when
+  /// the ends coincide: there is no direction to push along, and the spring
+  /// does nothing until they separate (a rest length of 0 is then exact).
+  static bool force_of(const spring<T>& s, const T* position, const T* velocity, std::size_t stride,
+                       vec3<T>& f) noexcept {
+    const vec3<T> d = column_vec(position, stride, s.a) - column_vec(position, stride, s.b);
+    const T length = impulse::length(d);
+    if (!(length > T(0))) return false;
+    const vec3<T> u = d / length;
+    const vec3<T> dv = column_vec(velocity, stride, s.a) - column_vec(velocity, stride, s.b);
+    f = u * -(s.stiffness * (length - s.rest_length) + s.damping * dot(dv, u));
+    return true;
+  }
+
   static void check(const spring<T>& s, std::uint32_t index) {
     detail::require(std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping),
                     error_code::non_finite, "springs: a parameter is not finite", index);
@@ -17464,6 +17692,14 @@ struct springs {
     p[stride + i] += f.y;
     p[2 * stride + i] += f.z;
   }
+
+  // Scratch of the colouring (prepare_colours), not state.
+  std::vector<std::uint64_t> coloured_ends_;  // per spring, a << 32 | b when coloured
+  std::vector<std::uint64_t> taken_;          // per particle, the colours its springs have
+  std::vector<std::uint8_t> colour_;  // per spring
+  std::vector<std::uint32_t> order_;  // the springs by colour, in list order within one
+  std::array<std::uint32_t, max_colours + 2> colour_first_{};
+  std::size_t colours_ = 0;
 };
 
 }  // namespace impulse::particles

@@ -14,12 +14,14 @@
 
 namespace particle_test {
 
-template <class T, int W, class I = impulse::integrators::symplectic_euler, bool Lifetime = true>
+template <class T, int W, class I = impulse::integrators::symplectic_euler, bool Lifetime = true,
+          bool Masses = true>
 struct config : impulse::default_config {
   using scalar = T;
   using integrator = I;
   static constexpr int particle_width = W;
   static constexpr bool particle_lifetime = Lifetime;
+  static constexpr bool particle_masses = Masses;
 };
 
 template <class T>
@@ -44,7 +46,7 @@ struct snapshot {
   explicit snapshot(const System& s) {
     const auto p = s.positions(), v = s.velocities();
     for (std::size_t i = 0; i < s.size(); ++i)
-      values.insert(values.end(), {p.x[i], p.y[i], p.z[i], v.x[i], v.y[i], v.z[i], s.inverse_masses()[i]});
+      values.insert(values.end(), {p.x[i], p.y[i], p.z[i], v.x[i], v.y[i], v.z[i], s.mass(std::uint32_t(i))});
   }
   bool operator==(const snapshot&) const = default;
 };

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "../aligned_array.hpp"
+#include "../task_system.hpp"
 
 namespace impulse::detail {
 
@@ -39,6 +40,9 @@ class buffer_pool {
   [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
   [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
   [[nodiscard]] std::size_t used() const noexcept { return used_; }
+  /// Workers to split the states' arithmetic across, or null for this thread.
+  void set_tasks(const task_system* tasks) noexcept { tasks_ = tasks; }
+  [[nodiscard]] const task_system* tasks() const noexcept { return tasks_; }
 
   std::size_t acquire() {
     if (free_.empty()) {
@@ -58,6 +62,7 @@ class buffer_pool {
   std::vector<aligned_array<E>> buffers_;
   std::vector<std::size_t> free_;
   std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+  const task_system* tasks_ = nullptr;
 };
 
 /// E needs E + E and E * S for the scalar S the integrator steps with.
@@ -84,12 +89,18 @@ class pooled_state {
   const E& operator[](std::size_t i) const noexcept { return data()[i]; }
   [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
 
-  /// Calls f(i) for the index of every live element of every segment.
+  /// Calls f(i) for the index of every live element of every segment,
+  /// split across the pool's workers when it has them: each element's
+  /// result is the same whoever computes it.
   template <class F>
   void for_each(F&& f) const {
-    const std::size_t segments = pool_->segments(), stride = pool_->stride(), used = pool_->used();
-    for (std::size_t s = 0; s < segments; ++s)
-      for (std::size_t i = s * stride; i < s * stride + used; ++i) f(i);
+    const std::size_t segments = pool_->segments(), stride = pool_->stride();
+    auto range = [&](std::size_t begin, std::size_t end, std::uint32_t) {
+      for (std::size_t s = 0; s < segments; ++s)
+        for (std::size_t i = s * stride + begin; i < s * stride + end; ++i) f(i);
+    };
+    if (const task_system* tasks = pool_->tasks()) parallel_for(*tasks, std::uint32_t(pool_->used()), 4096, range);
+    else range(0, pool_->used(), 0);
   }
 
   // An rvalue operand lends its buffer to the result, so `a + b * h` uses

@@ -1,0 +1,146 @@
+// Particles stepped across workers: the same bits as one thread, whatever
+// the worker count and however the scheduler cuts and orders the ranges.
+// Ageing, death, emission, wind and springs are all in the scenes, since
+// each keeps something across batches (dead batches, springs' sums).
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "../error_code_of.hpp"
+#include "impulse/thread_pool.hpp"
+#include "particle_test.hpp"
+
+namespace {
+
+using namespace impulse::particles;
+using impulse::vec3;
+namespace in = impulse::integrators;
+
+/// A scheduler on one thread that runs a loop's ranges back to front, in
+/// ranges of odd sizes: what a real one may do, made repeatable.
+struct backwards_scheduler {
+  static void* enqueue(impulse::task_function* task, std::uint32_t count, std::uint32_t min_range,
+                       void* context, void*) {
+    std::vector<std::uint32_t> cuts{count};
+    for (std::uint32_t end = count, k = 0; end > 0; ++k) {
+      const std::uint32_t size = std::min(end, min_range + (k * 37) % 101);
+      end -= size;
+      cuts.push_back(end);
+    }
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) task(cuts[c + 1], cuts[c], std::uint32_t(c % 3), context);
+    return nullptr;
+  }
+  static void finish(void*, void*) {}
+  static impulse::task_system tasks() { return {3, &enqueue, &finish, nullptr}; }
+};
+
+/// Every position and velocity's bits, in index order.
+template <class System>
+std::vector<unsigned char> bits(const System& s) {
+  using T = typename System::scalar;
+  std::vector<unsigned char> out;
+  const auto p = s.positions(), v = s.velocities();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (T value : {p.x[i], p.y[i], p.z[i], v.x[i], v.y[i], v.z[i]}) {
+      unsigned char b[sizeof(T)];
+      std::memcpy(b, &value, sizeof(T));
+      out.insert(out.end(), b, b + sizeof(T));
+    }
+  return out;
+}
+
+/// The particles scene with wind, short lives and an emitter that refills
+/// what dies: 20 000 particles, 1 250 float batches, 60 steps.
+template <class C>
+std::vector<unsigned char> snow(const impulse::task_system* tasks) {
+  using T = typename C::scalar;
+  const std::size_t n = 20000;
+  particle_system<C, gravity, drag, point_forces, wind> s{n};
+  if (tasks) s.set_task_system(*tasks);
+  auto& points = s.template force<point_forces>();
+  points.add({0, 5, 0}, 20);
+  points.add({5, 3, -4}, -15);
+  const T r = T(0.70710678118654752);
+  s.add_plane(plane_collider<T>::half_space({0, 1, 0}, 0, T(0.5), T(0.2)));
+  s.add_plane(plane_collider<T>::half_space({-r, 0, -r}, 10, T(0.5), T(0.2)));
+  impulse::lcg32 random{4242};
+  for (std::size_t i = 0; i < n - 500; ++i) {
+    const vec3<T> x{random.uniform<T>(-8, 8), random.uniform<T>(T(0.5), 15), random.uniform<T>(-8, 8)};
+    const vec3<T> v{random.uniform<T>(-5, 5), random.uniform<T>(-5, 5), random.uniform<T>(-5, 5)};
+    s.add(x, v, T(1), random.uniform<T>(T(0.05), T(0.6)));
+  }
+  emitter<T> source;
+  source.position = {0, 12, 0};
+  source.half_extents = {8, 0, 8};
+  source.rate = 12000;
+  source.lifetime = T(0.3);
+  s.add_emitter(source);
+  for (int k = 0; k < 60; ++k) s.step(T(1.0 / 120));
+  REQUIRE(s.size() > 1000);
+  return bits(s);
+}
+
+/// A 100 × 100 cloth of springs under gravity, its top row held by a plane
+/// it rests on: RK4 evaluates the springs four times a step.
+template <class C>
+std::vector<unsigned char> cloth(const impulse::task_system* tasks) {
+  using T = typename C::scalar;
+  const std::uint32_t side = 100;
+  particle_system<C, gravity, drag, springs> s{side * side};
+  if (tasks) s.set_task_system(*tasks);
+  for (std::uint32_t i = 0; i < side; ++i)
+    for (std::uint32_t j = 0; j < side; ++j) s.add({T(0.1) * T(i), T(5), T(0.1) * T(j)}, {}, T(1) + T((i + j) % 3));
+  auto& list = s.template force<springs>();
+  for (std::uint32_t i = 0; i < side; ++i)
+    for (std::uint32_t j = 0; j < side; ++j) {
+      if (i + 1 < side) list.add(i * side + j, (i + 1) * side + j, T(0.1), T(200), T(0.5));
+      if (j + 1 < side) list.add(i * side + j, i * side + j + 1, T(0.1), T(200), T(0.5));
+    }
+  s.add_plane(plane_collider<T>::half_space({0, 1, 0}, T(-4), T(0.2), T(0.5)));
+  for (int k = 0; k < 40; ++k) s.step(T(1.0 / 240));
+  return bits(s);
+}
+
+template <class T, class I>
+using threads_config = particle_test::config<T, particle_test::native<T>, I>;
+
+template <class C, class Scene>
+void check_any_worker_count(Scene scene) {
+  const std::vector<unsigned char> one = scene(nullptr);
+  for (std::uint32_t workers : {1u, 2u, 3u, 8u}) {
+    CAPTURE(workers);
+    impulse::thread_pool pool{workers};
+    const impulse::task_system tasks = pool.tasks();
+    CHECK(scene(&tasks) == one);
+  }
+  const impulse::task_system backwards = backwards_scheduler::tasks();
+  CHECK(scene(&backwards) == one);
+}
+
+TEST_CASE_TEMPLATE("the particles scene with ageing and an emitter is bit-identical for 1, 2, 3 and 8 workers", C,
+                   threads_config<float, in::symplectic_euler>, threads_config<float, in::rk4>,
+                   threads_config<double, in::euler>, threads_config<double, in::midpoint>) {
+  check_any_worker_count<C>([](const impulse::task_system* t) { return snow<C>(t); });
+}
+
+TEST_CASE_TEMPLATE("a cloth of springs is bit-identical for 1, 2, 3 and 8 workers", C,
+                   threads_config<float, in::rk4>, threads_config<double, in::symplectic_euler>) {
+  check_any_worker_count<C>([](const impulse::task_system* t) { return cloth<C>(t); });
+}
+
+TEST_CASE("a task system with one callback or no worker is refused and the old one kept") {
+  particle_system<particle_test::config<float, 1>, gravity> s{4};
+  impulse::thread_pool pool{2};
+  s.set_task_system(pool.tasks());
+  impulse::task_system half = pool.tasks();
+  half.finish = nullptr;
+  CHECK(impulse::test::error_code_of([&] { s.set_task_system(half); }) == impulse::error_code::invalid_parameter);
+  impulse::task_system none = pool.tasks();
+  none.workers = 0;
+  CHECK(impulse::test::error_code_of([&] { s.set_task_system(none); }) == impulse::error_code::invalid_parameter);
+  CHECK(s.tasks().workers == 2);
+  CHECK(impulse::test::error_code_of([] { impulse::thread_pool empty{0}; }) ==
+        impulse::error_code::invalid_parameter);
+}
+
+}  // namespace
