@@ -17594,8 +17594,9 @@ struct springs {
   // columns (x | y | z) of `stride` values each; a null inverse_mass means
   // unit masses.
 
-  /// The most colours: a particle with more springs than this sends the
-  /// springs that find no colour to a last group, run on one thread.
+  /// The most colours. A spring whose ends between them already have all of
+  /// them (a particle with more springs than this, say) goes to a last
+  /// group, run as one range on one thread.
   static constexpr std::size_t max_colours = 64;
 
   /// Colours the springs (greedily, each the lowest colour neither end has
