@@ -50,6 +50,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "impulse/thread_pool.hpp"
@@ -266,17 +267,30 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
   }
 }
 
+/// Calls f.operator()<T, I>(name) for the scalar and integrator named.
+template <class F>
+void with_types(const std::string& scalar, const std::string& integrator, F&& f) {
+  namespace in = impulse::integrators;
+  auto with = [&]<class T>() {
+    if (integrator == "euler") f.template operator()<T, in::euler>("euler");
+    if (integrator == "symplectic_euler") f.template operator()<T, in::symplectic_euler>("symplectic_euler");
+    if (integrator == "midpoint") f.template operator()<T, in::midpoint>("midpoint");
+    if (integrator == "rk4") f.template operator()<T, in::rk4>("rk4");
+  };
+  if (scalar == "float") with.template operator()<float>();
+  if (scalar == "double") with.template operator()<double>();
+}
+
 template <class T>
 void run_scalar(std::size_t n, const settings& s) {
   if (!listed(s.scalars, sizeof(T) == 4 ? "float" : "double")) return;
   const double roof_soa = s.aos ? copy_bandwidth(n * 12 * sizeof(T), s) : 0.0;
   const double roof_aos = s.aos ? copy_bandwidth(n * 2 * sizeof(particle<T>), s) : 0.0;
-  namespace in = impulse::integrators;
-  if (listed(s.integrators, "euler")) run<T, in::euler>("euler", n, roof_soa, roof_aos, s);
-  if (listed(s.integrators, "symplectic_euler"))
-    run<T, in::symplectic_euler>("symplectic_euler", n, roof_soa, roof_aos, s);
-  if (listed(s.integrators, "midpoint")) run<T, in::midpoint>("midpoint", n, roof_soa, roof_aos, s);
-  if (listed(s.integrators, "rk4")) run<T, in::rk4>("rk4", n, roof_soa, roof_aos, s);
+  for (const char* integrator : {"euler", "symplectic_euler", "midpoint", "rk4"})
+    if (listed(s.integrators, integrator))
+      with_types(sizeof(T) == 4 ? "float" : "double", integrator, [&]<class U, class I>(const char* name) {
+        if constexpr (std::is_same_v<U, T>) run<T, I>(name, n, roof_soa, roof_aos, s);
+      });
   if (s.aos)
     std::fprintf(stderr, "copy roof at n = %zu (%s): %.2f GB/s soa footprint, %.2f GB/s aos footprint\n", n,
                  sizeof(T) == 4 ? "float" : "double", roof_soa / 1e9, roof_aos / 1e9);
@@ -351,20 +365,6 @@ void emitter_rows(const char* integrator_name, std::size_t n, std::uint32_t thre
   print_row("ageing", median(t_ageing), ageing.size());
   print_row("emitter", median(t_recycling), recycling.size());
   std::fflush(stdout);
-}
-
-/// Calls f.operator()<T, I>(name) for the scalar and integrator named.
-template <class F>
-void with_types(const std::string& scalar, const std::string& integrator, F&& f) {
-  namespace in = impulse::integrators;
-  auto with = [&]<class T>() {
-    if (integrator == "euler") f.template operator()<T, in::euler>("euler");
-    if (integrator == "symplectic_euler") f.template operator()<T, in::symplectic_euler>("symplectic_euler");
-    if (integrator == "midpoint") f.template operator()<T, in::midpoint>("midpoint");
-    if (integrator == "rk4") f.template operator()<T, in::rk4>("rk4");
-  };
-  if (scalar == "float") with.template operator()<float>();
-  if (scalar == "double") with.template operator()<double>();
 }
 
 int run_emitter_table(const settings& s) {
