@@ -25,6 +25,7 @@ PROBLEMS = {
     "oscillator": "harmonic oscillator  x'' = -4x",
     "projectile_drag": "projectile with linear drag  v' = g - 0.7v",
     "orbit": "circular orbit  μ = 4, r = 2",
+    "orbit_estimate": "the orbit, |x|⁻³ from the 1/√ estimate",
 }
 INTEGRATORS = {  # color, stages
     "euler": ("tab:red", 1),
@@ -59,7 +60,7 @@ def plot(series, out):
     import matplotlib.pyplot as plt  # after choosing the backend
     from matplotlib.lines import Line2D
 
-    fig, axes = plt.subplots(1, len(PROBLEMS), figsize=(17, 6), sharey=True)
+    fig, axes = plt.subplots(1, len(PROBLEMS), figsize=(22, 6), sharey=True)
     for ax, (problem, title) in zip(axes, PROBLEMS.items()):
         for integrator, (color, _) in INTEGRATORS.items():
             for scalar, style in SCALARS.items():

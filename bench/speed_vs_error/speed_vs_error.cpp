@@ -2,7 +2,8 @@
 // per particle-step, for every integrator × scalar × time step.
 //
 // For each closed-form problem (the three of tests/integrators/problems.hpp,
-// copied here because a benchmark does not include test files), integrator,
+// copied here because a benchmark does not include test files, and the orbit
+// again with the particle kernel's estimated root), integrator,
 // scalar and h = 0.1·2^-k s (k = -2 … 15), it prints one CSV row to stdout:
 //   error                 |x(t_end) - exact| after integrating to t_end = 2 s,
 //   ns_per_particle_step  median of 7 timed runs, each ≳ 20 ms, of N = 4096
@@ -32,6 +33,7 @@
 #include "impulse/integrators/symplectic_euler.hpp"
 #include "impulse/math/vec3.hpp"
 #include "impulse/math/vec3_batch.hpp"
+#include "impulse/particles/point_forces.hpp"
 
 namespace {
 
@@ -93,7 +95,8 @@ struct projectile_drag {
 
 /// Circular orbit of radius r = 2 about an attractor of strength μ = 4 at the
 /// origin: a = -μ x/|x|³, speed √(μ/r), angular rate √(μ/r³). The one problem
-/// with a square root and a division per evaluation, like the particle kernel.
+/// with a square root and a division per evaluation, like the particle
+/// kernel's exact root.
 template <class T>
 struct orbit {
   static constexpr const char* name = "orbit";
@@ -110,6 +113,20 @@ struct orbit {
     // (relative 3e-8, below float's error floor here), so the circle is kept.
     const double angle = std::sqrt(double(mu) / (double(r) * r * r)) * t;
     return {r * std::cos(angle), r * std::sin(angle), 0};
+  }
+};
+
+/// The same orbit with |x|^-3 from the hardware's estimate of 1/√ and its
+/// polynomial correction, as the particle kernel's point forces compute it
+/// in float (point_forces::inverse_root_cubed): no square root and no
+/// division. Double has no estimate and takes the exact form.
+template <class T>
+struct orbit_estimate : orbit<T> {
+  static constexpr const char* name = "orbit_estimate";
+  template <int W>
+  vec3_batch<T, W> operator()(const vec3_batch<T, W>& x, const vec3_batch<T, W>&) const {
+    using points = impulse::particles::point_forces<T>;
+    return x * (points::inverse_root_cubed(length_squared(x), points::root_method::estimate) * -orbit<T>::mu);
   }
 };
 
@@ -297,5 +314,6 @@ int main(int argc, char** argv) {
   measure_problem<oscillator>(ladder, s);
   measure_problem<projectile_drag>(ladder, s);
   measure_problem<orbit>(ladder, s);
+  measure_problem<orbit_estimate>(ladder, s);
   std::fprintf(stderr, "checksum %.17g\n", checksum);
 }

@@ -5132,9 +5132,11 @@ struct batch {
 
   native v;
 
+  /// s in every lane. As s − 0, which is s for every s, so compilers drop
+  /// it; 0 + s is +0 for s = −0 and cost a scalar add before each broadcast.
   static batch broadcast(T s) noexcept {
     if constexpr (W == 1) return {s};
-    else return {native{} + s};
+    else return {s - native{}};
   }
   /// W consecutive values from p (no alignment required).
   static batch load(const T* p) noexcept {
@@ -5311,34 +5313,42 @@ bool lane_rsqrt_estimate(lanes<T, W>& a) noexcept {
   }
 }
 
-/// Whether lane_rsqrt_estimate has an estimate for W lanes of T on this
-/// target, known at compile time.
+/// The relative accuracy of lane_rsqrt_estimate for W lanes of T on this
+/// target, in bits, known at compile time: 14 for rsqrt14ps, 11 for rsqrtps
+/// (1.5·2⁻¹² ≈ 2^-11.4), 0 where there is no estimate.
 template <class T, int W>
-constexpr bool has_rsqrt_estimate() noexcept {
+constexpr int rsqrt_estimate_bits() noexcept {
   constexpr int bytes = int(sizeof(T)) * W;
   if constexpr (!std::is_same_v<T, float> || W == 1) {
-    return false;
+    return 0;
   }
 #if defined(__AVX512F__)
   else if constexpr (bytes == 64) {
-    return true;
+    return 14;
   }
 #endif
 #if defined(__AVX__)
   else if constexpr (bytes == 32) {
-    return true;
+    return 11;
   }
 #endif
 #if defined(__SSE__)
   else if constexpr (bytes == 16) {
-    return true;
+    return 11;
   }
 #endif
   else if constexpr (bytes > 16) {
-    return has_rsqrt_estimate<T, W / 2>();
+    return rsqrt_estimate_bits<T, W / 2>();
   } else {
-    return false;
+    return 0;
   }
+}
+
+/// Whether lane_rsqrt_estimate has an estimate for W lanes of T on this
+/// target, known at compile time.
+template <class T, int W>
+constexpr bool has_rsqrt_estimate() noexcept {
+  return rsqrt_estimate_bits<T, W>() > 0;
 }
 
 }  // namespace detail
@@ -16696,27 +16706,48 @@ template <class T, int W>
 /// once a step: its normal and offset, −e, and 1 − μ (the tangential
 /// velocity kept); `risky` when pushing a lane out of it can leave the lane
 /// behind a plane checked before it (particle_system::prepare_planes).
+/// `axis` is 0, 1 or 2 when the normal is ±1 along that axis and 0 along
+/// the others (floors and walls), −1 otherwise.
 template <class T>
 struct half_space_rule {
   vec3<T> normal;
   T offset, minus_restitution, keep;
   bool risky;
+  int axis;
 
   static half_space_rule of(const plane_collider<T>& plane, bool risky) noexcept {
-    return {plane.normal, plane.offset, -plane.restitution, T(1) - plane.friction, risky};
+    const vec3<T>& n = plane.normal;
+    int axis = -1;
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(n[i]) == T(1) && n[(i + 1) % 3] == T(0) && n[(i + 2) % 3] == T(0)) axis = i;
+    return {n, plane.offset, -plane.restitution, T(1) - plane.friction, risky, axis};
   }
 };
+
+/// n·x + d. When the normal is ±1 along an axis this is ±x_i + d: one
+/// fused multiply-add instead of a dot product's three products and an
+/// add, and the same value, the other two products being zeros.
+template <class T, int W>
+[[gnu::always_inline]] inline batch<T, W> distance(const half_space_rule<T>& h,
+                                                   const vec3_batch<T, W>& x) noexcept {
+  switch (h.axis) {
+    case 0: return x.x * h.normal.x + h.offset;
+    case 1: return x.y * h.normal.y + h.offset;
+    case 2: return x.z * h.normal.z + h.offset;
+    default: return dot(x, vec3_batch<T, W>::broadcast(h.normal)) + h.offset;
+  }
+}
 
 /// Half-space: lanes behind are projected onto the plane, and their
 /// velocities answered (plane_response). Returns whether any was.
 template <class T, int W>
 [[gnu::always_inline]] inline bool collide_half_space(const half_space_rule<T>& h, vec3_batch<T, W>& x,
                                                       vec3_batch<T, W>& v) noexcept {
-  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
-  const batch<T, W> s = dot(x, n) + h.offset;
+  const batch<T, W> s = distance(h, x);
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
   const batch_mask<T, W> behind = s < zero;
   if (none(behind)) return false;
+  const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
   x = x - n * select(behind, s, zero);
   plane_response(h.minus_restitution, h.keep, behind, n, v);
   return true;
@@ -17023,79 +17054,131 @@ class particle_system {
  private:
   // ---- the kernel -----------------------------------------------------------------
 
-  /// Pointers to one batch's slice of every column.
-  struct slice {
+  /// The columns' starts, null for those this configuration lacks (known
+  /// at compile time). A loop over batches takes them once, as a local,
+  /// and indexes them by the batch's first particle: stores to the columns
+  /// may alias anything (they are copies of bytes), so GCC reloaded the
+  /// pointers from the system at every batch, and a per-batch struct of
+  /// ten pointers was built through the stack.
+  struct columns_start {
     T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
   };
-  /// Which columns exist is known at compile time, so this has no branches.
-  slice at(std::size_t first) noexcept {
-    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
-            vy_.data() + first, vz_.data() + first, nullptr, nullptr, nullptr, nullptr};
-    if constexpr (has_masses) s.inverse_mass = inverse_mass_.data() + first;
-    if constexpr (needs_variation) s.variation = variation_.data() + first;
-    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
+  columns_start start_of_columns() noexcept {
+    columns_start s{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(),
+                    nullptr, nullptr, nullptr, nullptr};
+    if constexpr (has_masses) s.inverse_mass = inverse_mass_.data();
+    if constexpr (needs_variation) s.variation = variation_.data();
+    if constexpr (has_lifetime) s.age = age_.data(), s.lifetime = lifetime_.data();
     return s;
+  }
+
+  /// Whether one of the first `count` forces has this effect.
+  static constexpr bool any_effect(force_effect effect, std::size_t count = sizeof...(Forces)) noexcept {
+    constexpr std::array<force_effect, sizeof...(Forces)> effects{Forces<T>::effect...};
+    for (std::size_t i = 0; i < count; ++i)
+      if (effects[i] == effect) return true;
+    return false;
+  }
+
+  /// Adds the I-th force's term to the accelerations or to the forces; the
+  /// first term of each kind is assigned, so no zero is ever added.
+  template <std::size_t I>
+  [[gnu::always_inline]] static void add_term(const std::tuple<Forces<T>...>& forces, const state& x,
+                                              const state& v, const particle_lanes<T, width>& p, state& accel,
+                                              state& force) noexcept {
+    using F = std::tuple_element_t<I, std::tuple<Forces<T>...>>;
+    if constexpr (F::effect == force_effect::acceleration) {
+      const state term = std::get<I>(forces).evaluate(x, v, p);
+      if constexpr (any_effect(force_effect::acceleration, I)) accel = accel + term;
+      else accel = term;
+    } else if constexpr (F::effect == force_effect::force) {
+      const state term = std::get<I>(forces).evaluate(x, v, p);
+      if constexpr (any_effect(force_effect::force, I)) force = force + term;
+      else force = term;
+    }
   }
 
   /// Acceleration of a batch: the accelerations as they are plus the forces
   /// over the mass. Only the listed forces are compiled in. Always inlined:
   /// called four times a step by RK4, GCC 12 outlined it, and each call
   /// passed six batches and returned three through memory (35 % of RK4's
-  /// time in float).
+  /// time in float). No lambda: one capturing x and v by reference made
+  /// GCC keep the kernel's whole state in memory, stored and reloaded
+  /// around the planes in every batch.
+  template <std::size_t... I>
+  [[gnu::always_inline]] static state acceleration(std::index_sequence<I...>,
+                                                  const std::tuple<Forces<T>...>& forces, const state& x,
+                                                  const state& v, const lanes& inverse_mass,
+                                                  const particle_lanes<T, width>& p) noexcept {
+    constexpr bool have_accel = any_effect(force_effect::acceleration);
+    constexpr bool have_force = any_effect(force_effect::force);
+    state accel{}, force{};
+    (add_term<I>(forces, x, v, p, accel, force), ...);
+    if constexpr (!have_force) return have_accel ? accel : state::broadcast({});
+    else if constexpr (!have_accel) return force * inverse_mass;
+    else return accel + force * inverse_mass;
+  }
   [[gnu::always_inline]] static state acceleration(const std::tuple<Forces<T>...>& forces, const state& x,
                                                   const state& v, const lanes& inverse_mass,
                                                   const particle_lanes<T, width>& p) noexcept {
-    state accel{}, force{};
-    bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
-    auto add = [&]<class F>(const F& f) {
-      if constexpr (F::effect == force_effect::acceleration) {
-        accel = have_accel ? accel + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_accel = true;
-      } else if constexpr (F::effect == force_effect::force) {
-        force = have_force ? force + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_force = true;
-      }
-    };
-    std::apply([&](const auto&... f) { (add(f), ...); }, forces);
-    if (!have_force) return have_accel ? accel : state::broadcast({});
-    return have_accel ? accel + force * inverse_mass : force * inverse_mass;
+    return acceleration(std::index_sequence_for<Forces<T>...>{}, forces, x, v, inverse_mass, p);
   }
 
-  lanes load_inverse_mass(const slice& s) const noexcept {
-    if constexpr (needs_inverse_mass) return lanes::load(s.inverse_mass);
+  lanes load_inverse_mass(const columns_start& c, std::size_t first) const noexcept {
+    if constexpr (needs_inverse_mass) return lanes::load(c.inverse_mass + first);
     else return lanes::broadcast(T(1));
   }
-  particle_lanes<T, width> load_lanes(const slice& s) const noexcept {
-    if constexpr (needs_variation) return {lanes::load(s.variation)};
+  particle_lanes<T, width> load_lanes(const columns_start& c, std::size_t first) const noexcept {
+    if constexpr (needs_variation) return {lanes::load(c.variation + first)};
     else return {lanes::broadcast(T(0))};
   }
 
-  /// Planes, then age: the part of a step after integration. x0 is where the
-  /// batch started the step. Flags the batch when a particle in it died (a
-  /// flag per batch, so that workers never write the same place).
-  [[gnu::always_inline]] void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v,
+  /// Planes, then age: the part of a step after integration. The batch's
+  /// columns still hold where it started the step until x and v are stored
+  /// here. Flags the batch when a particle in it died (a flag per batch, so
+  /// that workers never write the same place).
+  [[gnu::always_inline]] void finish_batch(const columns_start& c, std::size_t first, state& x, state& v,
                                            T dt) {
-    if (!planes_.empty()) collide(x0, x, v);
-    x.store(s.x, s.y, s.z);
-    v.store(s.vx, s.vy, s.vz);
+    if (!planes_.empty()) collide(first, x, v);
+    x.store(c.x + first, c.y + first, c.z + first);
+    v.store(c.vx + first, c.vy + first, c.vz + first);
     if constexpr (has_lifetime) {
-      const lanes age = lanes::load(s.age) + dt;
-      age.store(s.age);
-      died_[first / width] = any(age >= lanes::load(s.lifetime));
+      const lanes age = lanes::load(c.age + first) + dt;
+      age.store(c.age + first);
+      died_[first / width] = any(age >= lanes::load(c.lifetime + first));
     }
+  }
+
+  /// A batch's x and v stored for the rare paths below, which are not
+  /// inlined and read the start of the step from the columns. Passed a
+  /// state by reference instead, even a copy, GCC 12 kept it in memory for
+  /// the whole kernel: six stores and six loads a batch more, on the common
+  /// path too. Keeping the start of the step in registers for them spilled
+  /// with AVX2's 16.
+  struct parked {
+    alignas(64) T rows[6][width];
+    parked(const state& x, const state& v) noexcept { put(x, v); }
+    void put(const state& x, const state& v) noexcept {
+      x.store(rows[0], rows[1], rows[2]);
+      v.store(rows[3], rows[4], rows[5]);
+    }
+    state position() const noexcept { return state::load(rows[0], rows[1], rows[2]); }
+    state velocity() const noexcept { return state::load(rows[3], rows[4], rows[5]); }
+  };
+
+  /// Where the batch at `first` started the step: its columns, before
+  /// finish_batch stores into them.
+  state start_of_step(std::size_t first) const noexcept {
+    return state::load(x_.data() + first, y_.data() + first, z_.data() + first);
   }
 
   /// The planes: rectangles, then half-spaces, then the creases between
   /// them when a projection may have left a lane behind another plane.
-  /// The rare parts take copies: a state passed by reference to a function
-  /// not inlined lives in memory, and the whole kernel then loaded and
-  /// stored it around every operation (the force and motion part of a
-  /// float Euler step ran at 0.45 times a hand-written kernel's speed).
-  [[gnu::always_inline]] void collide(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::always_inline]] void collide(std::size_t first, state& x, state& v) const noexcept {
     if (any_rectangle_) {
-      state xr = x, vr = v;
-      collide_rectangles(state(x0), xr, vr);
-      x = xr, v = vr;
+      parked p(x, v);
+      collide_rectangles(first, p);
+      x = p.position(), v = p.velocity();
     }
     // Moving a lane out of plane k along n_k lowers its distance to plane j
     // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
@@ -17105,17 +17188,27 @@ class particle_system {
     for (const detail::half_space_rule<T>& h : half_spaces_)
       if (detail::collide_half_space(h, x, v)) check |= h.risky;
     if (!check) return;
-    state xr = x, vr = v;
-    settle_creases(state(x0), xr, vr);
-    x = xr, v = vr;
+    parked p(x, v);
+    settle_creases(first, p);
+    x = p.position(), v = p.velocity();
   }
 
-  [[gnu::noinline]] void collide_rectangles(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::noinline]] void collide_rectangles(std::size_t first, parked& p) const noexcept {
+    const state x0 = start_of_step(first);
+    state x = p.position(), v = p.velocity();
     for (const plane_collider<T>& plane : planes_)
       if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+    p.put(x, v);
   }
 
-  [[gnu::noinline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::noinline]] void settle_creases(std::size_t first, parked& p) const noexcept {
+    const state x0 = start_of_step(first);
+    state x = p.position(), v = p.velocity();
+    settle_creases(x0, x, v);
+    p.put(x, v);
+  }
+
+  [[gnu::always_inline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
     // Projecting onto one half-space can push a particle back behind another
     // that meets it at an acute angle (a crease). Cyclic projection would
     // converge there only geometrically, by cos² of the angle per sweep, so
@@ -17178,17 +17271,16 @@ class particle_system {
     // The forces' parameters, copied: the columns hold T too, so a store
     // to a column could otherwise be taken to change them.
     const std::tuple<Forces<T>...> forces = forces_;
+    const columns_start c = start_of_columns();
     for (std::size_t first = begin; first < end; first += width) {
-      const slice s = at(first);
-      const state x0 = state::load(s.x, s.y, s.z);
-      state x = x0;
-      state v = state::load(s.vx, s.vy, s.vz);
-      const lanes inverse_mass = load_inverse_mass(s);
-      const particle_lanes<T, width> p = load_lanes(s);
+      state x = state::load(c.x + first, c.y + first, c.z + first);
+      state v = state::load(c.vx + first, c.vy + first, c.vz + first);
+      const lanes inverse_mass = load_inverse_mass(c, first);
+      const particle_lanes<T, width> p = load_lanes(c, first);
       integrator::step(x, v, dt, [&](const state& xs, const state& vs) __attribute__((always_inline)) {
         return acceleration(forces, xs, vs, inverse_mass, p);
       });
-      finish_batch(s, first, x0, x, v, dt);
+      finish_batch(c, first, x, v, dt);
     }
   }
 
@@ -17202,18 +17294,20 @@ class particle_system {
       pool_.set_tasks(tasks_.parallel() ? &tasks_ : nullptr);
       using whole = impulse::detail::pooled_state<T>;
       whole x(pool_), v(pool_);
-      copy_columns(x.data(), x_, y_, z_, used);
-      copy_columns(v.data(), vx_, vy_, vz_, used);
+      for_batches([&](std::size_t begin, std::size_t end) {
+        copy_columns(x.data(), x_, y_, z_, begin, end);
+        copy_columns(v.data(), vx_, vy_, vz_, begin, end);
+      });
       auto& pairwise = std::get<pairwise_index()>(forces_);
       const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
       pairwise.prepare_colours(size_);
       integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
         whole a(pool_);
         for_batches([&](std::size_t begin, std::size_t end) {
+          const columns_start c = start_of_columns();
           for (std::size_t first = begin; first < end; first += width) {
-            const slice s = at(first);
             const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-            acceleration(forces_, xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+            acceleration(forces_, xb, vb, load_inverse_mass(c, first), load_lanes(c, first)).store(a.data() + first,
                 a.data() + stride_ + first, a.data() + 2 * stride_ + first);
           }
         });
@@ -17230,11 +17324,10 @@ class particle_system {
         return a;
       });
       for_batches([&](std::size_t begin, std::size_t end) {
+        const columns_start c = start_of_columns();
         for (std::size_t first = begin; first < end; first += width) {
-          const slice s = at(first);
-          const state x0 = state::load(s.x, s.y, s.z);
           state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-          finish_batch(s, first, x0, xb, vb, dt);
+          finish_batch(c, first, xb, vb, dt);
         }
       });
     }
@@ -17244,8 +17337,8 @@ class particle_system {
     return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
   }
   void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
-                    std::size_t used) const noexcept {
-    for (std::size_t i = 0; i < used; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
+                    std::size_t begin, std::size_t end) const noexcept {
+    for (std::size_t i = begin; i < end; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
   }
 
   static constexpr std::size_t pairwise_index() {
@@ -17284,11 +17377,11 @@ class particle_system {
   /// thrown away. They hold copies of the last particle, so they stay finite
   /// and cost nothing special; they never die (infinite lifetime).
   void fill_padding() noexcept {
-    const std::size_t last = size_ - 1;
-    for (std::size_t i = size_; i < padded(size_); ++i) {
-      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
-      if constexpr (has_lifetime) lifetime_[i] = std::numeric_limits<T>::infinity();
-    }
+    const std::size_t last = size_ - 1, end = padded(size_);
+    for (aligned_array<T>* column : columns())
+      for (std::size_t i = size_; i < end; ++i) (*column)[i] = (*column)[last];
+    if constexpr (has_lifetime)
+      for (std::size_t i = size_; i < end; ++i) lifetime_[i] = std::numeric_limits<T>::infinity();
   }
 
   std::array<aligned_array<T>*, 10> all_columns() noexcept {
@@ -17487,6 +17580,18 @@ struct point_forces {
   /// ε in m²: the softening length squared. Must be > 0.
   T softening = T(0.05);
 
+  /// How float lanes compute (|d|² + ε)^(-3/2). `estimate`: from the
+  /// hardware's estimate of 1/√ (rsqrt14ps, rsqrtps) and a polynomial
+  /// correction, with no square root and no division. `exact`: one square
+  /// root and one division, each correctly rounded. The force is within
+  /// 5e-7 of the law by the estimate and 4e-7 by the exact form, which
+  /// carries the float roundings of d and |d|² + ε as well
+  /// (tests/particles/test_forces.cpp). Double lanes and single
+  /// particles (W = 1) always take the exact form: x86 has no double estimate
+  /// below AVX-512.
+  enum class root_method { estimate, exact };
+  root_method root = root_method::estimate;
+
   /// Adds a point and returns its index; a ninth point is refused.
   std::size_t add(const vec3<T>& position, T strength) {
     detail::require(count < max_points, error_code::capacity_exceeded,
@@ -17511,19 +17616,52 @@ struct point_forces {
   template <int W>
   vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
                             const particle_lanes<T, W>&) const noexcept {
+    if constexpr (impulse::detail::has_rsqrt_estimate<T, W>())
+      if (root == root_method::estimate) return sum<W, root_method::estimate>(x);
+    return sum<W, root_method::exact>(x);
+  }
+
+  /// r2^(-3/2) for r2 > 0 (positive, finite, normal), by `method` where W
+  /// lanes of T have an estimate, exactly otherwise. The estimate y of
+  /// 1/√r2 gives e = r2·y² = 1 + δ, and r2^(-3/2) = y³·(1 + δ)^(-3/2) =
+  /// y³·(1 − 1.5δ + 1.875δ² − …). rsqrt14ps has |δ| ≤ 2^-13, so the linear
+  /// term leaves 1.875δ² ≤ 3e-8, below float's rounding; rsqrtps has
+  /// |δ| ≤ 2^-10.4 and takes the quadratic term too (2.2|δ|³ ≤ 1e-9). This is
+  /// one multiply fewer than a Newton step for 1/√r2 followed by a cube.
+  template <int W>
+  static batch<T, W> inverse_root_cubed(batch<T, W> r2, root_method method) noexcept {
+    constexpr int bits = impulse::detail::rsqrt_estimate_bits<T, W>();
+    if constexpr (bits > 0) {
+      if (method == root_method::estimate) {
+        batch<T, W> y = r2;
+        impulse::detail::lane_rsqrt_estimate<T, W>(y.v);
+        const batch<T, W> yy = y * y;
+        const batch<T, W> e = r2 * yy;
+        if constexpr (bits >= 14) return (yy * y) * (T(2.5) - e * T(1.5));  // 1 − 1.5δ
+        // δ = e − 1 is exact (e is within 2^-10 of 1), and the small terms
+        // are added to 1 last: in powers of e, 4.375 − 5.25e + 1.875e²,
+        // they cancelled to 5e-7.
+        const batch<T, W> delta = e - T(1);
+        return (yy * y) * ((delta * T(1.875) - T(1.5)) * delta + T(1));
+      }
+    }
+    return T(1) / (r2 * sqrt(r2));
+  }
+
+ private:
+  /// The force of every enabled point, the root taken by `method`.
+  template <int W, root_method method>
+  vec3_batch<T, W> sum(const vec3_batch<T, W>& x) const noexcept {
     vec3_batch<T, W> f = vec3_batch<T, W>::broadcast({});
     for (std::size_t i = 0; i < count; ++i) {
       if (!points[i].enabled) continue;
       const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
-      const batch<T, W> r2 = length_squared(d) + softening;
-      if constexpr (impulse::detail::has_rsqrt_estimate<T, W>()) {
-        // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
-        // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
-        const batch<T, W> inverse_r = rsqrt(r2);
-        f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      // |d|² + ε as a chain of fused multiply-adds, ε innermost.
+      const batch<T, W> r2 = d.x * d.x + (d.y * d.y + (d.z * d.z + softening));
+      if constexpr (method == root_method::estimate) {
+        f = f + d * (inverse_root_cubed(r2, method) * points[i].strength);
       } else {
-        // Without an estimate, one square root and one division, as few as
-        // the law allows: 1/√ cubed took a division and three products.
+        // One square root and one division, as few as the law allows.
         f = f + d * (points[i].strength / (r2 * sqrt(r2)));
       }
     }

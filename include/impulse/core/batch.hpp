@@ -197,9 +197,11 @@ struct batch {
 
   native v;
 
+  /// s in every lane. As s − 0, which is s for every s, so compilers drop
+  /// it; 0 + s is +0 for s = −0 and cost a scalar add before each broadcast.
   static batch broadcast(T s) noexcept {
     if constexpr (W == 1) return {s};
-    else return {native{} + s};
+    else return {s - native{}};
   }
   /// W consecutive values from p (no alignment required).
   static batch load(const T* p) noexcept {
@@ -376,34 +378,42 @@ bool lane_rsqrt_estimate(lanes<T, W>& a) noexcept {
   }
 }
 
-/// Whether lane_rsqrt_estimate has an estimate for W lanes of T on this
-/// target, known at compile time.
+/// The relative accuracy of lane_rsqrt_estimate for W lanes of T on this
+/// target, in bits, known at compile time: 14 for rsqrt14ps, 11 for rsqrtps
+/// (1.5·2⁻¹² ≈ 2^-11.4), 0 where there is no estimate.
 template <class T, int W>
-constexpr bool has_rsqrt_estimate() noexcept {
+constexpr int rsqrt_estimate_bits() noexcept {
   constexpr int bytes = int(sizeof(T)) * W;
   if constexpr (!std::is_same_v<T, float> || W == 1) {
-    return false;
+    return 0;
   }
 #if defined(__AVX512F__)
   else if constexpr (bytes == 64) {
-    return true;
+    return 14;
   }
 #endif
 #if defined(__AVX__)
   else if constexpr (bytes == 32) {
-    return true;
+    return 11;
   }
 #endif
 #if defined(__SSE__)
   else if constexpr (bytes == 16) {
-    return true;
+    return 11;
   }
 #endif
   else if constexpr (bytes > 16) {
-    return has_rsqrt_estimate<T, W / 2>();
+    return rsqrt_estimate_bits<T, W / 2>();
   } else {
-    return false;
+    return 0;
   }
+}
+
+/// Whether lane_rsqrt_estimate has an estimate for W lanes of T on this
+/// target, known at compile time.
+template <class T, int W>
+constexpr bool has_rsqrt_estimate() noexcept {
+  return rsqrt_estimate_bits<T, W>() > 0;
 }
 
 }  // namespace detail

@@ -39,6 +39,7 @@
 #include <span>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../core/aligned_array.hpp"
@@ -279,79 +280,131 @@ class particle_system {
  private:
   // ---- the kernel -----------------------------------------------------------------
 
-  /// Pointers to one batch's slice of every column.
-  struct slice {
+  /// The columns' starts, null for those this configuration lacks (known
+  /// at compile time). A loop over batches takes them once, as a local,
+  /// and indexes them by the batch's first particle: stores to the columns
+  /// may alias anything (they are copies of bytes), so GCC reloaded the
+  /// pointers from the system at every batch, and a per-batch struct of
+  /// ten pointers was built through the stack.
+  struct columns_start {
     T *x, *y, *z, *vx, *vy, *vz, *inverse_mass, *variation, *age, *lifetime;
   };
-  /// Which columns exist is known at compile time, so this has no branches.
-  slice at(std::size_t first) noexcept {
-    slice s{x_.data() + first, y_.data() + first, z_.data() + first, vx_.data() + first,
-            vy_.data() + first, vz_.data() + first, nullptr, nullptr, nullptr, nullptr};
-    if constexpr (has_masses) s.inverse_mass = inverse_mass_.data() + first;
-    if constexpr (needs_variation) s.variation = variation_.data() + first;
-    if constexpr (has_lifetime) s.age = age_.data() + first, s.lifetime = lifetime_.data() + first;
+  columns_start start_of_columns() noexcept {
+    columns_start s{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(),
+                    nullptr, nullptr, nullptr, nullptr};
+    if constexpr (has_masses) s.inverse_mass = inverse_mass_.data();
+    if constexpr (needs_variation) s.variation = variation_.data();
+    if constexpr (has_lifetime) s.age = age_.data(), s.lifetime = lifetime_.data();
     return s;
+  }
+
+  /// Whether one of the first `count` forces has this effect.
+  static constexpr bool any_effect(force_effect effect, std::size_t count = sizeof...(Forces)) noexcept {
+    constexpr std::array<force_effect, sizeof...(Forces)> effects{Forces<T>::effect...};
+    for (std::size_t i = 0; i < count; ++i)
+      if (effects[i] == effect) return true;
+    return false;
+  }
+
+  /// Adds the I-th force's term to the accelerations or to the forces; the
+  /// first term of each kind is assigned, so no zero is ever added.
+  template <std::size_t I>
+  [[gnu::always_inline]] static void add_term(const std::tuple<Forces<T>...>& forces, const state& x,
+                                              const state& v, const particle_lanes<T, width>& p, state& accel,
+                                              state& force) noexcept {
+    using F = std::tuple_element_t<I, std::tuple<Forces<T>...>>;
+    if constexpr (F::effect == force_effect::acceleration) {
+      const state term = std::get<I>(forces).evaluate(x, v, p);
+      if constexpr (any_effect(force_effect::acceleration, I)) accel = accel + term;
+      else accel = term;
+    } else if constexpr (F::effect == force_effect::force) {
+      const state term = std::get<I>(forces).evaluate(x, v, p);
+      if constexpr (any_effect(force_effect::force, I)) force = force + term;
+      else force = term;
+    }
   }
 
   /// Acceleration of a batch: the accelerations as they are plus the forces
   /// over the mass. Only the listed forces are compiled in. Always inlined:
   /// called four times a step by RK4, GCC 12 outlined it, and each call
   /// passed six batches and returned three through memory (35 % of RK4's
-  /// time in float).
+  /// time in float). No lambda: one capturing x and v by reference made
+  /// GCC keep the kernel's whole state in memory, stored and reloaded
+  /// around the planes in every batch.
+  template <std::size_t... I>
+  [[gnu::always_inline]] static state acceleration(std::index_sequence<I...>,
+                                                  const std::tuple<Forces<T>...>& forces, const state& x,
+                                                  const state& v, const lanes& inverse_mass,
+                                                  const particle_lanes<T, width>& p) noexcept {
+    constexpr bool have_accel = any_effect(force_effect::acceleration);
+    constexpr bool have_force = any_effect(force_effect::force);
+    state accel{}, force{};
+    (add_term<I>(forces, x, v, p, accel, force), ...);
+    if constexpr (!have_force) return have_accel ? accel : state::broadcast({});
+    else if constexpr (!have_accel) return force * inverse_mass;
+    else return accel + force * inverse_mass;
+  }
   [[gnu::always_inline]] static state acceleration(const std::tuple<Forces<T>...>& forces, const state& x,
                                                   const state& v, const lanes& inverse_mass,
                                                   const particle_lanes<T, width>& p) noexcept {
-    state accel{}, force{};
-    bool have_accel = false, have_force = false;  // constant-folded: no adds of zero
-    auto add = [&]<class F>(const F& f) {
-      if constexpr (F::effect == force_effect::acceleration) {
-        accel = have_accel ? accel + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_accel = true;
-      } else if constexpr (F::effect == force_effect::force) {
-        force = have_force ? force + f.evaluate(x, v, p) : f.evaluate(x, v, p);
-        have_force = true;
-      }
-    };
-    std::apply([&](const auto&... f) { (add(f), ...); }, forces);
-    if (!have_force) return have_accel ? accel : state::broadcast({});
-    return have_accel ? accel + force * inverse_mass : force * inverse_mass;
+    return acceleration(std::index_sequence_for<Forces<T>...>{}, forces, x, v, inverse_mass, p);
   }
 
-  lanes load_inverse_mass(const slice& s) const noexcept {
-    if constexpr (needs_inverse_mass) return lanes::load(s.inverse_mass);
+  lanes load_inverse_mass(const columns_start& c, std::size_t first) const noexcept {
+    if constexpr (needs_inverse_mass) return lanes::load(c.inverse_mass + first);
     else return lanes::broadcast(T(1));
   }
-  particle_lanes<T, width> load_lanes(const slice& s) const noexcept {
-    if constexpr (needs_variation) return {lanes::load(s.variation)};
+  particle_lanes<T, width> load_lanes(const columns_start& c, std::size_t first) const noexcept {
+    if constexpr (needs_variation) return {lanes::load(c.variation + first)};
     else return {lanes::broadcast(T(0))};
   }
 
-  /// Planes, then age: the part of a step after integration. x0 is where the
-  /// batch started the step. Flags the batch when a particle in it died (a
-  /// flag per batch, so that workers never write the same place).
-  [[gnu::always_inline]] void finish_batch(const slice& s, std::size_t first, const state& x0, state& x, state& v,
+  /// Planes, then age: the part of a step after integration. The batch's
+  /// columns still hold where it started the step until x and v are stored
+  /// here. Flags the batch when a particle in it died (a flag per batch, so
+  /// that workers never write the same place).
+  [[gnu::always_inline]] void finish_batch(const columns_start& c, std::size_t first, state& x, state& v,
                                            T dt) {
-    if (!planes_.empty()) collide(x0, x, v);
-    x.store(s.x, s.y, s.z);
-    v.store(s.vx, s.vy, s.vz);
+    if (!planes_.empty()) collide(first, x, v);
+    x.store(c.x + first, c.y + first, c.z + first);
+    v.store(c.vx + first, c.vy + first, c.vz + first);
     if constexpr (has_lifetime) {
-      const lanes age = lanes::load(s.age) + dt;
-      age.store(s.age);
-      died_[first / width] = any(age >= lanes::load(s.lifetime));
+      const lanes age = lanes::load(c.age + first) + dt;
+      age.store(c.age + first);
+      died_[first / width] = any(age >= lanes::load(c.lifetime + first));
     }
+  }
+
+  /// A batch's x and v stored for the rare paths below, which are not
+  /// inlined and read the start of the step from the columns. Passed a
+  /// state by reference instead, even a copy, GCC 12 kept it in memory for
+  /// the whole kernel: six stores and six loads a batch more, on the common
+  /// path too. Keeping the start of the step in registers for them spilled
+  /// with AVX2's 16.
+  struct parked {
+    alignas(64) T rows[6][width];
+    parked(const state& x, const state& v) noexcept { put(x, v); }
+    void put(const state& x, const state& v) noexcept {
+      x.store(rows[0], rows[1], rows[2]);
+      v.store(rows[3], rows[4], rows[5]);
+    }
+    state position() const noexcept { return state::load(rows[0], rows[1], rows[2]); }
+    state velocity() const noexcept { return state::load(rows[3], rows[4], rows[5]); }
+  };
+
+  /// Where the batch at `first` started the step: its columns, before
+  /// finish_batch stores into them.
+  state start_of_step(std::size_t first) const noexcept {
+    return state::load(x_.data() + first, y_.data() + first, z_.data() + first);
   }
 
   /// The planes: rectangles, then half-spaces, then the creases between
   /// them when a projection may have left a lane behind another plane.
-  /// The rare parts take copies: a state passed by reference to a function
-  /// not inlined lives in memory, and the whole kernel then loaded and
-  /// stored it around every operation (the force and motion part of a
-  /// float Euler step ran at 0.45 times a hand-written kernel's speed).
-  [[gnu::always_inline]] void collide(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::always_inline]] void collide(std::size_t first, state& x, state& v) const noexcept {
     if (any_rectangle_) {
-      state xr = x, vr = v;
-      collide_rectangles(state(x0), xr, vr);
-      x = xr, v = vr;
+      parked p(x, v);
+      collide_rectangles(first, p);
+      x = p.position(), v = p.velocity();
     }
     // Moving a lane out of plane k along n_k lowers its distance to plane j
     // only if n_j·n_k < 0; only then can it leave the lane behind a plane j
@@ -361,17 +414,27 @@ class particle_system {
     for (const detail::half_space_rule<T>& h : half_spaces_)
       if (detail::collide_half_space(h, x, v)) check |= h.risky;
     if (!check) return;
-    state xr = x, vr = v;
-    settle_creases(state(x0), xr, vr);
-    x = xr, v = vr;
+    parked p(x, v);
+    settle_creases(first, p);
+    x = p.position(), v = p.velocity();
   }
 
-  [[gnu::noinline]] void collide_rectangles(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::noinline]] void collide_rectangles(std::size_t first, parked& p) const noexcept {
+    const state x0 = start_of_step(first);
+    state x = p.position(), v = p.velocity();
     for (const plane_collider<T>& plane : planes_)
       if (plane.finite) detail::collide_rectangle(plane, x0, x, v);
+    p.put(x, v);
   }
 
-  [[gnu::noinline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
+  [[gnu::noinline]] void settle_creases(std::size_t first, parked& p) const noexcept {
+    const state x0 = start_of_step(first);
+    state x = p.position(), v = p.velocity();
+    settle_creases(x0, x, v);
+    p.put(x, v);
+  }
+
+  [[gnu::always_inline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
     // Projecting onto one half-space can push a particle back behind another
     // that meets it at an acute angle (a crease). Cyclic projection would
     // converge there only geometrically, by cos² of the angle per sweep, so
@@ -434,17 +497,16 @@ class particle_system {
     // The forces' parameters, copied: the columns hold T too, so a store
     // to a column could otherwise be taken to change them.
     const std::tuple<Forces<T>...> forces = forces_;
+    const columns_start c = start_of_columns();
     for (std::size_t first = begin; first < end; first += width) {
-      const slice s = at(first);
-      const state x0 = state::load(s.x, s.y, s.z);
-      state x = x0;
-      state v = state::load(s.vx, s.vy, s.vz);
-      const lanes inverse_mass = load_inverse_mass(s);
-      const particle_lanes<T, width> p = load_lanes(s);
+      state x = state::load(c.x + first, c.y + first, c.z + first);
+      state v = state::load(c.vx + first, c.vy + first, c.vz + first);
+      const lanes inverse_mass = load_inverse_mass(c, first);
+      const particle_lanes<T, width> p = load_lanes(c, first);
       integrator::step(x, v, dt, [&](const state& xs, const state& vs) __attribute__((always_inline)) {
         return acceleration(forces, xs, vs, inverse_mass, p);
       });
-      finish_batch(s, first, x0, x, v, dt);
+      finish_batch(c, first, x, v, dt);
     }
   }
 
@@ -458,18 +520,20 @@ class particle_system {
       pool_.set_tasks(tasks_.parallel() ? &tasks_ : nullptr);
       using whole = impulse::detail::pooled_state<T>;
       whole x(pool_), v(pool_);
-      copy_columns(x.data(), x_, y_, z_, used);
-      copy_columns(v.data(), vx_, vy_, vz_, used);
+      for_batches([&](std::size_t begin, std::size_t end) {
+        copy_columns(x.data(), x_, y_, z_, begin, end);
+        copy_columns(v.data(), vx_, vy_, vz_, begin, end);
+      });
       auto& pairwise = std::get<pairwise_index()>(forces_);
       const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
       pairwise.prepare_colours(size_);
       integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
         whole a(pool_);
         for_batches([&](std::size_t begin, std::size_t end) {
+          const columns_start c = start_of_columns();
           for (std::size_t first = begin; first < end; first += width) {
-            const slice s = at(first);
             const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-            acceleration(forces_, xb, vb, load_inverse_mass(s), load_lanes(s)).store(a.data() + first,
+            acceleration(forces_, xb, vb, load_inverse_mass(c, first), load_lanes(c, first)).store(a.data() + first,
                 a.data() + stride_ + first, a.data() + 2 * stride_ + first);
           }
         });
@@ -486,11 +550,10 @@ class particle_system {
         return a;
       });
       for_batches([&](std::size_t begin, std::size_t end) {
+        const columns_start c = start_of_columns();
         for (std::size_t first = begin; first < end; first += width) {
-          const slice s = at(first);
-          const state x0 = state::load(s.x, s.y, s.z);
           state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-          finish_batch(s, first, x0, xb, vb, dt);
+          finish_batch(c, first, xb, vb, dt);
         }
       });
     }
@@ -500,8 +563,8 @@ class particle_system {
     return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
   }
   void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
-                    std::size_t used) const noexcept {
-    for (std::size_t i = 0; i < used; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
+                    std::size_t begin, std::size_t end) const noexcept {
+    for (std::size_t i = begin; i < end; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
   }
 
   static constexpr std::size_t pairwise_index() {
@@ -540,11 +603,11 @@ class particle_system {
   /// thrown away. They hold copies of the last particle, so they stay finite
   /// and cost nothing special; they never die (infinite lifetime).
   void fill_padding() noexcept {
-    const std::size_t last = size_ - 1;
-    for (std::size_t i = size_; i < padded(size_); ++i) {
-      for (aligned_array<T>* column : columns()) (*column)[i] = (*column)[last];
-      if constexpr (has_lifetime) lifetime_[i] = std::numeric_limits<T>::infinity();
-    }
+    const std::size_t last = size_ - 1, end = padded(size_);
+    for (aligned_array<T>* column : columns())
+      for (std::size_t i = size_; i < end; ++i) (*column)[i] = (*column)[last];
+    if constexpr (has_lifetime)
+      for (std::size_t i = size_; i < end; ++i) lifetime_[i] = std::numeric_limits<T>::infinity();
   }
 
   std::array<aligned_array<T>*, 10> all_columns() noexcept {

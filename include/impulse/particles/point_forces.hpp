@@ -36,6 +36,18 @@ struct point_forces {
   /// ε in m²: the softening length squared. Must be > 0.
   T softening = T(0.05);
 
+  /// How float lanes compute (|d|² + ε)^(-3/2). `estimate`: from the
+  /// hardware's estimate of 1/√ (rsqrt14ps, rsqrtps) and a polynomial
+  /// correction, with no square root and no division. `exact`: one square
+  /// root and one division, each correctly rounded. The force is within
+  /// 5e-7 of the law by the estimate and 4e-7 by the exact form, which
+  /// carries the float roundings of d and |d|² + ε as well
+  /// (tests/particles/test_forces.cpp). Double lanes and single
+  /// particles (W = 1) always take the exact form: x86 has no double estimate
+  /// below AVX-512.
+  enum class root_method { estimate, exact };
+  root_method root = root_method::estimate;
+
   /// Adds a point and returns its index; a ninth point is refused.
   std::size_t add(const vec3<T>& position, T strength) {
     detail::require(count < max_points, error_code::capacity_exceeded,
@@ -60,19 +72,52 @@ struct point_forces {
   template <int W>
   vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
                             const particle_lanes<T, W>&) const noexcept {
+    if constexpr (impulse::detail::has_rsqrt_estimate<T, W>())
+      if (root == root_method::estimate) return sum<W, root_method::estimate>(x);
+    return sum<W, root_method::exact>(x);
+  }
+
+  /// r2^(-3/2) for r2 > 0 (positive, finite, normal), by `method` where W
+  /// lanes of T have an estimate, exactly otherwise. The estimate y of
+  /// 1/√r2 gives e = r2·y² = 1 + δ, and r2^(-3/2) = y³·(1 + δ)^(-3/2) =
+  /// y³·(1 − 1.5δ + 1.875δ² − …). rsqrt14ps has |δ| ≤ 2^-13, so the linear
+  /// term leaves 1.875δ² ≤ 3e-8, below float's rounding; rsqrtps has
+  /// |δ| ≤ 2^-10.4 and takes the quadratic term too (2.2|δ|³ ≤ 1e-9). This is
+  /// one multiply fewer than a Newton step for 1/√r2 followed by a cube.
+  template <int W>
+  static batch<T, W> inverse_root_cubed(batch<T, W> r2, root_method method) noexcept {
+    constexpr int bits = impulse::detail::rsqrt_estimate_bits<T, W>();
+    if constexpr (bits > 0) {
+      if (method == root_method::estimate) {
+        batch<T, W> y = r2;
+        impulse::detail::lane_rsqrt_estimate<T, W>(y.v);
+        const batch<T, W> yy = y * y;
+        const batch<T, W> e = r2 * yy;
+        if constexpr (bits >= 14) return (yy * y) * (T(2.5) - e * T(1.5));  // 1 − 1.5δ
+        // δ = e − 1 is exact (e is within 2^-10 of 1), and the small terms
+        // are added to 1 last: in powers of e, 4.375 − 5.25e + 1.875e²,
+        // they cancelled to 5e-7.
+        const batch<T, W> delta = e - T(1);
+        return (yy * y) * ((delta * T(1.875) - T(1.5)) * delta + T(1));
+      }
+    }
+    return T(1) / (r2 * sqrt(r2));
+  }
+
+ private:
+  /// The force of every enabled point, the root taken by `method`.
+  template <int W, root_method method>
+  vec3_batch<T, W> sum(const vec3_batch<T, W>& x) const noexcept {
     vec3_batch<T, W> f = vec3_batch<T, W>::broadcast({});
     for (std::size_t i = 0; i < count; ++i) {
       if (!points[i].enabled) continue;
       const vec3_batch<T, W> d = vec3_batch<T, W>::broadcast(points[i].position) - x;
-      const batch<T, W> r2 = length_squared(d) + softening;
-      if constexpr (impulse::detail::has_rsqrt_estimate<T, W>()) {
-        // (|d|² + ε)^(-3/2) as the cube of rsqrt: no square root and no
-        // division, which bound this kernel's speed (core/batch.hpp, rsqrt).
-        const batch<T, W> inverse_r = rsqrt(r2);
-        f = f + d * (inverse_r * inverse_r * inverse_r * points[i].strength);
+      // |d|² + ε as a chain of fused multiply-adds, ε innermost.
+      const batch<T, W> r2 = d.x * d.x + (d.y * d.y + (d.z * d.z + softening));
+      if constexpr (method == root_method::estimate) {
+        f = f + d * (inverse_root_cubed(r2, method) * points[i].strength);
       } else {
-        // Without an estimate, one square root and one division, as few as
-        // the law allows: 1/√ cubed took a division and three products.
+        // One square root and one division, as few as the law allows.
         f = f + d * (points[i].strength / (r2 * sqrt(r2)));
       }
     }
