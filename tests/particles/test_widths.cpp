@@ -47,10 +47,11 @@ void check_widths_agree() {
   REQUIRE(reference.size() == wide.size());
   REQUIRE(reference.size() < std::size_t(n));  // some died, and were swapped out in the same order
   // Lane for lane the vector code does what the scalar code does, except the
-  // softened inverse-square force: float vector lanes use the rsqrt estimate
-  // (3 ulp, core/batch.hpp) where W = 1 divides by a square root. Over 30
-  // steps of O(10) positions and O(100) accelerations that leaves
-  // differences of a few hundred roundings; double is exact in both.
+  // softened inverse-square force: float vector lanes use the estimate of
+  // 1/√ (within 5e-7 of the force, point_forces::root) where W = 1 divides
+  // by a square root. Over 30 steps of O(10) positions and O(100)
+  // accelerations that leaves differences of a few hundred roundings;
+  // double is exact in both.
   const T tolerance = T(sizeof(T) == 4 ? 2000 : 64) * epsilon<T> * 10;
   for (std::size_t i = 0; i < reference.size(); ++i) {
     CAPTURE(i);
