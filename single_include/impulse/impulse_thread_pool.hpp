@@ -25,11 +25,17 @@
 //
 // A pool of W workers starts W − 1 threads; the thread that calls finish()
 // works too, as worker 0. A loop is cut into about four ranges per worker
-// (never below its min_range), claimed one at a time, so a worker slowed by
-// the machine's other work takes fewer. Between loops a worker spins for a
-// short while (about 50 µs) before it sleeps: a game's step issues its loops
-// back to back, and waking a sleeping thread costs several microseconds, as
-// long as a small loop takes. One thread at a time may drive a pool.
+// (never below its min_range), claimed one at a time with an atomic counter,
+// so a worker slowed by the machine's other work takes fewer.
+//
+// Waiting spins before it sleeps, on both sides: a worker with nothing to do,
+// and the caller waiting for the other workers' last ranges. A game's step
+// issues its loops back to back, a few microseconds apart, and waking a
+// sleeping thread costs about as long as a small loop takes (tens of
+// microseconds on a virtual machine, whose idle cores halt). The spin lasts
+// about 50 µs and pauses the core between looks; with more workers than
+// hardware threads it yields its core instead, so the worker it waits for
+// can run. One thread at a time may drive a pool.
 
 #include <chrono>
 #include <condition_variable>
@@ -46,7 +52,8 @@ class thread_pool {
   static constexpr std::uint32_t max_workers = 256;
 
   /// A pool of `workers` workers, the calling thread included (1 starts no thread).
-  explicit thread_pool(std::uint32_t workers) : workers_(workers) {
+  explicit thread_pool(std::uint32_t workers)
+      : workers_(workers), oversubscribed_(workers > std::max(std::thread::hardware_concurrency(), 1u)) {
     if (workers < 1 || workers > max_workers)
       detail::report_error(error_code::invalid_parameter, "thread_pool: workers must be between 1 and 256");
     threads_.reserve(workers - 1);
@@ -58,7 +65,7 @@ class thread_pool {
     {
       const std::lock_guard lock(mutex_);
       stopping_ = true;
-      posted_.fetch_add(1, std::memory_order_release);
+      posted_.fetch_add(1);
     }
     wake_.notify_all();
     for (std::thread& t : threads_) t.join();
@@ -71,11 +78,13 @@ class thread_pool {
 
  private:
   struct loop {
-    task_function* task;
-    void* context;
-    std::uint32_t count, range;
-    std::uint32_t next = 0;     // first item not yet claimed
-    std::uint32_t running = 0;  // ranges claimed and not yet done
+    loop(task_function* t, void* c, std::uint32_t n, std::uint32_t r) : task(t), context(c), count(n), range(r) {}
+    task_function* const task;
+    void* const context;
+    const std::uint32_t count, range;
+    std::atomic<std::uint32_t> next{0};      // first item not yet claimed
+    std::atomic<std::uint32_t> done{0};      // items whose range has run
+    std::atomic<std::uint32_t> visitors{0};  // other workers that may still claim a range
   };
 
   static void* enqueue(task_function* task, std::uint32_t count, std::uint32_t min_range, void* context,
@@ -86,10 +95,10 @@ class thread_pool {
     loop* handle;
     {
       const std::lock_guard lock(pool.mutex_);
-      handle = &pool.loops_.emplace_back(loop{task, context, count, range});
+      handle = &pool.loops_.emplace_back(task, context, count, range);
       // Under the lock: a worker reads the counter under it before it waits,
       // so it either sees this post or is already waiting for the notify.
-      pool.posted_.fetch_add(1, std::memory_order_release);
+      pool.posted_.fetch_add(1);
     }
     pool.wake_.notify_all();
     return handle;
@@ -98,55 +107,109 @@ class thread_pool {
   static void finish(void* handle, void* user) {
     thread_pool& pool = *static_cast<thread_pool*>(user);
     loop& l = *static_cast<loop*>(handle);
-    std::unique_lock lock(pool.mutex_);
-    while (pool.run_one(l, 0, lock)) {
+    pool.run_ranges(l, 0);
+    // Every range is claimed; wait until the other workers have run theirs
+    // and let go of the loop. A worker takes a visit under the lock, so the
+    // check under the lock is final.
+    for (;;) {
+      pool.wait(pool.done_, [&] { return l.done.load() == l.count && l.visitors.load() == 0; });
+      const std::lock_guard lock(pool.mutex_);
+      if (l.visitors.load() != 0) continue;
+      pool.loops_.remove_if([&](const loop& other) { return &other == &l; });
+      return;
     }
-    pool.done_.wait(lock, [&] { return l.running == 0; });
-    pool.loops_.remove_if([&](const loop& other) { return &other == &l; });
   }
 
-  /// Claims and runs the next range of l as `worker`, with the lock held on
-  /// entry and on return; false when no range is left to claim.
-  bool run_one(loop& l, std::uint32_t worker, std::unique_lock<std::mutex>& lock) {
-    if (l.next >= l.count) return false;
-    const std::uint32_t begin = l.next, end = begin + std::min(l.range, l.count - begin);
-    l.next = end;
-    ++l.running;
-    lock.unlock();
-    l.task(begin, end, worker, l.context);
-    lock.lock();
-    if (--l.running == 0 && l.next >= l.count) done_.notify_all();
-    return true;
-  }
-
-  bool claim_any(std::uint32_t worker, std::unique_lock<std::mutex>& lock) {
-    for (loop& l : loops_)
-      if (run_one(l, worker, lock)) return true;  // the list may have changed: start again
-    return false;
+  /// Claims and runs ranges of l as `worker` until none is left to claim.
+  void run_ranges(loop& l, std::uint32_t worker) {
+    std::uint32_t begin = l.next.load();
+    for (;;) {
+      if (begin >= l.count) return;
+      const std::uint32_t end = begin + std::min(l.range, l.count - begin);
+      if (!l.next.compare_exchange_weak(begin, end)) continue;  // begin now holds the new next
+      l.task(begin, end, worker, l.context);
+      if (l.done.fetch_add(end - begin) + (end - begin) == l.count) notify(done_);
+      begin = l.next.load();
+    }
   }
 
   void work(std::uint32_t worker) {
-    std::unique_lock lock(mutex_);
-    while (!stopping_) {
-      if (claim_any(worker, lock)) continue;
-      // Nothing to claim: spin on the post counter, unlocked, then sleep.
-      const std::uint64_t seen = posted_.load(std::memory_order_acquire);
-      lock.unlock();
-      const auto give_up = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
-      while (posted_.load(std::memory_order_acquire) == seen && std::chrono::steady_clock::now() < give_up)
-        std::this_thread::yield();
-      lock.lock();
-      wake_.wait(lock, [&] { return stopping_ || posted_.load(std::memory_order_acquire) != seen; });
+    for (;;) {
+      loop* visit = nullptr;
+      std::uint64_t seen;
+      {
+        const std::lock_guard lock(mutex_);
+        if (stopping_) return;
+        seen = posted_.load();
+        for (loop& l : loops_)
+          if (l.next.load() < l.count) {
+            l.visitors.fetch_add(1);
+            visit = &l;
+            break;
+          }
+      }
+      if (visit) {
+        run_ranges(*visit, worker);
+        visit->visitors.fetch_sub(1);  // the last touch: finish() may free it now
+        notify(done_);
+        continue;
+      }
+      wait(wake_, [&] { return posted_.load() != seen; });
     }
   }
 
+  /// Returns once ready() holds: spins for a while, then sleeps on `cv`,
+  /// which notify(cv) wakes. ready() reads only atomics (sequentially
+  /// consistent, as the sleepers_ count is), so a change made before
+  /// notify either is seen before sleeping or finds the sleeper counted.
+  template <class Ready>
+  void wait(std::condition_variable& cv, const Ready& ready) {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
+    for (std::uint32_t i = 1; !ready(); ++i) {
+      if (i % 64 == 0 && std::chrono::steady_clock::now() > give_up) {
+        sleepers_.fetch_add(1);
+        {
+          std::unique_lock lock(mutex_);
+          cv.wait(lock, [&] { return stopping_ || ready(); });
+        }
+        sleepers_.fetch_sub(1);
+        return;
+      }
+      relax();
+    }
+  }
+
+  void notify(std::condition_variable& cv) {
+    if (sleepers_.load() == 0) return;
+    { const std::lock_guard lock(mutex_); }  // a sleeper is either waiting or not yet checking
+    cv.notify_all();
+  }
+
+  /// One turn of a spin: a pause for the core's sibling and the memory
+  /// system, or, with more workers than hardware threads, the core itself.
+  void relax() const noexcept {
+    if (oversubscribed_) {
+      std::this_thread::yield();
+      return;
+    }
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#else
+    std::this_thread::yield();
+#endif
+  }
+
   const std::uint32_t workers_;
+  const bool oversubscribed_;
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
-  std::list<loop> loops_;                // under mutex_; a list, so a handle stays valid
-  std::atomic<std::uint64_t> posted_{0};  // loops posted (and the stop), for the spin
-  bool stopping_ = false;                 // under mutex_
+  std::list<loop> loops_;                 // under mutex_; a list, so a handle stays valid
+  std::atomic<std::uint64_t> posted_{0};  // loops posted (and the stop)
+  std::atomic<std::uint32_t> sleepers_{0};
+  bool stopping_ = false;  // under mutex_
 };
 
 }  // namespace impulse

@@ -1,7 +1,9 @@
 // impulse::thread_pool, the task hook's own implementation: every item of a
 // loop runs exactly once, on a worker index below the pool's count, loops
-// can be outstanding together, and a pool of one runs on the calling thread.
+// can be outstanding together, waits that spin and waits that sleep both
+// end, and a pool of one runs on the calling thread.
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -62,6 +64,32 @@ TEST_CASE("two loops outstanding together both run to completion") {
   for (auto& r : a.runs) wrong += r.load() != 1;
   for (auto& r : b.runs) wrong += r.load() != 1;
   CHECK(wrong == 0);
+}
+
+TEST_CASE("loops back to back run every item once, whether the waits spin or sleep") {
+  // Most loops follow the last within microseconds, so the workers and the
+  // caller find each other while spinning. Every 16th loop starts after a
+  // pause longer than the spin (the workers fall asleep), and in every 8th a
+  // range outlasts the spin (the caller falls asleep waiting for it).
+  for (std::uint32_t workers : {2u, 3u, 8u}) {
+    CAPTURE(workers);
+    impulse::thread_pool pool{workers};
+    const impulse::task_system tasks = pool.tasks();
+    std::vector<std::atomic<int>> runs(200);
+    int wrong = 0;
+    for (int k = 0; k < 400; ++k) {
+      if (k % 16 == 15) std::this_thread::sleep_for(std::chrono::microseconds(300));
+      const std::uint32_t items = 1 + std::uint32_t(k * 37 % 200);
+      for (std::uint32_t i = 0; i < items; ++i) runs[i] = 0;
+      auto body = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        if (k % 8 == 7 && begin == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+        for (std::uint32_t i = begin; i < end; ++i) ++runs[i];
+      };
+      impulse::detail::parallel_for(tasks, items, 1, body);
+      for (std::uint32_t i = 0; i < items; ++i) wrong += runs[i].load() != 1;
+    }
+    CHECK(wrong == 0);
+  }
 }
 
 TEST_CASE("a pool of one worker starts no thread and runs loops on the caller") {
