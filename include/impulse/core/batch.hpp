@@ -178,6 +178,20 @@ bool any(batch_mask<T, W> m) noexcept {
   if constexpr (W == 1) return m.v;
   else return detail::any_lane_set<typename detail::mask_lane<T>::type, W>(m.v);
 }
+/// Whether a < b in any lane. Under AVX-512 the compare's mask register is
+/// tested as it is (vcmpps, kortest), where any(a < b) first widens it to a
+/// vector and tests that (two instructions more).
+template <scalar_type T, int W>
+bool any_less(const batch<T, W>& a, const batch<T, W>& b) noexcept {
+#if defined(__AVX512F__)
+  if constexpr (std::is_same_v<T, float> && W == 16)
+    return __builtin_ia32_cmpps512_mask(a.v, b.v, 1 /* _CMP_LT_OS */, static_cast<unsigned short>(0xffff), 4) != 0;
+  else if constexpr (std::is_same_v<T, double> && W == 8)
+    return __builtin_ia32_cmppd512_mask(a.v, b.v, 1 /* _CMP_LT_OS */, static_cast<unsigned char>(0xff), 4) != 0;
+  else
+#endif
+    return any(a < b);
+}
 template <scalar_type T, int W>
 bool all(batch_mask<T, W> m) noexcept {
   return !any(!m);

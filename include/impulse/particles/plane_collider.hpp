@@ -160,8 +160,8 @@ template <class T, int W>
                                                       vec3_batch<T, W>& v) noexcept {
   const batch<T, W> s = distance(h, x);
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
+  if (!any_less(s, zero)) return false;  // the common case, tested on the compare's own mask
   const batch_mask<T, W> behind = s < zero;
-  if (none(behind)) return false;
   const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
   x = x - n * select(behind, s, zero);
   plane_response(h.minus_restitution, h.keep, behind, n, v);
