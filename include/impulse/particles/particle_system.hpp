@@ -532,7 +532,7 @@ class particle_system {
       });
       auto& pairwise = std::get<pairwise_index()>(forces_);
       const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
-      pairwise.prepare_colours(size_);
+      pairwise.prepare_colours(size_, tasks_);
       integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
         whole a(pool_);
         for_batches([&](std::size_t begin, std::size_t end) {
@@ -727,8 +727,12 @@ class particle_system {
   void validate(T dt) const {
     detail::require(std::isfinite(dt) && dt > T(0), error_code::invalid_parameter,
                     "particle_system: step() needs a finite, positive dt");
-    std::apply([](const auto&... f) { (f.validate(), ...); }, forces_);
-    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).validate_indices(size_);
+    // The springs, with their ends, in one scan over the workers.
+    auto check = [&](const auto& f) {
+      if constexpr (is_pairwise<std::remove_cvref_t<decltype(f)>>) f.validate(size_, tasks_);
+      else f.validate();
+    };
+    std::apply([&](const auto&... f) { (check(f), ...); }, forces_);
     for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
     for (std::size_t i = 0; i < emitters_.size(); ++i) check_emitter(emitters_[i], std::uint32_t(i));
   }

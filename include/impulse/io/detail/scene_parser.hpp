@@ -565,7 +565,7 @@ class scene_parser {
       r_.array(list);
       for (std::size_t i = 0; i < list.value.size(); ++i) particles(list[i], p);
     }
-    if (p.springs) check(at["forces"]["springs"], [&] { p.springs->validate_indices(p.initial.size()); });
+    if (p.springs) check(at["forces"]["springs"], [&] { p.springs->validate(p.initial.size(), task_system{}); });
     return p;
   }
 
