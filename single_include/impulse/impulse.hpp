@@ -17869,16 +17869,20 @@ struct springs {
   /// 20 µs of work.
   static constexpr std::uint32_t scan_range = 16384;
 
+  // The rules, once: check() reports the first one a spring breaks, valid()
+  // is the scan's quiet test of all of them and of the ends' range.
+  static bool finite(const spring<T>& s) noexcept {
+    return std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping);
+  }
+  static bool non_negative(const spring<T>& s) noexcept {
+    return s.rest_length >= T(0) && s.stiffness >= T(0) && s.damping >= T(0);
+  }
   static bool valid(const spring<T>& s, std::size_t particles) noexcept {
-    return std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping) &&
-           s.rest_length >= T(0) && s.stiffness >= T(0) && s.damping >= T(0) && s.a != s.b && s.a < particles &&
-           s.b < particles;
+    return finite(s) && non_negative(s) && s.a != s.b && s.a < particles && s.b < particles;
   }
   static void check(const spring<T>& s, std::uint32_t index) {
-    detail::require(std::isfinite(s.rest_length) && std::isfinite(s.stiffness) && std::isfinite(s.damping),
-                    error_code::non_finite, "springs: a parameter is not finite", index);
-    detail::require(s.rest_length >= T(0) && s.stiffness >= T(0) && s.damping >= T(0),
-                    error_code::invalid_parameter,
+    detail::require(finite(s), error_code::non_finite, "springs: a parameter is not finite", index);
+    detail::require(non_negative(s), error_code::invalid_parameter,
                     "springs: rest length, stiffness and damping must be non-negative", index);
     detail::require(s.a != s.b, error_code::invalid_parameter, "springs: both ends are the same particle",
                     index);
