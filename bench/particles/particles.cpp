@@ -447,7 +447,7 @@ void springs_row(const char* integrator_name, std::uint32_t threads) {
   for (int k = 0; k < 60; ++k) cloth.step(T(ps::dt));
   const double t = seconds_per_steady_step(cloth, cloth.size());
   std::printf("%s,%s,%u,%zu,%zu,%.1f\n", integrator_name, sizeof(T) == 4 ? "float" : "double", threads,
-              cloth.size(), list.list.size(), double(cloth.size()) / t / 1e6);
+              cloth.size(), list.size(), double(cloth.size()) / t / 1e6);
   std::fflush(stdout);
 }
 

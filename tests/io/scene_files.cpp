@@ -170,7 +170,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(fountain.planes[1].finite);
   CHECK(fountain.emitters[0].random.state == 7);
   CHECK(fountain.initial.size() == 27);
-  CHECK(s.find_particles("cloth")->springs->list.size() == 2);
+  CHECK(s.find_particles("cloth")->springs->size() == 2);
 
   // And it loads and runs: 120 steps of every joint, shape and kind.
   world<awake_double> w;
@@ -362,7 +362,7 @@ TEST_CASE("a particle scene sets the forces planes emitters and particles of a s
   using sprung = particles::particle_system<default_config, particles::gravity, particles::springs>;
   sprung strand = io::make_particles<sprung>(cloth);
   CHECK(strand.size() == 3);
-  CHECK(strand.force<particles::springs>().list.size() == 2);
+  CHECK(strand.force<particles::springs>().size() == 2);
 }
 
 TEST_CASE("the 100 dominoes of dominoes.json topple one after another at a steady pace to the last") {

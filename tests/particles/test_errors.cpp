@@ -117,7 +117,14 @@ TEST_CASE_TEMPLATE("a bad time step or force parameter stops the step before any
   CHECK(error_code_of([&] { springs_list.add(0, 1, 1, -1); }) == error_code::invalid_parameter);
   springs_list.add(0, 5, 1, 10);  // particle 5 does not exist
   CHECK(error_code_of([&] { s.step(T(0.01)); }) == error_code::out_of_range);
-  springs_list.list.clear();
+  // A spring set to a bad value is refused and kept as it was.
+  CHECK(error_code_of([&] { springs_list.set(0, {0, 1, T(1), std::numeric_limits<T>::quiet_NaN(), T(0)}); }) ==
+        error_code::non_finite);
+  CHECK(error_code_of([&] { springs_list.set(0, {1, 1, T(1), T(10), T(0)}); }) == error_code::invalid_parameter);
+  CHECK(error_code_of([&] { springs_list.set(1, {0, 1, T(1), T(10), T(0)}); }) == error_code::out_of_range);
+  CHECK(springs_list[0].b == 5);
+  CHECK(springs_list[0].stiffness == T(10));
+  springs_list.clear();
 
   emitter<T> bad;
   bad.mass = 0;

@@ -108,7 +108,7 @@ TEST_CASE_TEMPLATE("killing a particle moves the last one into its place and its
   using T = typename C::scalar;
   particle_system<C, springs> s{8};
   for (int i = 0; i < 5; ++i) s.add({T(i), 0, 0});
-  auto& list = s.template force<springs>().list;
+  const auto& list = s.template force<springs>();
   s.template force<springs>().add(0, 1, 1, 10);
   s.template force<springs>().add(1, 4, 3, 10);
   s.template force<springs>().add(3, 4, 1, 10);

@@ -57,7 +57,7 @@ TEST_CASE_TEMPLATE("without a mass column, unit masses step bit-identically to s
     CHECK(unit.mass(i) == T(1));
   }
   CHECK(identical);
-  CHECK(stored.template force<springs>().list.size() == unit.template force<springs>().list.size());
+  CHECK(stored.template force<springs>().size() == unit.template force<springs>().size());
 }
 
 TEST_CASE_TEMPLATE("without a mass column, a mass other than 1 is refused and nothing changes", T, float, double) {

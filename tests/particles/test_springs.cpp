@@ -150,4 +150,64 @@ TEST_CASE_TEMPLATE("a spring oscillates at its natural frequency and conserves m
   CHECK(crossings == 10);
 }
 
+/// Each particle's acceleration after one explicit Euler step from rest
+/// positions, against Hooke's law with damping along the spring summed in
+/// double: 21 springs (not a whole number of the springs' lanes) among 9
+/// particles of differing masses, one spring with coincident ends (no
+/// force) and a hub with 8.
+TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, whole lanes or not", T, float, double) {
+  using C = particle_test::config<T, particle_test::native<T>, impulse::integrators::euler>;
+  particle_system<C, springs> s{9};
+  struct body {
+    double x, y, z, vx, vy, vz, mass;
+  };
+  const body bodies[9] = {{0, 0, 0, 0, 0, 0, 2},          {1.1, 0.2, -0.3, 0.5, 0, 0, 1},
+                          {-0.7, 1.3, 0.4, 0, -1, 0.25, 3}, {0.3, -0.9, 1.7, 0.1, 0.2, 0.3, 0.5},
+                          {2.0, 2.0, 2.0, -0.4, 0, 0, 1.5}, {-1.5, -0.5, 0.8, 0, 0, -0.7, 1},
+                          {0.6, 0.6, -1.2, 0.3, 0.3, 0, 4}, {0.6, 0.6, -1.2, -0.2, 0, 0, 1},
+                          {3.0, -1.0, 0.5, 0, 0.8, 0, 0.25}};
+  for (const body& b : bodies) s.add({T(b.x), T(b.y), T(b.z)}, {T(b.vx), T(b.vy), T(b.vz)}, T(b.mass));
+  struct link {
+    std::uint32_t a, b;
+    double rest, k, c;
+  };
+  std::vector<link> links;
+  for (std::uint32_t i = 1; i < 9; ++i) links.push_back({0, i, 0.5 + 0.1 * i, 40.0 + 5 * i, 0.3 * i});  // the hub
+  for (std::uint32_t i = 1; i < 8; ++i) links.push_back({i, i + 1, 1.0, 25.0 * i, 0.5});
+  links.push_back({6, 7, 0.4, 80, 1});  // coincident ends: no direction, no force
+  for (std::uint32_t i = 2; i < 7; ++i) links.push_back({i + 2, i - 1, 0.75, 60, 0.2 * i});
+  REQUIRE(links.size() == 21);
+  for (const link& l : links) s.template force<springs>().add(l.a, l.b, T(l.rest), T(l.k), T(l.c));
+  double force[9][3] = {}, scale[9] = {};  // scale: what the terms' roundings are relative to
+  for (const link& l : links) {
+    const body &a = bodies[l.a], &b = bodies[l.b];
+    const double d[3] = {a.x - b.x, a.y - b.y, a.z - b.z}, dv[3] = {a.vx - b.vx, a.vy - b.vy, a.vz - b.vz};
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (length == 0) continue;
+    const double along = (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]) / length;
+    const double magnitude = -(l.k * (length - l.rest) + l.c * along);
+    for (int j = 0; j < 3; ++j) force[l.a][j] += magnitude * d[j] / length, force[l.b][j] -= magnitude * d[j] / length;
+    const double term = l.k * (length + l.rest) + l.c * std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+    scale[l.a] += term;
+    scale[l.b] += term;
+  }
+  const T h = T(1) / T(1024);  // a power of two: v + a·h and (v' − v)/h add no rounding of their own
+  s.step(h);
+  const vec3_columns<T> v = s.velocities();
+  for (std::uint32_t i = 0; i < 9; ++i) {
+    CAPTURE(i);
+    const double velocity[3] = {bodies[i].vx, bodies[i].vy, bodies[i].vz};
+    const impulse::vec3<T> now = v[i];
+    const double got[3] = {double(now.x), double(now.y), double(now.z)};
+    for (int j = 0; j < 3; ++j) {
+      const double expected = force[i][j] / bodies[i].mass;
+      // Each term in T is within a few roundings of its scale (length,
+      // stretch, damping, the unit vector, the sum); v' = v + a·h rounds
+      // once more, which (v' − v)/h magnifies by 1/h.
+      const double tolerance = double(epsilon<T>) * (16 * scale[i] / bodies[i].mass + 2 * std::abs(got[j]) / double(h));
+      CHECK(std::abs((got[j] - velocity[j]) / double(h) - expected) <= tolerance);
+    }
+  }
+}
+
 }  // namespace

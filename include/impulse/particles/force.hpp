@@ -10,8 +10,8 @@
 // A force states how it enters the motion:
 //  - acceleration: the same for every mass (gravity), added as is;
 //  - force: newtons, multiplied by each particle's inverse mass;
-//  - pairwise: between pairs of particles (springs), evaluated by a separate
-//    gather/scatter pass over the whole system at every integrator stage.
+//  - pairwise: between pairs of particles (springs), evaluated by passes of
+//    their own over the whole system at every integrator stage.
 // The first two are evaluated lane-parallel on a batch by evaluate(x, v, p).
 #pragma once
 

@@ -17,8 +17,9 @@
 //
 // Springs couple particles across batches, so a force list that contains them
 // is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
-// stage sweeps all batches and then the springs. The same integrator code
-// runs both paths.
+// stage computes every spring's force, then sweeps all batches, adding each
+// particle's springs to its batch's forces. The same integrator code runs
+// both paths.
 //
 // With a task system (set_task_system, core/task_system.hpp) the batches
 // are split across workers, and the particles come out bit-identical for any
@@ -187,7 +188,7 @@ class particle_system {
   /// Removes every particle (forces, planes and emitters stay).
   void clear() noexcept {
     size_ = 0;
-    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).list.clear();
+    if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).clear();
   }
 
   [[nodiscard]] vec3<T> position(std::uint32_t i) const { check_index(i); return {x_[i], y_[i], z_[i]}; }
@@ -532,9 +533,12 @@ class particle_system {
       });
       auto& pairwise = std::get<pairwise_index()>(forces_);
       const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
-      pairwise.prepare_colours(size_, tasks_);
       integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
         whole a(pool_);
+        auto spring_forces = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+          pairwise.compute_forces(begin, end, xs.data(), vs.data(), stride_);
+        };
+        impulse::detail::parallel_for(tasks_, std::uint32_t(pairwise.groups()), min_batches, spring_forces);
         for_batches([&](std::size_t begin, std::size_t end) {
           const columns_start c = start_of_columns();
           for (std::size_t first = begin; first < end; first += width) {
@@ -542,17 +546,8 @@ class particle_system {
             acceleration(forces_, xb, vb, load_inverse_mass(c, first), load_lanes(c, first)).store(a.data() + first,
                 a.data() + stride_ + first, a.data() + 2 * stride_ + first);
           }
+          pairwise.add_forces(begin, end, inverse_mass, stride_, a.data());
         });
-        for (std::size_t c = 0; c < pairwise.colour_count(); ++c) {
-          const std::uint32_t first = pairwise.colour_begin(c), count = pairwise.colour_begin(c + 1) - first;
-          auto springs = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-            pairwise.add_forces(first + begin, first + end, xs.data(), vs.data(), inverse_mass, stride_,
-                                a.data());
-          };
-          // The overflow group's springs may share particles: one range.
-          const std::uint32_t range = pairwise.colour_is_shared(c) ? count : min_batches * width;
-          impulse::detail::parallel_for(tasks_, count, range, springs);
-        }
         return a;
       });
       for_batches([&](std::size_t begin, std::size_t end) {
@@ -727,10 +722,9 @@ class particle_system {
   void validate(T dt) const {
     detail::require(std::isfinite(dt) && dt > T(0), error_code::invalid_parameter,
                     "particle_system: step() needs a finite, positive dt");
-    // The springs, with their ends, in one scan over the workers.
+    // The springs' ends are checked by their prepare() in step().
     auto check = [&](const auto& f) {
-      if constexpr (is_pairwise<std::remove_cvref_t<decltype(f)>>) f.validate(size_, tasks_);
-      else f.validate();
+      if constexpr (!is_pairwise<std::remove_cvref_t<decltype(f)>>) f.validate();
     };
     std::apply([&](const auto&... f) { (check(f), ...); }, forces_);
     for (std::size_t i = 0; i < planes_.size(); ++i) planes_[i].validate(std::uint32_t(i));
@@ -764,6 +758,7 @@ class particle_system {
 template <class Config, template <class> class... Forces>
 void particle_system<Config, Forces...>::step(T dt) {
   validate(dt);
+  if constexpr (has_pairwise) std::get<pairwise_index()>(forces_).prepare(size_, tasks_);
   prepare_planes();
   if (size_ != 0) {
     fill_padding();
