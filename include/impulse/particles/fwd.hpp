@@ -7,7 +7,7 @@ template <class T> struct gravity;
 template <class T> struct drag;
 template <class T> struct point_forces;
 template <class T> struct wind;
-template <class T> struct springs;
+template <class T> class springs;
 template <class T> struct plane_collider;
 template <class T> struct emitter;
 template <class Config, template <class> class... Forces>
