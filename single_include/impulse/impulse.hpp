@@ -17791,7 +17791,7 @@ class springs {
   /// nothing, on a bad spring or an index past the last.
   void set(std::size_t k, const spring<T>& s) {
     detail::require(k < size_, error_code::out_of_range, "springs: no spring has this index",
-                    std::uint32_t(std::min<std::size_t>(k, no_object - 1)));
+                    k < no_object ? std::uint32_t(k) : no_object - 1);
     check(s, std::uint32_t(k));
     store(k, s);
   }
@@ -17802,8 +17802,8 @@ class springs {
   [[nodiscard]] bool empty() const noexcept { return size_ == 0; }
   void clear() noexcept {
     size_ = 0;
-    std::fill(a_.begin(), a_.end(), 0u);
-    std::fill(b_.begin(), b_.end(), 0u);
+    a_.assign(a_.size(), 0);
+    b_.assign(b_.size(), 0);
     max_end_ = 0;
     listed_ = false;
   }
@@ -17875,7 +17875,7 @@ class springs {
                   T* acc) const noexcept {
     const std::size_t n = a_.size();
     const T* fx = force_.data();
-    end = std::min(end, first_of_.size() - 1);
+    if (end > first_of_.size() - 1) end = first_of_.size() - 1;
     for (std::size_t i = begin; i < end; ++i) {
       if (first_of_[i + 1] == first_of_[i]) continue;
       vec3<T> sum{};
@@ -17938,7 +17938,7 @@ class springs {
   /// Room for more springs: the columns double, in whole groups, padded
   /// with springs between particle 0 and itself that pull on nothing.
   void grow() {
-    const std::size_t room = std::max<std::size_t>(width, 2 * a_.size());
+    const std::size_t room = a_.empty() ? std::size_t(width) : 2 * a_.size();
     a_.resize(room, 0);
     b_.resize(room, 0);
     rest_length_.resize(room, T(0));
@@ -17952,11 +17952,15 @@ class springs {
     rest_length_[k] = s.rest_length;
     stiffness_[k] = s.stiffness;
     damping_[k] = s.damping;
-    max_end_ = std::max<std::size_t>({max_end_, s.a, s.b});
+    if (s.a > max_end_) max_end_ = s.a;
+    if (s.b > max_end_) max_end_ = s.b;
   }
   std::size_t largest_end() const noexcept {
     std::uint32_t most = 0;
-    for (std::size_t k = 0; k < size_; ++k) most = std::max({most, a_[k], b_[k]});
+    for (std::size_t k = 0; k < size_; ++k) {
+      if (a_[k] > most) most = a_[k];
+      if (b_[k] > most) most = b_[k];
+    }
     return most;
   }
 
