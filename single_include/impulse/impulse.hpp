@@ -17918,11 +17918,12 @@ class springs {
     using lanes = batch<T>;
     const lanes length = impulse::length(d), zero = lanes::broadcast(T(0));
     const batch_mask<T, width> apart = zero < length;
-    const vec3_batch<T> u = d * select(apart, lanes::broadcast(T(1)) / length, zero);
+    const vec3_batch<T> u = d * (lanes::broadcast(T(1)) / length);
     const lanes stretch = length - lanes::load(rest_length_.data() + first);
     const lanes magnitude = lanes::load(stiffness_.data() + first) * stretch +
                             lanes::load(damping_.data() + first) * dot(dv, u);
-    return u * -select(apart, magnitude, zero);
+    const vec3_batch<T> f = u * -magnitude;
+    return {select(apart, f.x, zero), select(apart, f.y, zero), select(apart, f.z, zero)};
   }
   static vec3_batch<T> ends(const T* p, std::size_t stride, const std::uint32_t* index) noexcept {
     return {detail::gather<T>(p, index), detail::gather<T>(p + stride, index),
