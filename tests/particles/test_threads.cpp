@@ -160,8 +160,8 @@ TEST_CASE_TEMPLATE("a hub tied to 1 000 springs is bit-identical for 1, 2, 3 and
   check_any_worker_count<C>([](const impulse::task_system* t) { return wheels<C>(t); });
 }
 
-/// A chain of 60 000 particles and springs (four ranges of the springs'
-/// scans), stepped once; then every seventh spring's far end is moved one
+/// A chain of 60 000 particles and springs (many ranges of the springs'
+/// forces), stepped once; then every seventh spring's far end is moved one
 /// particle along, every fifth spring made stiffer and longer, and the
 /// chain stepped again, in place or (fresh) in a new system given the same
 /// particles and the changed springs. In place, each particle's springs
