@@ -15,6 +15,8 @@
 #include "impulse/core/random.hpp"
 #include "cube.hpp"
 
+namespace broadphase_brute_force_tests {
+
 namespace {
 
 using namespace impulse;
@@ -134,3 +136,5 @@ TEST_CASE_TEMPLATE("a ray enters a box at the slab-test fraction and a clipping 
   CHECK_FALSE(ray_enters(ray<T>{{0, 2, 0}, {10, 0, 0}}, T(1), cube<T>(5, 0, 0, 1)));
   CHECK(ray_enters(ray<T>{{5, 0, 0}, {0, 0, 0}}, T(1), cube<T>(5, 0, 0, 1)) == T(0));
 }
+
+}  // namespace broadphase_brute_force_tests

@@ -12,6 +12,8 @@
 #include "../error_code_of.hpp"
 #include "cube.hpp"
 
+namespace broadphase_contract_tests {
+
 namespace {
 
 using namespace impulse;
@@ -170,3 +172,5 @@ TEST_CASE_TEMPLATE("an update after nothing came, moved or went keeps the pairs 
   CHECK(bp.begun().size() == 2);
   CHECK(bp.ended().empty());
 }
+
+}  // namespace broadphase_contract_tests

@@ -21,6 +21,8 @@
 #include "against_brute_force.hpp"
 #include "cube.hpp"
 
+namespace broadphase_dynamic_bvh_tests {
+
 namespace {
 
 using namespace impulse;
@@ -321,3 +323,5 @@ TEST_CASE_TEMPLATE("bad boxes rays ids and margins leave the tree untouched", T,
   CHECK(bp.ended().empty());
   CHECK(bp.reinserted() == 0);
 }
+
+}  // namespace broadphase_dynamic_bvh_tests

@@ -16,6 +16,8 @@
 #include "against_brute_force.hpp"
 #include "cube.hpp"
 
+namespace broadphase_octree_tests {
+
 namespace {
 
 using namespace impulse;
@@ -423,3 +425,5 @@ TEST_CASE_TEMPLATE("bad boxes rays ids and depths are refused and change nothing
   CHECK(bp.begun().empty());
   CHECK(bp.ended().empty());
 }
+
+}  // namespace broadphase_octree_tests

@@ -9,6 +9,8 @@
 #include "impulse/broadphase/detail/pair_tracker.hpp"
 #include "impulse/core/random.hpp"
 
+namespace broadphase_pair_tracker_tests {
+
 using namespace impulse;
 
 TEST_CASE("the pair tracker sorts like operator< and finds what began and ended") {
@@ -42,3 +44,5 @@ TEST_CASE("the pair tracker sorts like operator< and finds what began and ended"
     previous = expected;
   }
 }
+
+}  // namespace broadphase_pair_tracker_tests

@@ -18,6 +18,8 @@
 #include "against_brute_force.hpp"
 #include "cube.hpp"
 
+namespace broadphase_spatial_hash_tests {
+
 namespace {
 
 using namespace impulse;
@@ -413,3 +415,5 @@ TEST_CASE_TEMPLATE("bad cell sizes are refused and bad boxes leave the grid unch
   CHECK(bp.box(a) == cube<T>(0, 0, 0, 1));
   CHECK(bp.user_data(a) == 7);
 }
+
+}  // namespace broadphase_spatial_hash_tests

@@ -15,6 +15,8 @@
 #include "../error_code_of.hpp"
 #include "cube.hpp"
 
+namespace broadphase_sweep_and_prune_tests {
+
 namespace {
 
 using namespace impulse;
@@ -218,3 +220,5 @@ TEST_CASE_TEMPLATE("regions of no boxes are refused", T, float, double) {
   CHECK(bp.region_count() >= 25);
   CHECK(bp.pairs().empty());
 }
+
+}  // namespace broadphase_sweep_and_prune_tests

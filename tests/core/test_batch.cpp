@@ -11,6 +11,8 @@
 
 #include "impulse/core/batch.hpp"
 
+namespace core_batch_tests {
+
 namespace {
 
 template <class B>
@@ -161,3 +163,5 @@ TEST_CASE("native_width fills the target's widest registers") {
 #endif
   CHECK(impulse::batch<float>::width == impulse::native_width<float>);
 }
+
+}  // namespace core_batch_tests

@@ -9,6 +9,8 @@
 #include "impulse/config.hpp"
 #include "impulse/core/version.hpp"
 
+namespace core_config_tests {
+
 namespace {
 
 struct rk_like {
@@ -90,3 +92,5 @@ TEST_CASE("the version macros agree with the VERSION file") {
   CHECK(impulse::version.minor == IMPULSE_VERSION_MINOR);
   CHECK(impulse::version.patch == IMPULSE_VERSION_PATCH);
 }
+
+}  // namespace core_config_tests

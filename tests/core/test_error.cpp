@@ -6,6 +6,8 @@
 
 #include "impulse/core/error.hpp"
 
+namespace core_error_tests {
+
 TEST_CASE("report_error throws invalid_argument with its code and object") {
   bool caught = false;
   try {
@@ -46,3 +48,5 @@ TEST_CASE("every error code has a distinct name") {
       if (a != b) CHECK(std::strcmp(impulse::to_string(a), impulse::to_string(b)) != 0);
   }
 }
+
+}  // namespace core_error_tests

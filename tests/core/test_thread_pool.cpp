@@ -11,6 +11,8 @@
 
 #include "impulse/thread_pool.hpp"
 
+namespace core_thread_pool_tests {
+
 namespace {
 
 struct counts {
@@ -119,3 +121,5 @@ TEST_CASE("with two workers, both take ranges of a long loop") {
 }
 
 }  // namespace
+
+}  // namespace core_thread_pool_tests

@@ -15,6 +15,8 @@
 
 #include "motion_test.hpp"
 
+namespace dynamics_body_springs_tests {
+
 namespace {
 
 using namespace impulse;
@@ -280,3 +282,5 @@ TEST_CASE_TEMPLATE("a body moves the same whether the world steps it alone or ev
   CHECK(double(length(x.linear_momentum - y.linear_momentum)) < bound);
   CHECK(double(length(x.angular_momentum - y.angular_momentum)) < bound);
 }
+
+}  // namespace dynamics_body_springs_tests

@@ -17,6 +17,8 @@
 #include "../error_code_of.hpp"
 #include "motion_test.hpp"
 
+namespace dynamics_body_system_tests {
+
 namespace {
 
 using namespace impulse;
@@ -310,3 +312,5 @@ TEST_CASE("a body driven non-finite by a valid spring is held and named and the 
   CHECK(w.body(wild).position == wild_before.position);
   CHECK(w.body(calm).position.x == doctest::Approx(5.2));
 }
+
+}  // namespace dynamics_body_system_tests

@@ -14,6 +14,8 @@
 #include "impulse/dynamics/detail/contact_batch.hpp"
 #include "impulse/dynamics/detail/contact_rows.hpp"
 
+namespace dynamics_contact_batch_tests {
+
 namespace {
 
 using namespace impulse;
@@ -277,3 +279,5 @@ TEST_CASE_TEMPLATE("soft_step's soft and relax sweeps in lanes match the rows so
         CHECK(std::abs(by_row[k].points[i].normal_impulse - batched[k].points[i].normal_impulse) < tolerance);
   }
 }
+
+}  // namespace dynamics_contact_batch_tests

@@ -15,6 +15,8 @@
 
 #include "motion_test.hpp"
 
+namespace dynamics_free_rotation_tests {
+
 namespace {
 
 using namespace impulse;
@@ -256,3 +258,5 @@ TEST_CASE_TEMPLATE("a tumbling box keeps its shape for a million steps", T, floa
   CHECK(worst < (std::is_same_v<T, double> ? 1e-12 : 1e-5));
   CHECK(std::abs(double(length(end.orientation)) - 1) < 4 * epsilon_of<T>);
 }
+
+}  // namespace dynamics_free_rotation_tests

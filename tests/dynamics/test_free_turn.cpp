@@ -10,6 +10,8 @@
 
 #include "impulse/dynamics/free_rotation.hpp"
 
+namespace dynamics_free_turn_tests {
+
 namespace {
 
 using namespace impulse;
@@ -131,3 +133,5 @@ TEST_CASE("10⁴ free turns keep a body on its intermediate axis within 1e-4 of 
     CHECK(worst < 1e-4);
   }
 }
+
+}  // namespace dynamics_free_turn_tests

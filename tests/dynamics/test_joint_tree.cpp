@@ -13,6 +13,8 @@
 #include "impulse/core/random.hpp"
 #include "impulse/dynamics/detail/joint_tree.hpp"
 
+namespace dynamics_joint_tree_tests {
+
 namespace {
 
 using namespace impulse;
@@ -227,3 +229,5 @@ TEST_CASE("joints that close a loop or tie a group to the world twice leave the 
   }
   CHECK_FALSE(tree.joints.back().in_tree);
 }
+
+}  // namespace dynamics_joint_tree_tests

@@ -11,6 +11,8 @@
 
 #include "../error_code_of.hpp"
 
+namespace dynamics_rigid_body_tests {
+
 namespace {
 
 using impulse::body_type;
@@ -119,3 +121,5 @@ TEST_CASE_TEMPLATE("bad mass inertia pose and loads are refused and leave the bo
 }
 
 }  // namespace
+
+}  // namespace dynamics_rigid_body_tests

@@ -30,7 +30,7 @@
 
 #include "impulse/world.hpp"
 
-namespace test {
+namespace impulse::test {
 
 /// FNV-1a over everything a call could change: each body's id, type,
 /// pose, momenta, loads, awake flag and kinematic velocities; each joint's
@@ -482,4 +482,4 @@ class api_driver {
   std::string error_;  ///< the last refusal's message
 };
 
-}  // namespace test
+}  // namespace impulse::test

@@ -10,6 +10,8 @@
 
 #include "api_driver.hpp"
 
+namespace faults_api_driver_tests {
+
 namespace {
 
 struct soft_step_double_config : impulse::default_double_config {
@@ -19,9 +21,9 @@ struct soft_step_double_config : impulse::default_double_config {
 
 /// Runs `calls` calls from `seed` and checks the driver found nothing.
 template <class Config>
-typename test::api_driver<impulse::world<Config>>::counts drive(std::uint32_t seed, std::uint64_t calls) {
-  test::api_driver<impulse::world<Config>> driver;
-  test::splitmix random{seed};
+typename impulse::test::api_driver<impulse::world<Config>>::counts drive(std::uint32_t seed, std::uint64_t calls) {
+  impulse::test::api_driver<impulse::world<Config>> driver;
+  impulse::test::splitmix random{seed};
   int failures = 0;
   driver.run(calls, random,
              [&](std::uint64_t n, const char* call, const char* what) {
@@ -49,3 +51,5 @@ TEST_CASE("2.5·10^4 random calls on soft_step in double, sleeping off: the same
   CHECK(counts.refused > 2500);
   CHECK(counts.steps > 1250);
 }
+
+}  // namespace faults_api_driver_tests

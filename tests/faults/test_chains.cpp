@@ -25,14 +25,16 @@
 #include "../world/scenes.hpp"
 #include "impulse/world.hpp"
 
+namespace faults_chains_tests {
+
 using namespace impulse;
 
 namespace {
 
-struct soft_config : ::test::awake_config {
+struct soft_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
-struct soft_double_config : ::test::awake_double_config {
+struct soft_double_config : impulse::test::awake_double_config {
   using solver = impulse::solver::soft_step;
 };
 
@@ -113,7 +115,7 @@ typename World::scalar widest_gap(int links, masses kind, bool exact, int steps,
   T widest = 0;
   for (int i = 0; i < steps; ++i) {
     try {
-      w.step(::test::step_dt<T>);
+      w.step(impulse::test::step_dt<T>);
     } catch (const impulse::invalid_argument&) {
       return std::numeric_limits<T>::infinity();
     }
@@ -164,7 +166,7 @@ constexpr int steps_of(int steps, [[maybe_unused]] int debug_share) {
 }  // namespace
 
 TEST_CASE_TEMPLATE("an equal-mass chain of 20 links released horizontally never opens a gap wider than 1 mm", World,
-                   world<::test::awake_config>, world<::test::awake_double_config>, world<soft_config>,
+                   world<impulse::test::awake_config>, world<impulse::test::awake_double_config>, world<soft_config>,
                    world<soft_double_config>) {
   // The tear began at step 264 (12–13 m under sequential_impulse, float
   // and double; 28 mm joint by joint), so debug builds run 300 steps. Now
@@ -174,7 +176,7 @@ TEST_CASE_TEMPLATE("an equal-mass chain of 20 links released horizontally never 
 
 TEST_CASE_TEMPLATE("chains of 2 and 5 links released horizontally stay within 1 mm solved exactly, whatever their "
                    "masses, and never open wider than joint by joint",
-                   World, world<::test::awake_config>, world<::test::awake_double_config>, world<soft_config>,
+                   World, world<impulse::test::awake_config>, world<impulse::test::awake_double_config>, world<soft_config>,
                    world<soft_double_config>) {
   // Before the fix, 5 links tapering from 1 kg at the pivot to 1000 kg
   // opened 200–280 m under sequential_impulse and 11–23 m under soft_step
@@ -186,7 +188,7 @@ TEST_CASE_TEMPLATE("chains of 2 and 5 links released horizontally stay within 1 
 
 TEST_CASE_TEMPLATE("chains of 20 links alternating 10:1 and 1000:1 or tapering either way stay within 1 mm solved "
                    "exactly, however far Gauss-Seidel opens them",
-                   World, world<::test::awake_config>, world<::test::awake_double_config>, world<soft_config>,
+                   World, world<impulse::test::awake_config>, world<impulse::test::awake_double_config>, world<soft_config>,
                    world<soft_double_config>) {
   // Joint by joint, 20 links at 1000:1 open 130 m (sequential_impulse) or
   // fly past the speed limits (soft_step), and tapering to 1000 kg at the
@@ -202,7 +204,7 @@ TEST_CASE_TEMPLATE("chains of 20 links alternating 10:1 and 1000:1 or tapering e
 }
 
 TEST_CASE_TEMPLATE("an equal-mass chain of 100 links released horizontally never opens a gap wider than 1 mm", World,
-                   world<::test::awake_config>, world<::test::awake_double_config>, world<soft_config>,
+                   world<impulse::test::awake_config>, world<impulse::test::awake_double_config>, world<soft_config>,
                    world<soft_double_config>) {
   // Before the fix: 42 m (sequential_impulse, float), 39 m (double), from
   // step 73; soft_step 6 mm, at the whip of the tail after step 480.
@@ -211,7 +213,7 @@ TEST_CASE_TEMPLATE("an equal-mass chain of 100 links released horizontally never
 
 TEST_CASE_TEMPLATE("a chain of 20 hinges tapering from 1 kg at the pivot to 1000 kg at the tail stays within 1 mm "
                    "solved exactly",
-                   World, world<::test::awake_config>, world<soft_double_config>) {
+                   World, world<impulse::test::awake_config>, world<soft_double_config>) {
   // Hinges about the axis the chain swings about hold the same points as
   // the balls and two rows more: 1.2e-5 m (sequential_impulse, float),
   // where joint by joint they open 166 m or pass the speed limits.
@@ -228,10 +230,12 @@ TEST_CASE("chains of 100 links alternating 1000:1 or tapering either way stay wi
   // The whip of the light tail turns the last links at up to 450 rad/s:
   // before geometric stiffness the projection could be cut off
   // (joint_tree.hpp, newton_steps_per_pass) centimetres short.
-  check_chain<world<::test::awake_config>>(100, masses::tapering_down, steps_of(600, 8));
+  check_chain<world<impulse::test::awake_config>>(100, masses::tapering_down, steps_of(600, 8));
   // Tapering to the tail, 145 kN hang from the first link: both solvers
   // tore it 40–60 m apart, or past the speed limits, at 60 Hz and 240 Hz,
   // and the exact solve held it only from 480 Hz. Now 0.011 mm at 60 Hz
   // (double; 0.0097 mm in float), where joint by joint it opens 47 m.
-  check_chain<world<::test::awake_double_config>>(100, masses::tapering_up, steps_of(600, 8));
+  check_chain<world<impulse::test::awake_double_config>>(100, masses::tapering_up, steps_of(600, 8));
 }
+
+}  // namespace faults_chains_tests

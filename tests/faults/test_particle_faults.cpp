@@ -18,6 +18,8 @@
 #include "impulse/core/aligned_array.hpp"
 #include "impulse/io/picture.hpp"
 
+namespace faults_particle_faults_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -170,3 +172,5 @@ TEST_CASE("an aligned_array whose byte size would wrap refuses rather than alloc
   const aligned_array<double> small(3);
   CHECK(small.size() == 3);
 }
+
+}  // namespace faults_particle_faults_tests

@@ -15,22 +15,24 @@
 #include "../world/scenes.hpp"
 #include "impulse/core/slot_map.hpp"
 
+namespace faults_world_faults_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
-struct gauss_seidel_solver_config : ::test::awake_config {};
-struct soft_step_config : ::test::awake_config {
+struct gauss_seidel_solver_config : impulse::test::awake_config {};
+struct soft_step_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
-struct double_config : ::test::awake_double_config {};
+struct double_config : impulse::test::awake_double_config {};
 
 /// Everything a refused call must leave as it was: each body's pose and
 /// momenta, bit for bit, and the counts.
 template <class World>
 std::uint64_t state_hash(const World& w) {
-  std::uint64_t h = ::test::transform_hash(w);
+  std::uint64_t h = impulse::test::transform_hash(w);
   const auto mix = [&](const void* data, std::size_t n) {
     const auto* bytes = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < n; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
@@ -120,7 +122,7 @@ void check_overflow_is_held(joint_type type, bool exact_trees) {
   const vec3<T> a_start = w.body(scene.a).position, b_start = w.body(scene.b).position;
   const vec3<T> far_start = w.body(scene.bystander).position;
   w.apply_force(scene.a, {T(1e29), 0, 0});
-  const error_code code = error_code_of([&] { w.step(::test::step_dt<T>); });
+  const error_code code = error_code_of([&] { w.step(impulse::test::step_dt<T>); });
   CHECK(code == error_code::non_finite);
   REQUIRE(w.held_bodies().size() == 1);
   CHECK(w.held_bodies()[0] == scene.a);
@@ -130,7 +132,7 @@ void check_overflow_is_held(joint_type type, bool exact_trees) {
   // substeps fall less far in the first step than one Euler step).
   World alone;
   const body_id lone = add_box(alone, b_start);
-  const T dt = ::test::step_dt<T>;
+  const T dt = impulse::test::step_dt<T>;
   alone.step(dt);
   const T fall = b_start.y - alone.body(lone).position.y;
   CHECK(fall > T(0.0015));  // g·dt²·(5/8) for soft_step's 4 substeps, g·dt² for one step: 1.7 and 2.7 mm
@@ -176,19 +178,19 @@ TEST_CASE("a jointed body pushed by 1e29 N is held and named, and its partner st
 
 TEST_CASE("a body spun past max_angular_speed by a torque is held, and a body resting on it stays on the ground") {
   world<gauss_seidel_solver_config> w;
-  ::test::add_ground(w);
-  const body_id bottom = ::test::add_cube(w, {0, 0.5f, 0});
-  const body_id top = ::test::add_cube(w, {0, 1.5f, 0});
-  ::test::run(w, 30);
+  impulse::test::add_ground(w);
+  const body_id bottom = impulse::test::add_cube(w, {0, 0.5f, 0});
+  const body_id top = impulse::test::add_cube(w, {0, 1.5f, 0});
+  impulse::test::run(w, 30);
   const vec3<float> bottom_at = w.body(bottom).position;
   w.apply_torque(bottom, {0, 1e30f, 0});
-  CHECK(error_code_of([&] { w.step(::test::step_dt<float>); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { w.step(impulse::test::step_dt<float>); }) == error_code::non_finite);
   CHECK(w.held_bodies().size() == 1);
   CHECK(w.body(bottom).position == bottom_at);
   CHECK(w.body(bottom).angular_velocity() == vec3<float>{});
   // The top box lost its support for one step: it fell at most g·dt².
   CHECK(w.body(top).position.y > 1.5f - 0.01f);
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   CHECK(std::abs(w.body(top).position.y - 1.5f) < 0.01f);
   CHECK(all_finite(w));
 }
@@ -202,7 +204,7 @@ TEST_CASE("a body that gravity would take past max_linear_speed is held with no 
   // would pass 10 m/s.
   std::vector<int> held_at;
   for (int i = 0; i < 90; ++i) {
-    if (error_code_of([&] { w.step(::test::step_dt<float>); }) == error_code::non_finite) {
+    if (error_code_of([&] { w.step(impulse::test::step_dt<float>); }) == error_code::non_finite) {
       held_at.push_back(i);
       CHECK(w.held_bodies()[0] == box_id);
       CHECK(w.body(box_id).linear_velocity() == vec3<float>{});
@@ -292,7 +294,7 @@ TEST_CASE("a kinematic target too far to reach within the speed limit in dt is r
 TEST_CASE("interpolated_pose refuses alpha outside [0, 1] or NaN") {
   world<gauss_seidel_solver_config> w;
   const body_id b = add_box(w, vec3<float>{0, 1, 0});
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   CHECK(error_code_of([&] { (void)w.interpolated_pose(b, nan); }) == error_code::invalid_parameter);
   CHECK(error_code_of([&] { (void)w.interpolated_pose(b, -0.5f); }) == error_code::invalid_parameter);
@@ -317,7 +319,7 @@ TEST_CASE("an empty triangle mesh or a moved-from hull is refused by create_body
   CHECK(state_hash(w) == before);
   CHECK(w.contains(ball));
   w.create_body({}, taken);
-  ::test::run(w, 10);
+  impulse::test::run(w, 10);
   CHECK(all_finite(w));
 }
 
@@ -325,18 +327,18 @@ TEST_CASE("an empty triangle mesh or a moved-from hull is refused by create_body
 
 TEST_CASE("calls that would change the world's containers are refused from inside its callbacks") {
   world<gauss_seidel_solver_config> w;
-  ::test::add_ground(w);
-  const body_id a = ::test::add_cube(w, {0, 0.5f, 0});
-  const body_id b = ::test::add_cube(w, {3, 0.5f, 0});
-  ::test::run(w, 2);
+  impulse::test::add_ground(w);
+  const body_id a = impulse::test::add_cube(w, {0, 0.5f, 0});
+  const body_id b = impulse::test::add_cube(w, {3, 0.5f, 0});
+  impulse::test::run(w, 2);
   REQUIRE(w.touching_pair_count() == 2);
   const world_snapshot<gauss_seidel_solver_config> saved = w.snapshot();
   const std::uint64_t before = state_hash(w);
   const auto refused_calls = [&] {
     std::vector<error_code> codes;
-    codes.push_back(error_code_of([&] { w.step(::test::step_dt<float>); }));
+    codes.push_back(error_code_of([&] { w.step(impulse::test::step_dt<float>); }));
     codes.push_back(error_code_of([&] { (void)w.advance(1.0f); }));
-    codes.push_back(error_code_of([&] { ::test::add_cube(w, {9, 3, 0}); }));
+    codes.push_back(error_code_of([&] { impulse::test::add_cube(w, {9, 3, 0}); }));
     codes.push_back(error_code_of([&] { w.destroy_body(b); }));
     codes.push_back(error_code_of([&] { w.set_pose(b, {{5, 1, 0}, quat<float>::identity()}); }));
     codes.push_back(error_code_of([&] { (void)w.create_joint(joint_def<float>::ball(a, b, {1, 1, 0})); }));
@@ -365,7 +367,7 @@ TEST_CASE("calls that would change the world's containers are refused from insid
   CHECK(w.body(a).force.y == 1.0f);  // a is in one pair, with the ground
   // A callback that throws leaves the world usable.
   CHECK_THROWS(w.for_each_contact([](body_id, body_id, std::span<const contact_manifold<float>>) { throw 1; }));
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   w.destroy_body(b);
   CHECK(w.body_count() == 2);
 }
@@ -417,12 +419,14 @@ TEST_CASE("bodies heaped in one spot get contacts up to max_contact_pairs, the r
   settings.gravity = {};
   world<gauss_seidel_solver_config> w(settings);
   for (int i = 0; i < 30; ++i) add_box(w, vec3<float>{0.01f * float(i), 0, 0});  // 435 pairs
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.touching_pair_count() <= 100);
   CHECK(w.touching_pair_count() + w.pairs_over_limit() == 435);
   // They push apart; as pairs separate, those waiting get their turn, and
   // the heap spreads until no box overlaps another.
-  for (int i = 0; i < 600 && w.pairs_over_limit() > 0; ++i) w.step(::test::step_dt<float>);
+  for (int i = 0; i < 600 && w.pairs_over_limit() > 0; ++i) w.step(impulse::test::step_dt<float>);
   CHECK(w.pairs_over_limit() == 0);
   CHECK(all_finite(w));
 }
+
+}  // namespace faults_world_faults_tests

@@ -34,7 +34,7 @@ struct byte_stream {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  test::api_driver<impulse::world<fuzz_config>> driver;
+  impulse::test::api_driver<impulse::world<fuzz_config>> driver;
   byte_stream bytes{data, size};
   // About one call per 16 bytes (a call reads 2 to 20 numbers), at most 2 000.
   const std::uint64_t calls = size / 16 < 2000 ? size / 16 : 2000;

@@ -29,10 +29,10 @@ namespace {
 
 std::uint64_t pile_hash(int steps) {
   world<> w;
-  ::test::add_ground(w);
-  ::test::add_pile(w);
-  ::test::run(w, steps);
-  return ::test::transform_hash(w);
+  impulse::test::add_ground(w);
+  impulse::test::add_pile(w);
+  impulse::test::run(w, steps);
+  return impulse::test::transform_hash(w);
 }
 
 }  // namespace
@@ -67,14 +67,14 @@ constexpr recorded hashes[] = {
 /// `large_pyramid`: a 100-box base (5050 boxes of 100 kg), ground
 /// half-extents (400, 1, 400), sleeping off.
 std::uint64_t large_pyramid_hash() {
-  world<::test::awake_config> w;
-  ::test::add_ground(w, 0.6f, {}, 400.0f);
+  world<impulse::test::awake_config> w;
+  impulse::test::add_ground(w, 0.6f, {}, 400.0f);
   for (int k = 0; k < 100; ++k) {
     const int n = 100 - k;
-    for (int i = 0; i < n; ++i) ::test::add_cube(w, {float(i) - float(n - 1) / 2, 0.5f + float(k), 0}, 100.0f);
+    for (int i = 0; i < n; ++i) impulse::test::add_cube(w, {float(i) - float(n - 1) / 2, 0.5f + float(k), 0}, 100.0f);
   }
-  ::test::run(w, 600);
-  return ::test::transform_hash(w);
+  impulse::test::run(w, 600);
+  return impulse::test::transform_hash(w);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include "impulse/integrators.hpp"
 #include "impulse/math.hpp"
 
+namespace integrators_batch_state_tests {
+
 namespace {
 
 using impulse::vec3;
@@ -65,3 +67,5 @@ TEST_CASE_TEMPLATE("each lane of a batched integration equals the scalar integra
   check_lanes_match_scalar_runs<rk4, T, 1>();
   check_lanes_match_scalar_runs<rk4, T, 64 / int(sizeof(T))>();  // wider than most targets
 }
+
+}  // namespace integrators_batch_state_tests

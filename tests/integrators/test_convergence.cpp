@@ -8,6 +8,8 @@
 #include "impulse/integrators.hpp"
 #include "problems.hpp"
 
+namespace integrators_convergence_tests {
+
 namespace {
 
 using namespace impulse::integrators;
@@ -85,3 +87,5 @@ TEST_CASE("the integrators declare the order and stage count they have") {
   midpoint::step(x, v, 0.1, [&](const double& p, const double&) { ++evaluations; return -p; });
   CHECK(evaluations == midpoint::stages);
 }
+
+}  // namespace integrators_convergence_tests

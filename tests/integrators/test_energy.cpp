@@ -7,6 +7,8 @@
 
 #include "impulse/integrators.hpp"
 
+namespace integrators_energy_tests {
+
 namespace {
 
 constexpr int steps = 100000;
@@ -65,3 +67,5 @@ TEST_CASE("RK4 loses energy slowly and monotonically on the oscillator") {
   const double expected_loss = steps * std::pow(omega * h, 6) / 72;  // 1.4e-9
   CHECK(1 - energy(x, v) == doctest::Approx(expected_loss).epsilon(0.01));
 }
+
+}  // namespace integrators_energy_tests

@@ -7,6 +7,8 @@
 
 #include "impulse/integrators.hpp"
 
+namespace integrators_partitioned_tests {
+
 namespace {
 
 using namespace impulse::integrators;
@@ -88,3 +90,5 @@ TEST_CASE("the second-order form is the partitioned form with p = v") {
   compare(midpoint{});
   compare(rk4{});
 }
+
+}  // namespace integrators_partitioned_tests

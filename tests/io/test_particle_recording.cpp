@@ -10,6 +10,8 @@
 #include "impulse/io/particle_recording.hpp"
 #include "impulse/particles.hpp"
 
+namespace io_particle_recording_tests {
+
 using namespace impulse;
 using namespace impulse::particles;
 
@@ -83,3 +85,5 @@ TEST_CASE("particle colors follow age over lifetime and speed along their ramps"
   CHECK(io::ramp(io::color_by::speed, 0)[2] > 200);
   CHECK(io::ramp(io::color_by::speed, 1)[0] > 200);
 }
+
+}  // namespace io_particle_recording_tests

@@ -14,6 +14,8 @@
 #include "impulse/io/picture.hpp"
 #include "impulse/world.hpp"
 
+namespace io_picture_tests {
+
 using namespace impulse;
 
 namespace {
@@ -146,3 +148,5 @@ TEST_CASE("the PNG of a rendered picture reads back as its pixels") {
     CHECK(std::memcmp(raw.data() + std::size_t(y) * 601 + 1, picture.rgb.data() + std::size_t(y) * 600, 600) == 0);
   }
 }
+
+}  // namespace io_picture_tests

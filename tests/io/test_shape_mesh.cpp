@@ -11,6 +11,8 @@
 
 #include "impulse/io/shape_mesh.hpp"
 
+namespace io_shape_mesh_tests {
+
 using namespace impulse;
 
 namespace {
@@ -92,3 +94,5 @@ TEST_CASE("a triangle mesh's mesh is its own triangles") {
   for (const vec3<float>& n : m.normals) CHECK(n.y == doctest::Approx(1.0f));
   check_normals(m);
 }
+
+}  // namespace io_shape_mesh_tests

@@ -9,6 +9,8 @@
 
 #include "tolerances.hpp"
 
+namespace math_aabb_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -193,3 +195,5 @@ TEST_CASE_TEMPLATE("a rotated box has every corner inside its world box and a co
   CHECK(worst_outside <= corner_rounding);
   CHECK(worst_face_gap <= corner_rounding);
 }
+
+}  // namespace math_aabb_tests

@@ -7,6 +7,8 @@
 
 #include "tolerances.hpp"
 
+namespace math_mat3_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -206,3 +208,5 @@ TEST_CASE_TEMPLATE("a matrix is not finite when any entry is NaN or infinite", T
     }
   }
 }
+
+}  // namespace math_mat3_tests

@@ -9,6 +9,8 @@
 
 #include "tolerances.hpp"
 
+namespace math_quat_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -434,3 +436,5 @@ TEST_CASE_TEMPLATE("angle_between measures the angle of the rotation from one or
     CHECK(std::abs(angle_between(q0, q * T(-1)) - angle) <= angle_rounding);  // -q is the same rotation
   }
 }
+
+}  // namespace math_quat_tests

@@ -5,6 +5,8 @@
 
 #include "tolerances.hpp"
 
+namespace math_transform_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -122,3 +124,5 @@ TEST_CASE_TEMPLATE("inverse_mul equals the inverse of a times b", T, float, doub
   CHECK(worst_position <= two_paths);
   CHECK(worst_rotation == 0);  // both are conjugate(a.rotation) * b.rotation
 }
+
+}  // namespace math_transform_tests

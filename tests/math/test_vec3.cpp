@@ -8,6 +8,8 @@
 
 #include "tolerances.hpp"
 
+namespace math_vec3_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -237,3 +239,5 @@ TEST_CASE_TEMPLATE("any_perpendicular is a unit vector perpendicular to its inpu
   CHECK(worst_length <= normalized_length<T>);
   CHECK(worst_dot <= perpendicular);
 }
+
+}  // namespace math_vec3_tests

@@ -6,6 +6,8 @@
 
 #include "impulse/math/vec3_batch.hpp"
 
+namespace math_vec3_batch_tests {
+
 namespace {
 
 template <class T>
@@ -51,3 +53,5 @@ TEST_CASE_TEMPLATE("vec3_batch operations equal vec3 operations lane by lane", T
   check_lanes<T, impulse::native_width<T>>();
   check_lanes<T, 64 / int(sizeof(T))>();
 }
+
+}  // namespace math_vec3_batch_tests

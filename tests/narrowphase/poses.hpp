@@ -16,7 +16,7 @@
 #include "impulse/math/transform.hpp"
 #include "impulse/narrowphase/manifold.hpp"
 
-namespace test {
+namespace impulse::test {
 
 /// Rounding allowed in a contact's normal, depth and position for 1 m
 /// shapes: a few float spacings, or a few thousand double ones.
@@ -92,4 +92,4 @@ struct crossing_edges {
   }
 };
 
-}  // namespace test
+}  // namespace impulse::test

@@ -11,6 +11,8 @@
 
 #include "impulse/narrowphase.hpp"
 
+namespace narrowphase_analytic_tests {
+
 namespace {
 
 using namespace impulse;
@@ -293,3 +295,5 @@ TEST_CASE_TEMPLATE("reduce_to_four keeps the deepest and spans the candidates", 
   reduce_to_four(std::span<const contact_point<T>>(octagon.data(), 3), up, m);
   CHECK(m.count == 3);
 }
+
+}  // namespace narrowphase_analytic_tests

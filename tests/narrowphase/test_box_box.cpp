@@ -14,6 +14,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_box_box_tests {
+
 namespace {
 
 using namespace impulse;
@@ -167,3 +169,5 @@ TEST_CASE_TEMPLATE("random box pairs: no missing contact, no NaN, points on both
   CHECK(missed == 0);
   CHECK(off_surface == 0);
 }
+
+}  // namespace narrowphase_box_box_tests

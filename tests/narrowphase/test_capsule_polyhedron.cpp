@@ -15,6 +15,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_capsule_polyhedron_tests {
+
 namespace {
 
 using namespace impulse;
@@ -177,3 +179,5 @@ TEST_CASE_TEMPLATE("a capsule resting on a box keeps its two ids step after step
   }
   CHECK(first.size() == 2);
 }
+
+}  // namespace narrowphase_capsule_polyhedron_tests

@@ -16,6 +16,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_dispatch_tests {
+
 namespace {
 
 using namespace impulse;
@@ -134,3 +136,5 @@ TEST_CASE("a user's shape joins by its own collide, and unlisted pairs are never
   CHECK(user::lump_tests == 3);
   static_assert(!narrowphase::has_pair_test<user::lump<double>, box<double>, double>);
 }
+
+}  // namespace narrowphase_dispatch_tests

@@ -12,6 +12,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_epa_tests {
+
 namespace {
 
 using namespace impulse;
@@ -171,3 +173,5 @@ TEST_CASE_TEMPLATE("epa on curved support functions ends within its fixed polyto
   CHECK(most <= 128);
   CHECK(worst < T(5e-3));
 }
+
+}  // namespace narrowphase_epa_tests

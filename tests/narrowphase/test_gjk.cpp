@@ -14,6 +14,8 @@
 #include "poses.hpp"
 #include "impulse/shapes/convex_hull.hpp"
 
+namespace narrowphase_gjk_tests {
+
 namespace {
 
 using namespace impulse;
@@ -181,3 +183,5 @@ TEST_CASE_TEMPLATE("gjk far from the origin and between shapes of very different
   const auto s = gjk_distance(pebble, at<T>({0, T(1.5), 0}), rock, at<T>({}));
   CHECK(s.distance == doctest::Approx(0.499).epsilon(tolerance<T> * 10));
 }
+
+}  // namespace narrowphase_gjk_tests

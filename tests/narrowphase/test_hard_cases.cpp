@@ -12,6 +12,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_hard_cases_tests {
+
 namespace {
 
 using namespace impulse;
@@ -119,3 +121,5 @@ TEST_CASE_TEMPLATE("one shape centered inside the other: out along a face, the f
     CHECK(deepest(m) == doctest::Approx(0.6).epsilon(T(1e-4)));
   }
 }
+
+}  // namespace narrowphase_hard_cases_tests

@@ -14,6 +14,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_hull_tests {
+
 namespace {
 
 using namespace impulse;
@@ -98,3 +100,5 @@ TEST_CASE_TEMPLATE("a sphere against a cube hull gives the box's answers", T, fl
   CHECK(length(m.normal - vec3<T>::unit_x()) <= tolerance<T>);
   CHECK(m.points[0].depth == doctest::Approx(0.1).epsilon(tolerance<T> * 100));
 }
+
+}  // namespace narrowphase_hull_tests

@@ -16,6 +16,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_hull_hull_tests {
+
 namespace {
 
 using namespace impulse;
@@ -254,3 +256,5 @@ TEST_CASE_TEMPLATE("a hull with nearly coplanar points on its faces collides as 
   CHECK(length(m.normal - expected.normal) <= tolerance<T> * 10);
   for (const auto& p : m.contacts()) CHECK(p.depth == doctest::Approx(0.02).epsilon(tolerance<T> * 1000));
 }
+
+}  // namespace narrowphase_hull_hull_tests

@@ -23,6 +23,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_mesh_tests {
+
 namespace {
 
 using namespace impulse;
@@ -516,3 +518,5 @@ TEST_CASE("a hull whose origin lies outside it is met by the mesh it rests on") 
   CHECK(out[0].count == 4);
   for (const auto& p : out[0].contacts()) CHECK(p.depth == doctest::Approx(0.01));
 }
+
+}  // namespace narrowphase_mesh_tests

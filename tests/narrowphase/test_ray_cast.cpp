@@ -19,6 +19,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_ray_cast_tests {
+
 namespace {
 
 using namespace impulse;
@@ -733,3 +735,5 @@ TEST_CASE_TEMPLATE("gjk ray casting on a curved surface known only by its suppor
   CHECK(disagreed == 0);
   CHECK(worst <= (sizeof(T) == 4 ? 2e-6 : 1e-12));
 }
+
+}  // namespace narrowphase_ray_cast_tests

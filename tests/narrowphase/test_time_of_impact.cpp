@@ -17,6 +17,8 @@
 
 #include "poses.hpp"
 
+namespace narrowphase_time_of_impact_tests {
+
 namespace {
 
 using namespace impulse;
@@ -277,3 +279,5 @@ TEST_CASE_TEMPLATE("toi: random sweeps never pass a contact before the time foun
   // run; one is allowed here, for a compiler that rounds differently.
   CHECK(failed <= 1);
 }
+
+}  // namespace narrowphase_time_of_impact_tests

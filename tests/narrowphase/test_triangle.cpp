@@ -9,6 +9,8 @@
 #include "impulse/core/random.hpp"
 #include "impulse/narrowphase/triangle.hpp"
 
+namespace narrowphase_triangle_tests {
+
 namespace {
 
 using namespace impulse;
@@ -98,3 +100,5 @@ TEST_CASE_TEMPLATE("degenerate triangles: corners on a line, or all at one point
   r = closest_point_on_triangle(vec3<T>{T(0.5), 1, 0}, a, a, b);
   CHECK(length(r.point - vec3<T>{T(0.5), 0, 0}) <= tolerance<T>);
 }
+
+}  // namespace narrowphase_triangle_tests

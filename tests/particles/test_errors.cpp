@@ -6,6 +6,8 @@
 #include "../error_code_of.hpp"
 #include "particle_test.hpp"
 
+namespace particles_errors_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -135,3 +137,5 @@ TEST_CASE_TEMPLATE("a bad time step or force parameter stops the step before any
 }
 
 }  // namespace
+
+}  // namespace particles_errors_tests

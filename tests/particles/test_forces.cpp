@@ -10,6 +10,8 @@
 
 #include "particle_test.hpp"
 
+namespace particles_forces_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -168,3 +170,5 @@ TEST_CASE("the float force from the 1/sqrt estimate is within 5e-7 of the law, a
 }
 
 }  // namespace
+
+}  // namespace particles_forces_tests

@@ -6,6 +6,8 @@
 
 #include "particle_test.hpp"
 
+namespace particles_lifetime_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -121,3 +123,5 @@ TEST_CASE_TEMPLATE("killing a particle moves the last one into its place and its
 }
 
 }  // namespace
+
+}  // namespace particles_lifetime_tests

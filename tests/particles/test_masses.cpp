@@ -7,6 +7,8 @@
 #include "../error_code_of.hpp"
 #include "particle_test.hpp"
 
+namespace particles_masses_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -83,3 +85,5 @@ TEST_CASE_TEMPLATE("without a mass column, a mass other than 1 is refused and no
 }
 
 }  // namespace
+
+}  // namespace particles_masses_tests

@@ -4,6 +4,8 @@
 
 #include "particle_test.hpp"
 
+namespace particles_planes_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -143,3 +145,5 @@ TEST_CASE_TEMPLATE("the particles scene keeps every particle inside its three pl
 }
 
 }  // namespace
+
+}  // namespace particles_planes_tests

@@ -19,6 +19,8 @@
 
 #include "particle_test.hpp"
 
+namespace particles_springs_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -211,3 +213,5 @@ TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, who
 }
 
 }  // namespace
+
+}  // namespace particles_springs_tests

@@ -11,6 +11,8 @@
 #include "impulse/thread_pool.hpp"
 #include "particle_test.hpp"
 
+namespace particles_threads_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -269,3 +271,5 @@ TEST_CASE("a task system with one callback or no worker is refused and the old o
 }
 
 }  // namespace
+
+}  // namespace particles_threads_tests

@@ -5,6 +5,8 @@
 
 #include "particle_test.hpp"
 
+namespace particles_widths_tests {
+
 namespace {
 
 using namespace impulse::particles;
@@ -70,3 +72,5 @@ TEST_CASE_TEMPLATE("every batch width steps the particles scene to the same stat
 }
 
 }  // namespace
+
+}  // namespace particles_widths_tests

@@ -23,6 +23,8 @@
 
 #include "../math/tolerances.hpp"
 
+namespace shapes_convex_hull_tests {
+
 using namespace impulse;
 using namespace impulse::test;
 
@@ -600,3 +602,5 @@ TEST_CASE_TEMPLATE("the bounding boxes hold the hull in shape space and in the w
     for (const vec3<T>& v : hull.vertices()) CHECK(contains(loose, apply(pose, v)));
   }
 }
+
+}  // namespace shapes_convex_hull_tests

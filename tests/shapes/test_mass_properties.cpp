@@ -17,6 +17,8 @@
 
 #include "../error_code_of.hpp"
 
+namespace shapes_mass_properties_tests {
+
 namespace {
 
 using impulse::mat3;
@@ -206,3 +208,5 @@ TEST_CASE_TEMPLATE("bad densities and dimensions are refused with a clear error"
 }
 
 }  // namespace
+
+}  // namespace shapes_mass_properties_tests

@@ -18,6 +18,8 @@
 
 #include "../error_code_of.hpp"
 
+namespace shapes_shapes_tests {
+
 namespace {
 
 using impulse::vec3;
@@ -106,3 +108,5 @@ TEST_CASE_TEMPLATE("planes and triangle meshes refuse degenerate input", T, floa
 }
 
 }  // namespace
+
+}  // namespace shapes_shapes_tests

@@ -10,7 +10,7 @@
 
 #include "impulse/world.hpp"
 
-namespace test {
+namespace impulse::test {
 
 /// The default policies with sleeping off: the hard cases are measured on
 /// the solver alone.
@@ -137,4 +137,4 @@ std::uint64_t transform_hash(const World& w) {
   return h;
 }
 
-}  // namespace test
+}  // namespace impulse::test

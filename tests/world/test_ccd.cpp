@@ -9,14 +9,16 @@
 #include "impulse/world.hpp"
 #include "scenes.hpp"
 
+namespace world_ccd_tests {
+
 using namespace impulse;
 
 namespace {
 
-struct ccd_config : ::test::awake_config {
+struct ccd_config : impulse::test::awake_config {
   static constexpr bool ccd = true;
 };
-static_assert(world<ccd_config>::ccd && !world<::test::awake_config>::ccd);
+static_assert(world<ccd_config>::ccd && !world<impulse::test::awake_config>::ccd);
 
 enum class wall_kind { box, mesh };
 
@@ -54,7 +56,7 @@ float furthest_ball(float angle, wall_kind kind = wall_kind::box) {
   const body_id ball = w.create_body(d, sphere<float>::make(0.05f));
   float furthest = 0;
   for (int i = 0; i < 30; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     furthest = std::max(furthest, w.body(ball).position.x);
   }
   return furthest;
@@ -72,7 +74,7 @@ TEST_CASE("a ball of radius 5 cm at 500 m/s never passes a 1 cm wall or a mesh w
       // stops it 5 mm short, the next step's contact lets it touch.
       CHECK(furthest_ball<ccd_config>(angle, kind) < 4.95f + 0.001f);
       // Without the sweep it is through in the first step.
-      CHECK(furthest_ball<::test::awake_config>(angle, kind) > 5.5f);
+      CHECK(furthest_ball<impulse::test::awake_config>(angle, kind) > 5.5f);
     }
 }
 
@@ -93,7 +95,7 @@ TEST_CASE("a thin box flying fast and spinning never passes through a thin wall 
       const body_id plate = w.create_body(d, box<float>::make({0.01f, 0.25f, 0.25f}));
       float furthest = 0, last = 0;
       for (int i = 0; i < 30; ++i) {
-        w.step(::test::step_dt<float>);
+        w.step(impulse::test::step_dt<float>);
         // Its farthest corner's x, from its pose.
         const transform<float> pose = w.shape_pose(plate);
         last = 0;
@@ -130,10 +132,10 @@ TEST_CASE("a ball stopped short of a wall by its sweep bounces off it at e times
   b.linear_velocity = {500, 0, 0};
   b.material.restitution = 0.8f;
   const body_id ball = w.create_body(b, sphere<float>::make(0.05f));
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.body(ball).position.x == doctest::Approx(4.945f).epsilon(1e-4));
   CHECK(w.body(ball).linear_velocity().x == doctest::Approx(500.0f));
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.body(ball).linear_velocity().x == doctest::Approx(-400.0f).epsilon(1e-4));
 }
 
@@ -142,10 +144,10 @@ TEST_CASE("a bullet fired at a stack strikes the box in its path instead of pass
   // aimed at the second.
   const auto shoot = [](bool bullet) {
     world<ccd_config> w;
-    ::test::add_ground(w);
+    impulse::test::add_ground(w);
     std::vector<body_id> stack;
-    for (int k = 0; k < 5; ++k) stack.push_back(::test::add_cube(w, {10, 0.5f + float(k), 0}));
-    for (int i = 0; i < 30; ++i) w.step(::test::step_dt<float>);
+    for (int k = 0; k < 5; ++k) stack.push_back(impulse::test::add_cube(w, {10, 0.5f + float(k), 0}));
+    for (int i = 0; i < 30; ++i) w.step(impulse::test::step_dt<float>);
     body_def<float> d;
     d.pose.position = {0, 1.5f, 0};
     d.linear_velocity = {300, 0, 0};
@@ -154,7 +156,7 @@ TEST_CASE("a bullet fired at a stack strikes the box in its path instead of pass
     const body_id ball = w.create_body(d, sphere<float>::make(0.1f));
     float struck = 0, ahead = -1;
     for (int i = 0; i < 10; ++i) {
-      w.step(::test::step_dt<float>);
+      w.step(impulse::test::step_dt<float>);
       struck = std::max(struck, w.body(stack[1]).linear_velocity().x);
       ahead = std::max(ahead, w.body(ball).position.x - (w.body(stack[1]).position.x + 0.5f));
     }
@@ -173,13 +175,15 @@ TEST_CASE("a bullet fired at a stack strikes the box in its path instead of pass
 
 TEST_CASE("a ball rolling fast along the ground is not held back by its sweep") {
   world<ccd_config> w;
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   body_def<float> d;
   d.pose.position = {0, 0.05f, 0};
   d.linear_velocity = {30, 0, 0};
   d.angular_velocity = {0, 0, -600};
   const body_id ball = w.create_body(d, sphere<float>::make(0.05f));
-  for (int i = 0; i < 60; ++i) w.step(::test::step_dt<float>);
+  for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<float>);
   // Rolling without slipping, it covers 30 m in the second.
   CHECK(w.body(ball).position.x == doctest::Approx(30.0f).epsilon(0.02));
 }
+
+}  // namespace world_ccd_tests

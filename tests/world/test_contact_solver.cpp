@@ -9,6 +9,8 @@
 
 #include "scenes.hpp"
 
+namespace world_contact_solver_tests {
+
 using namespace impulse;
 
 namespace {
@@ -272,3 +274,5 @@ TEST_CASE("the pile settles with sleeping on: every box asleep within 10 s, none
   if (test::long_run(600) == 600) CHECK(w.awake_body_count() == 0);
   for (const body_id b : pile) REQUIRE(w.body(b).position.y >= 0.45f);
 }
+
+}  // namespace world_contact_solver_tests

@@ -15,17 +15,19 @@
 #include "impulse/integrators/rk4.hpp"
 #include "scenes.hpp"
 
+namespace world_gyroscopic_tests {
+
 using namespace impulse;
 
 namespace {
 
-struct soft_config : ::test::awake_config {
+struct soft_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
-struct euler_config : ::test::awake_double_config {
+struct euler_config : impulse::test::awake_double_config {
   using integrator = integrators::euler;
 };
-struct midpoint_config : ::test::awake_double_config {
+struct midpoint_config : impulse::test::awake_double_config {
   using integrator = integrators::midpoint;
 };
 
@@ -65,7 +67,7 @@ top run_top(double spin, double seconds, const typename World::settings_type& se
   double last = std::atan2(-axis.z, axis.x), turned = 0, tilt_error = 0;
   const int steps = int(std::lround(seconds * 60));
   for (int i = 0; i < steps; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     const vec3<T> now = rotate(w.body(disc).orientation, vec3<T>{0, 1, 0});
     const double azimuth = std::atan2(-double(now.z), double(now.x));
     turned += std::remainder(azimuth - last, 2 * std::numbers::pi);
@@ -82,7 +84,7 @@ TEST_CASE("a heavy top precesses at its analytic rate within 0.5 %: sequential_i
   // to 1.0010 from 50 to 300. With ω held for the step instead, the top
   // precessed 8.6 times too fast at 20 rad/s and fell over.
   for (const double spin : {20.0, 50.0, 100.0, 150.0, 200.0, 300.0}) {
-    const top t = run_top<world<::test::awake_config>>(spin, 2);
+    const top t = run_top<world<impulse::test::awake_config>>(spin, 2);
     CAPTURE(spin);
     CHECK(std::abs(t.precession_ratio - 1) < 0.005);
     CHECK(t.tilt_error < 0.01);
@@ -94,11 +96,11 @@ TEST_CASE("a heavy top precesses at its analytic rate within 1 %: sequential_imp
   // nutation of the jointed disc (I₃·ω₃/I₁ ≈ 415 rad/s at 300) turns more
   // than π a step, and a joint solved once a step no longer holds it: the
   // parts are what hold it.
-  world<::test::awake_config>::settings_type s;
+  world<impulse::test::awake_config>::settings_type s;
   s.solver.substeps = 1;
   s.solver.velocity_iterations = 20;
   for (const double spin : {20.0, 50.0, 100.0, 150.0}) {
-    const top t = run_top<world<::test::awake_config>>(spin, 2, s);
+    const top t = run_top<world<impulse::test::awake_config>>(spin, 2, s);
     CAPTURE(spin);
     CHECK(std::abs(t.precession_ratio - 1) < 0.01);
     CHECK(t.tilt_error < 0.01);
@@ -120,7 +122,7 @@ TEST_CASE("a heavy top precesses at its analytic rate within 0.5 %: soft_step fr
 
 TEST_CASE_TEMPLATE("a box spun about its intermediate axis keeps its energy within 1e-4 and its angular momentum within "
                    "1e-9 over 10⁴ steps, from 2 to 100 rad/s",
-                   Config, ::test::awake_double_config, euler_config, midpoint_config, soft_config) {
+                   Config, impulse::test::awake_double_config, euler_config, midpoint_config, soft_config) {
   // The Dzhanibekov box (half-extents 0.2, 0.5, 1) flips over and over.
   // With ω held for the step it gained 259 % and ended spinning on its
   // minor axis; soft_step's implicit gyroscopic step lost 77 % of it. Each
@@ -137,8 +139,8 @@ TEST_CASE_TEMPLATE("a box spun about its intermediate axis keeps its energy with
     const vec3<T> l0 = w.body(b).angular_momentum;
     const double e0 = double(w.kinetic_energy());
     double energy = 0, momentum = 0;
-    for (int i = 0; i < ::test::long_run(10000); ++i) {
-      w.step(::test::step_dt<T>);
+    for (int i = 0; i < impulse::test::long_run(10000); ++i) {
+      w.step(impulse::test::step_dt<T>);
       energy = std::max(energy, std::abs(double(w.kinetic_energy()) / e0 - 1));
       momentum = std::max(momentum, double(length(w.body(b).angular_momentum - l0) / length(l0)));
     }
@@ -150,7 +152,7 @@ TEST_CASE_TEMPLATE("a box spun about its intermediate axis keeps its energy with
 
 TEST_CASE_TEMPLATE("in float at the default settings the flipping box keeps its energy within 1e-4 and its angular "
                    "momentum exactly, sleeping off and on",
-                   Config, ::test::awake_config, ::test::sleeping_config) {
+                   Config, impulse::test::awake_config, impulse::test::sleeping_config) {
   typename world<Config>::settings_type settings;
   settings.gravity = {0, 0, 0};
   world<Config> w(settings);
@@ -160,8 +162,8 @@ TEST_CASE_TEMPLATE("in float at the default settings the flipping box keeps its 
   const vec3<float> l0 = w.body(b).angular_momentum;
   const double e0 = double(w.kinetic_energy());
   double energy = 0;
-  for (int i = 0; i < ::test::long_run(10000); ++i) {
-    w.step(::test::step_dt<float>);
+  for (int i = 0; i < impulse::test::long_run(10000); ++i) {
+    w.step(impulse::test::step_dt<float>);
     energy = std::max(energy, std::abs(double(w.kinetic_energy()) / e0 - 1));
   }
   CHECK(energy < 1e-4);
@@ -172,7 +174,7 @@ TEST_CASE("under RK4 the flipping box's energy error falls with the step at four
   // At 4 rad/s the turn takes one piece a step, and its error is well
   // above rounding: halving the step divides the energy's largest error
   // over 4 s by 2⁴.
-  struct rk4_config : ::test::awake_double_config {
+  struct rk4_config : impulse::test::awake_double_config {
     using integrator = integrators::rk4;
   };
   const auto energy_error = [](double dt) {
@@ -208,9 +210,9 @@ TEST_CASE("a body whose inertia is given off its principal axes turns as the sam
   const quat<double> t = normalize(quat<double>{0.2, -0.4, 0.7, 0.5});
   const mat3<double> moments = mat3<double>::diagonal({1.25, 1.04, 0.29});
   const auto tumble = [&](bool off_axes) {
-    world<::test::awake_double_config>::settings_type settings;
+    world<impulse::test::awake_double_config>::settings_type settings;
     settings.gravity = {0, 0, 0};
-    world<::test::awake_double_config> w(settings);
+    world<impulse::test::awake_double_config> w(settings);
     body_def<double> d;
     d.mass = 1;
     d.inertia = off_axes ? to_mat3(t) * moments * transpose(to_mat3(t)) : moments;
@@ -228,3 +230,5 @@ TEST_CASE("a body whose inertia is given off its principal axes turns as the sam
   CHECK(worst < 1e-11);
   CHECK(std::abs(on(0, 1)) > 0.01);  // it did tumble: the tensor is no longer diagonal
 }
+
+}  // namespace world_gyroscopic_tests

@@ -12,12 +12,14 @@
 #include "impulse/world.hpp"
 #include "scenes.hpp"
 
+namespace world_joints_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
-struct soft_config : ::test::awake_config {
+struct soft_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
 
@@ -54,7 +56,7 @@ body_id add_bar(World& w, vec3<typename World::scalar> from, typename World::sca
 }  // namespace
 
 TEST_CASE_TEMPLATE("a hinge pendulum swings at the small-angle period of a physical pendulum", World,
-                   world<::test::awake_config>, world<::test::awake_double_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<impulse::test::awake_double_config>, world<soft_config>) {
   using T = typename World::scalar;
   // A ball of radius 0.1 on a 1 m arm, let go 0.05 rad from the vertical:
   // T = 2π·√(I_pivot / (m·g·L)), I_pivot = m·(L² + 2/5·r²). The amplitude's
@@ -72,10 +74,10 @@ TEST_CASE_TEMPLATE("a hinge pendulum swings at the small-angle period of a physi
   int crossings = 0;
   T widest = 0;
   for (int i = 0; i < 1200; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     const double x = double(w.body(bob).position.x);
     if ((before < 0) != (x < 0)) {
-      const double t = double(w.time()) - double(::test::step_dt<T>) * x / (x - before);
+      const double t = double(w.time()) - double(impulse::test::step_dt<T>) * x / (x - before);
       if (crossings++ == 0) first = t;
       last = t;
     }
@@ -117,7 +119,7 @@ typename World::scalar chain_gap(bool held_out, int steps, bool exact = true) {
   }
   T widest = 0;
   for (int i = 0; i < steps; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     for (const joint_id j : joints) widest = std::max(widest, w.joint_separation(j));
   }
   return widest;
@@ -126,7 +128,7 @@ typename World::scalar chain_gap(bool held_out, int steps, bool exact = true) {
 }  // namespace
 
 TEST_CASE_TEMPLATE("a chain of 20 ball joints at 10 to 1 between neighbours stays within 1 mm hanging and swinging",
-                   World, world<::test::awake_config>, world<soft_config>) {
+                   World, world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   // The bound: 1 mm. Each link's joints solved one at a time (Gauss–
   // Seidel, 20 iterations) opened the hanging chain 13 mm; its tree solved
@@ -143,7 +145,7 @@ TEST_CASE_TEMPLATE("a chain of 20 ball joints at 10 to 1 between neighbours stay
 }
 
 TEST_CASE_TEMPLATE("a hinge motor brings a loaded arm to its target speed and holds it", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   // A 1 kg bar 1 m long, hinged at one end about z, driven at 2 rad/s: its
   // weight's torque about the pivot, up to m·g·0.5 = 4.9 N·m, changes
@@ -156,10 +158,10 @@ TEST_CASE_TEMPLATE("a hinge motor brings a loaded arm to its target speed and ho
   d.motor_speed = 2;
   d.max_motor_force = 20;
   const joint_id hinge = w.create_joint(d);
-  for (int i = 0; i < 30; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 30; ++i) w.step(impulse::test::step_dt<T>);
   T slowest = 100, fastest = 0;
   for (int i = 0; i < 300; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     const T spin = w.body(bar).angular_velocity().z;
     slowest = std::min(slowest, spin), fastest = std::max(fastest, spin);
   }
@@ -169,7 +171,7 @@ TEST_CASE_TEMPLATE("a hinge motor brings a loaded arm to its target speed and ho
 }
 
 TEST_CASE_TEMPLATE("a hinge motor too weak for its load applies its whole torque and no more", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   // The bar hangs straight down; the motor, asked for 2 rad/s with at
   // most 2 N·m, is never reached, so it pushes with a constant 2 N·m: the
@@ -191,7 +193,7 @@ TEST_CASE_TEMPLATE("a hinge motor too weak for its load applies its whole torque
     theta -= (9.81 * 0.5 * (1 - std::cos(theta)) - 2 * theta) / (9.81 * 0.5 * std::sin(theta) - 2);
   T highest = 0, strongest = 0;
   for (int i = 0; i < 180; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     highest = std::max(highest, w.joint_position(hinge));
     strongest = std::max(strongest, std::abs(w.joint_torque(hinge).z));
   }
@@ -200,7 +202,7 @@ TEST_CASE_TEMPLATE("a hinge motor too weak for its load applies its whole torque
 }
 
 TEST_CASE_TEMPLATE("hinge limits hold a loaded arm at the limit and let it swing within", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   // A horizontal 1 m bar of 5 kg would fall; the lower limit −0.2 rad
   // stops it there and holds it, 24.5 N·m on it.
@@ -214,7 +216,7 @@ TEST_CASE_TEMPLATE("hinge limits hold a loaded arm at the limit and let it swing
   const joint_id hinge = w.create_joint(d);
   T lowest = 0;
   for (int i = 0; i < 300; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     lowest = std::min(lowest, w.joint_position(hinge));
   }
   // The limit is reached at 1.4 rad/s; 0.01 rad past it is 1 cm at the end.
@@ -228,7 +230,7 @@ TEST_CASE_TEMPLATE("hinge limits hold a loaded arm at the limit and let it swing
   w.apply_impulse_at(bar, {0, 20, 0}, w.body(bar).position);
   T highest = -1;
   for (int i = 0; i < 60; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     highest = std::max(highest, w.joint_position(hinge));
   }
   CHECK(highest < T(0.3 + 0.01));
@@ -236,16 +238,16 @@ TEST_CASE_TEMPLATE("hinge limits hold a loaded arm at the limit and let it swing
 }
 
 TEST_CASE_TEMPLATE("a body on a vertical slider falls at g along it and does not leave the line", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   World w;
   const body_id pivot = add_pivot(w, {0, 10, 0});
   // The slider's anchor is off the body's center, and the body is spun:
   // the slider keeps it from turning and from leaving the line.
-  const body_id block = ::test::add_cube(w, {0.3, 10, 0});
+  const body_id block = impulse::test::add_cube(w, {0.3, 10, 0});
   const joint_id slider = w.create_joint(joint_def<T>::slider(pivot, block, {0, 10, 0}, {0, 1, 0}));
   w.set_velocity(block, {0, 0, 0}, {0, 3, 1});
-  for (int i = 0; i < 60; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<T>);
   // The free fall of symplectic Euler over n steps (soft_step: substeps)
   // of h: y = −g·h²·n(n+1)/2.
   T n = T(60);
@@ -259,11 +261,11 @@ TEST_CASE_TEMPLATE("a body on a vertical slider falls at g along it and does not
 }
 
 TEST_CASE_TEMPLATE("a slider limit and motor: the block is driven up at the motor speed and held at the limit", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   World w;
   const body_id pivot = add_pivot(w, {0, 10, 0});
-  const body_id block = ::test::add_cube(w, {0, 10, 0}, 2);
+  const body_id block = impulse::test::add_cube(w, {0, 10, 0}, 2);
   joint_def<T> d = joint_def<T>::slider(pivot, block, {0, 10, 0}, {0, 1, 0});
   d.enable_motor = true;
   d.motor_speed = T(0.5);
@@ -272,21 +274,21 @@ TEST_CASE_TEMPLATE("a slider limit and motor: the block is driven up at the moto
   d.lower = -1;
   d.upper = T(0.5);
   const joint_id slider = w.create_joint(d);
-  for (int i = 0; i < 30; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 30; ++i) w.step(impulse::test::step_dt<T>);
   CHECK(std::abs(w.body(block).linear_velocity().y - T(0.5)) < T(0.005));
-  for (int i = 0; i < 90; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 90; ++i) w.step(impulse::test::step_dt<T>);
   CHECK(std::abs(w.joint_position(slider) - T(0.5)) < T(2e-3));
   CHECK(std::abs(w.body(block).linear_velocity().y) < T(0.01));
   // Motor off: it falls to the lower limit and stays, the limit holding
   // its weight.
   w.set_joint_motor(slider, false, 0, 0);
-  for (int i = 0; i < 120; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 120; ++i) w.step(impulse::test::step_dt<T>);
   CHECK(std::abs(w.joint_position(slider) + 1) < T(2e-3));
   CHECK(std::abs(w.joint_force(slider).y - T(2) * T(9.81)) < T(0.05) * T(19.62));
 }
 
 TEST_CASE_TEMPLATE("a welded cantilever holds its pose and a distance spring oscillates at its frequency", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   World w;
   const body_id wall = add_pivot(w, {0, 10, 0});
@@ -306,10 +308,10 @@ TEST_CASE_TEMPLATE("a welded cantilever holds its pose and a distance spring osc
   int crossings = 0;
   T sag = 0, turn = 0;
   for (int i = 0; i < 240; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     const double y = double(w.body(ball).position.y) - center;
     if ((before - center < 0) != (y < 0)) {
-      const double t = double(w.time()) - double(::test::step_dt<T>) * y / (y - (before - center));
+      const double t = double(w.time()) - double(impulse::test::step_dt<T>) * y / (y - (before - center));
       if (crossings++ == 0) first = t;
       last = t;
     }
@@ -328,7 +330,7 @@ TEST_CASE_TEMPLATE("a welded cantilever holds its pose and a distance spring osc
 }
 
 TEST_CASE_TEMPLATE("a breakable joint holds below its threshold for 10 s and breaks in the first step above it", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   using T = typename World::scalar;
   const T weight = T(9.81) * 2;
   {
@@ -339,7 +341,7 @@ TEST_CASE_TEMPLATE("a breakable joint holds below its threshold for 10 s and bre
     d.break_force = weight * T(1.01);
     const joint_id j = w.create_joint(d);
     for (int i = 0; i < 600; ++i) {
-      w.step(::test::step_dt<T>);
+      w.step(impulse::test::step_dt<T>);
       REQUIRE(w.joint_broken_events().empty());
     }
     CHECK_FALSE(w.is_broken(j));
@@ -358,7 +360,7 @@ TEST_CASE_TEMPLATE("a breakable joint holds below its threshold for 10 s and bre
     int broke = 0;
     for (int i = 1; i <= 20 && broke == 0; ++i) {
       w.apply_force(load, {0, -T(i), 0});
-      w.step(::test::step_dt<T>);
+      w.step(impulse::test::step_dt<T>);
       if (!w.joint_broken_events().empty()) {
         broke = i;
         const joint_broken_event<T>& e = w.joint_broken_events()[0];
@@ -373,7 +375,7 @@ TEST_CASE_TEMPLATE("a breakable joint holds below its threshold for 10 s and bre
     CHECK(w.is_broken(j));
     // Broken, it holds nothing: the load falls freely.
     const T y = w.body(load).position.y;
-    for (int i = 0; i < 30; ++i) w.step(::test::step_dt<T>);
+    for (int i = 0; i < 30; ++i) w.step(impulse::test::step_dt<T>);
     CHECK(w.body(load).position.y < y - T(0.5));
     CHECK(w.joint_broken_events().empty());
   }
@@ -381,37 +383,37 @@ TEST_CASE_TEMPLATE("a breakable joint holds below its threshold for 10 s and bre
 
 TEST_CASE("joined bodies do not collide unless the joint says so, and do again once it is destroyed") {
   using T = float;
-  world<::test::awake_config> w;
-  ::test::add_ground(w);
+  world<impulse::test::awake_config> w;
+  impulse::test::add_ground(w);
   // Two cubes overlapping by 0.2 m, hinged at the overlap.
-  const body_id a = ::test::add_cube(w, {0, 3, 0});
-  const body_id b = ::test::add_cube(w, {0.8f, 3, 0});
-  w.step(::test::step_dt<T>);
+  const body_id a = impulse::test::add_cube(w, {0, 3, 0});
+  const body_id b = impulse::test::add_cube(w, {0.8f, 3, 0});
+  w.step(impulse::test::step_dt<T>);
   REQUIRE(w.touching_pair_count() == 1);
   const joint_id j = w.create_joint(joint_def<T>::hinge(a, b, {0.4f, 3, 0}, {0, 0, 1}));
   CHECK(w.contact_end_events().size() == 1);  // their contact ended at once
   for (int i = 0; i < 5; ++i) {
-    w.step(::test::step_dt<T>);
+    w.step(impulse::test::step_dt<T>);
     CHECK(w.touching_pair_count() == 0);
   }
   w.destroy_joint(j);
-  w.step(::test::step_dt<T>);
+  w.step(impulse::test::step_dt<T>);
   CHECK(w.touching_pair_count() == 1);
 
   joint_def<T> touching = joint_def<T>::ball(a, b, {0.4f, 3, 0});
   touching.collide_connected = true;
   w.create_joint(touching);
-  w.step(::test::step_dt<T>);
+  w.step(impulse::test::step_dt<T>);
   CHECK(w.touching_pair_count() == 1);
 }
 
 TEST_CASE("bad joints are refused with a clear error and leave the world unchanged") {
   using T = float;
-  world<::test::awake_config> w;
-  const body_id ground = ::test::add_ground(w);
-  const body_id a = ::test::add_cube(w, {0, 3, 0});
-  const body_id b = ::test::add_cube(w, {2, 3, 0});
-  const body_id gone = ::test::add_cube(w, {4, 3, 0});
+  world<impulse::test::awake_config> w;
+  const body_id ground = impulse::test::add_ground(w);
+  const body_id a = impulse::test::add_cube(w, {0, 3, 0});
+  const body_id b = impulse::test::add_cube(w, {2, 3, 0});
+  const body_id gone = impulse::test::add_cube(w, {4, 3, 0});
   w.destroy_body(gone);
   const T nan = std::numeric_limits<T>::quiet_NaN();
   CHECK(error_code_of([&] { w.create_joint(joint_def<T>::ball(a, a, {0, 3, 0})); }) ==
@@ -445,34 +447,36 @@ TEST_CASE("bad joints are refused with a clear error and leave the world unchang
 
 TEST_CASE("a snapshot restores joints with their impulses, and the same state steps to the same bits") {
   using T = float;
-  world<::test::awake_config> w;
+  world<impulse::test::awake_config> w;
   const body_id pivot = add_pivot(w, {0, 10, 0});
   const body_id arm = add_bar(w, {0, 10, 0}, T(0.5));
   const body_id tip = add_ball(w, {1, 10, 0});
   w.create_joint(joint_def<T>::hinge(pivot, arm, {0, 10, 0}, {0, 0, 1}));
   w.create_joint(joint_def<T>::ball(arm, tip, {1, 10, 0}));
-  for (int i = 0; i < 30; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 30; ++i) w.step(impulse::test::step_dt<T>);
   const auto saved = w.snapshot();
-  for (int i = 0; i < 60; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<T>);
   const vec3<T> there = w.body(tip).position;
   w.restore(saved);
-  for (int i = 0; i < 60; ++i) w.step(::test::step_dt<T>);
+  for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<T>);
   CHECK(w.body(tip).position == there);
 }
 
 TEST_CASE("a jointed pair sleeps as one island and wakes together") {
   using T = float;
-  world<::test::sleeping_config> w;
-  ::test::add_ground(w);
-  const body_id a = ::test::add_cube(w, {0, 0.5f, 0});
-  const body_id b = ::test::add_cube(w, {0, 0.5f, 3});
+  world<impulse::test::sleeping_config> w;
+  impulse::test::add_ground(w);
+  const body_id a = impulse::test::add_cube(w, {0, 0.5f, 0});
+  const body_id b = impulse::test::add_cube(w, {0, 0.5f, 3});
   // A rod between their tops: resting on the ground, both sleep.
   w.create_joint(joint_def<T>::distance(a, b, {0, 1, 0}, {0, 1, 3}));
   int steps = 0;
-  while ((w.is_awake(a) || w.is_awake(b)) && steps < 600) w.step(::test::step_dt<T>), ++steps;
+  while ((w.is_awake(a) || w.is_awake(b)) && steps < 600) w.step(impulse::test::step_dt<T>), ++steps;
   CHECK_FALSE(w.is_awake(a));
   CHECK_FALSE(w.is_awake(b));
   w.apply_impulse_at(a, {0, 0, 1}, w.body(a).position);
-  w.step(::test::step_dt<T>);
+  w.step(impulse::test::step_dt<T>);
   CHECK(w.is_awake(b));
 }
+
+}  // namespace world_joints_tests

@@ -9,13 +9,15 @@
 #include "impulse/world.hpp"
 #include "scenes.hpp"
 
+namespace world_kinematic_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
 struct platform_scene {
-  world<::test::sleeping_config> w;
+  world<impulse::test::sleeping_config> w;
   body_id platform, rider;
 
   /// A 8 × 0.5 × 8 m kinematic slab with its top at y = 0.25, and a cube
@@ -25,8 +27,8 @@ struct platform_scene {
     d.type = body_type::kinematic;
     d.material.friction = friction;
     platform = w.create_body(d, box<float>::make({4, 0.25f, 4}));
-    rider = ::test::add_cube(w, {2, 0.75f, 0}, 1, friction);
-    for (int i = 0; i < 60; ++i) w.step(::test::step_dt<float>);  // settle
+    rider = impulse::test::add_cube(w, {2, 0.75f, 0}, 1, friction);
+    for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<float>);  // settle
   }
 };
 
@@ -47,7 +49,7 @@ TEST_CASE("a box on a turning platform turns with it without sliding when fricti
   const vec3<float> start = s.w.body(s.rider).position;
   for (int i = 1; i <= 360; ++i) {
     s.w.set_velocity(s.platform, {}, {0, std::min(float(i) / 60, 1.0f), 0});
-    s.w.step(::test::step_dt<float>);
+    s.w.step(impulse::test::step_dt<float>);
   }
   const quat<float> turn = s.w.body(s.platform).orientation;
   const float angle = 2 * std::atan2(turn.y, turn.w);
@@ -61,7 +63,7 @@ TEST_CASE("a box on a turning platform turns with it without sliding when fricti
   // With μ = 0.1 (0.98 m/s²) the same turn throws it outward.
   platform_scene slippery(0.1f);
   slippery.w.set_velocity(slippery.platform, {}, {0, 1, 0});
-  for (int i = 0; i < 120; ++i) slippery.w.step(::test::step_dt<float>);
+  for (int i = 0; i < 120; ++i) slippery.w.step(impulse::test::step_dt<float>);
   const vec3<float> p = slippery.w.body(slippery.rider).position;
   CHECK(std::hypot(p.x, p.z) > 2.2f);
 }
@@ -73,7 +75,7 @@ TEST_CASE("a platform moved by a target pose each step follows its path exactly 
   // its place on it.
   platform_scene s(0.6f);
   const vec3<float> offset = s.w.body(s.rider).position;  // from the platform's center
-  const float dt = ::test::step_dt<float>;
+  const float dt = impulse::test::step_dt<float>;
   transform<float> pose{};
   float worst = 0;
   for (int i = 1; i <= 240; ++i) {
@@ -100,11 +102,13 @@ TEST_CASE("a platform moved by a target pose each step follows its path exactly 
 
 TEST_CASE("a box asleep on a platform wakes when the platform starts to move") {
   platform_scene s(0.6f);
-  for (int i = 0; i < 120 && s.w.is_awake(s.rider); ++i) s.w.step(::test::step_dt<float>);
+  for (int i = 0; i < 120 && s.w.is_awake(s.rider); ++i) s.w.step(impulse::test::step_dt<float>);
   REQUIRE_FALSE(s.w.is_awake(s.rider));
   s.w.set_velocity(s.platform, {0.5f, 0, 0}, {});
-  s.w.step(::test::step_dt<float>);
+  s.w.step(impulse::test::step_dt<float>);
   CHECK(s.w.is_awake(s.rider));
-  for (int i = 0; i < 60; ++i) s.w.step(::test::step_dt<float>);
+  for (int i = 0; i < 60; ++i) s.w.step(impulse::test::step_dt<float>);
   CHECK(s.w.body(s.rider).linear_velocity().x == doctest::Approx(0.5f).epsilon(0.01));
 }
+
+}  // namespace world_kinematic_tests

@@ -15,11 +15,13 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_landing_tests {
+
 using namespace impulse;
 
 namespace {
 
-struct soft_config : ::test::awake_config {
+struct soft_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
 
@@ -29,7 +31,7 @@ struct soft_config : ::test::awake_config {
 template <class World>
 std::pair<float, float> landing_depths(bool cube, float speed) {
   World w;
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   body_def<float> d;
   d.mass = 1;
   d.pose.position = {0, 0.5f + speed * 0.1f + 0.013f, 0};
@@ -38,7 +40,7 @@ std::pair<float, float> landing_depths(bool cube, float speed) {
                          : w.create_body(d, sphere<float>::make(0.5f));
   float deepest = 0;
   for (int i = 0; i < 180; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     deepest = std::max(deepest, 0.5f - w.body(b).position.y);
   }
   return {deepest, 0.5f - w.body(b).position.y};
@@ -47,7 +49,7 @@ std::pair<float, float> landing_depths(bool cube, float speed) {
 }  // namespace
 
 TEST_CASE_TEMPLATE("a ball or a box landing at 2 to 20 m/s sinks no deeper than it rests", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   // At 60 Hz these cross 3.3 to 33 cm a step. Contacts found only 2 cm
   // ahead (speculative_distance) let one land 5.7 cm deep at 5 m/s; now
   // a pair is tested as far ahead as it can close in the step, and the
@@ -66,7 +68,7 @@ TEST_CASE_TEMPLATE("a ball or a box landing at 2 to 20 m/s sinks no deeper than 
 }
 
 TEST_CASE_TEMPLATE("a ball landing with spin at 2 to 20 m/s rolls off at the speed the impulse theory gives, within 0.5 percent",
-                   World, world<::test::awake_config>, world<soft_config>) {
+                   World, world<impulse::test::awake_config>, world<soft_config>) {
   // A ball of radius 0.5 (I = 2/5·m·r²) moving at 3 m/s and spinning at
   // 10 rad/s (backspin) lands at friction 0.5 and restitution 0. The
   // ground's impulses pass through the point of contact, so the angular
@@ -77,7 +79,7 @@ TEST_CASE_TEMPLATE("a ball landing with spin at 2 to 20 m/s rolls off at the spe
   for (const float fall : {2.0f, 5.0f, 10.0f, 20.0f}) {
     CAPTURE(fall);
     World w;
-    ::test::add_ground(w, 0.5f);
+    impulse::test::add_ground(w, 0.5f);
     body_def<float> d;
     d.mass = 1;
     d.material.friction = 0.5f;
@@ -85,7 +87,7 @@ TEST_CASE_TEMPLATE("a ball landing with spin at 2 to 20 m/s rolls off at the spe
     d.linear_velocity = {3, -fall, 0};
     d.angular_velocity = {0, 0, 10};
     const body_id ball = w.create_body(d, sphere<float>::make(0.5f));
-    ::test::run(w, 240);
+    impulse::test::run(w, 240);
     const float rolling = (3.0f - 0.4f * 0.5f * 10.0f) / 1.4f;
     CHECK(std::abs(w.body(ball).linear_velocity().x / rolling - 1) < 0.005f);
     CHECK(std::abs(w.body(ball).linear_velocity().x + 0.5f * w.body(ball).angular_velocity().z) < 0.001f);
@@ -93,7 +95,7 @@ TEST_CASE_TEMPLATE("a ball landing with spin at 2 to 20 m/s rolls off at the spe
 }
 
 TEST_CASE_TEMPLATE("a ball passing 5 cm clear of a box's edge at 5, 20 and 50 m/s is not touched by it", World,
-                   world<::test::awake_config>, world<soft_config>) {
+                   world<impulse::test::awake_config>, world<soft_config>) {
   // Weightless, it flies along x past the top edge of a static unit box.
   // Its contact with the box is found up to a step's flight ahead (0.8 m
   // at 50 m/s), with a normal from the edge that leans against its motion;
@@ -111,14 +113,14 @@ TEST_CASE_TEMPLATE("a ball passing 5 cm clear of a box's edge at 5, 20 and 50 m/
     d.pose.position = {-3, 0.5f + 0.25f + 0.05f, 0};
     d.linear_velocity = {speed, 0, 0};
     const body_id ball = w.create_body(d, sphere<float>::make(0.25f));
-    ::test::run(w, 60);
+    impulse::test::run(w, 60);
     CHECK(w.body(ball).linear_velocity() == vec3<float>{speed, 0, 0});
     CHECK(w.body(ball).position.y == doctest::Approx(0.8f).epsilon(1e-6));
   }
 }
 
 TEST_CASE_TEMPLATE("a ball's rebounds from 10 m follow e squared at each bounce, and elastic ones keep its height",
-                   World, world<::test::awake_config>, world<soft_config>) {
+                   World, world<impulse::test::awake_config>, world<soft_config>) {
   // Peaks 0.5 + e^(2k)·9.5. The contact that meets the ball is found up to
   // a step's flight ahead (22 cm at 13.6 m/s); the ball parts from there at
   // the speed the impact's e·v has left at that height, or it would climb
@@ -128,7 +130,7 @@ TEST_CASE_TEMPLATE("a ball's rebounds from 10 m follow e squared at each bounce,
   for (const float e : {0.8f, 1.0f}) {
     CAPTURE(e);
     World w;
-    ::test::add_ground(w);
+    impulse::test::add_ground(w);
     body_def<float> d;
     d.pose.position = {0, 10, 0};
     d.mass = 1;
@@ -138,7 +140,7 @@ TEST_CASE_TEMPLATE("a ball's rebounds from 10 m follow e squared at each bounce,
     float peak = 0;
     bool rising = false;
     for (int i = 0; i < 60 * 30 && bounces < 3; ++i) {
-      w.step(::test::step_dt<float>);
+      w.step(impulse::test::step_dt<float>);
       if (w.body(ball).linear_velocity().y > 0) {
         rising = true;
         peak = std::max(peak, w.body(ball).position.y);
@@ -156,7 +158,7 @@ TEST_CASE_TEMPLATE("a ball's rebounds from 10 m follow e squared at each bounce,
 }
 
 TEST_CASE("a reach ahead that is negative or not finite is refused and the world keeps its settings") {
-  world<::test::awake_config> w;
+  world<impulse::test::awake_config> w;
   for (const float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     CAPTURE(bad);
     auto settings = w.settings();
@@ -165,3 +167,5 @@ TEST_CASE("a reach ahead that is negative or not finite is refused and the world
     CHECK(w.settings().solver.max_speculative_distance == 1.0f);
   }
 }
+
+}  // namespace world_landing_tests

@@ -12,11 +12,13 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_soft_step_tests {
+
 using namespace impulse;
 
 namespace {
 
-struct soft_config : ::test::awake_config {
+struct soft_config : impulse::test::awake_config {
   using solver = impulse::solver::soft_step;
 };
 using soft_world = world<soft_config>;
@@ -32,10 +34,10 @@ TEST_CASE("soft step: a box on a 30 degree incline at friction 0.5 slides at g(s
   ramp.pose.rotation = turn;
   ramp.material.friction = 0.5f;
   w.create_body(ramp, box<float>::make({15, 0.5f, 5}));
-  const body_id cube = ::test::add_cube(w, rotate(turn, vec3<float>{5, 1, 0}), 1.0f, 0.5f, turn);
-  ::test::run(w, 60);
+  const body_id cube = impulse::test::add_cube(w, rotate(turn, vec3<float>{5, 1, 0}), 1.0f, 0.5f, turn);
+  impulse::test::run(w, 60);
   const float v1 = length(w.body(cube).linear_velocity());
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   const float v2 = length(w.body(cube).linear_velocity());
   const double analytic = 9.81 * (std::sin(double(angle)) - 0.5 * std::cos(double(angle)));
   CHECK(std::abs((v2 - v1) / analytic - 1) < 0.005);
@@ -43,12 +45,12 @@ TEST_CASE("soft step: a box on a 30 degree incline at friction 0.5 slides at g(s
 
 TEST_CASE("soft step: a 10-box tower stands for 20 s with its top within 1 cm of the axis") {
   soft_world w;
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   std::vector<body_id> tower;
-  for (int k = 0; k < 10; ++k) tower.push_back(::test::add_cube(w, {0, 0.5f + float(k), 0}));
+  for (int k = 0; k < 10; ++k) tower.push_back(impulse::test::add_cube(w, {0, 0.5f + float(k), 0}));
   float drift = 0;
   for (int i = 0; i < 1200; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     const vec3<float> top = w.body(tower.back()).position;
     drift = std::max(drift, std::hypot(top.x, top.z));
   }
@@ -60,11 +62,11 @@ TEST_CASE("soft step: a 10-box tower stands for 20 s with its top within 1 cm of
 
 TEST_CASE("soft step: the 20-row pyramid stands for 20 s without spreading more than 2 cm across") {
   soft_world w;
-  ::test::add_ground(w);
-  const std::vector<body_id> boxes = ::test::add_pyramid(w, 20);
-  const auto start = ::test::positions(w, boxes);
-  ::test::run(w, ::test::long_run(1200));
-  const vec3<float> worst = ::test::largest_displacement(w, boxes, start);
+  impulse::test::add_ground(w);
+  const std::vector<body_id> boxes = impulse::test::add_pyramid(w, 20);
+  const auto start = impulse::test::positions(w, boxes);
+  impulse::test::run(w, impulse::test::long_run(1200));
+  const vec3<float> worst = impulse::test::largest_displacement(w, boxes, start);
   CHECK(worst.x < 0.02f);
   CHECK(worst.z < 0.02f);
   CHECK(w.body(boxes.back()).position.y > 19.0f);
@@ -72,12 +74,12 @@ TEST_CASE("soft step: the 20-row pyramid stands for 20 s without spreading more 
 
 TEST_CASE("soft step: a 100 kg box on a 1 kg box stands for 10 s without sliding 1 cm") {
   soft_world w;
-  ::test::add_ground(w);
-  ::test::add_cube(w, {0, 0.5f, 0}, 1);
-  const body_id heavy = ::test::add_cube(w, {0, 1.5f, 0}, 100);
+  impulse::test::add_ground(w);
+  impulse::test::add_cube(w, {0, 0.5f, 0}, 1);
+  const body_id heavy = impulse::test::add_cube(w, {0, 1.5f, 0}, 100);
   float slid = 0;
   for (int i = 0; i < 600; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     slid = std::max(slid, std::hypot(w.body(heavy).position.x, w.body(heavy).position.z));
   }
   CHECK(slid < 0.01f);
@@ -101,3 +103,5 @@ TEST_CASE("soft step's own settings are checked: no substep, a negative stiffnes
   CHECK(w.settings().solver.contact_hertz == 30);
   CHECK(std::isfinite(w.settings().solver.joint_damping_ratio));
 }
+
+}  // namespace world_soft_step_tests

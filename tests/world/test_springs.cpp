@@ -13,13 +13,15 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_springs_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
-using awake_world = world<::test::awake_config>;
-using awake_double_world = world<::test::awake_double_config>;
+using awake_world = world<impulse::test::awake_config>;
+using awake_double_world = world<impulse::test::awake_double_config>;
 
 template <class World>
 typename World::settings_type weightless() {
@@ -80,7 +82,7 @@ TEST_CASE("a box hanging from a damped spring settles where k*x = m*g, and the s
   const body_id b = add_box(w, {0, 8.5f, 0}, 2.0f);
   // From the box's top face to an anchor 1 m (the rest length) above it.
   const spring_id s = w.create_spring(body_spring<float>::to_anchor(b, {0, 0.25f, 0}, {0, 9.75f, 0}, 400.0f, 40.0f, 1.0f));
-  ::test::run(w, 600);
+  impulse::test::run(w, 600);
   const float stretch = 2.0f * 9.81f / 400.0f;  // 4.9 cm
   CHECK(w.body(b).position.y == doctest::Approx(8.5f - stretch).epsilon(2e-5));
   CHECK(w.spring_tension(s) == doctest::Approx(2.0f * 9.81f).epsilon(1e-3));
@@ -96,7 +98,7 @@ TEST_CASE("a spring of 1e6 N/m on a 1 kg box at 60 Hz takes the implicit step, i
   awake_world w;
   const body_id b = add_box(w, {0, 4, 0}, 1.0f);
   w.create_spring(body_spring<float>::to_anchor(b, {}, {0, 5.2f, 0}, 1e6f, 0.0f, 1.0f));
-  const float dt = ::test::step_dt<float>;
+  const float dt = impulse::test::step_dt<float>;
   const int parts = w.settings().solver.substeps;
   const double h = double(dt) / parts;
   double v = 0, x = 0.2;
@@ -106,7 +108,7 @@ TEST_CASE("a spring of 1e6 N/m on a 1 kg box at 60 Hz takes the implicit step, i
   }
   w.step(dt);
   CHECK(w.body(b).linear_velocity().y == doctest::Approx(v).epsilon(1e-3));
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   CHECK(length(w.body(b).linear_velocity()) < 1e-3f);
   CHECK(w.body(b).position.y == doctest::Approx(4.2f - 9.81f / 1e6f).epsilon(1e-5));
 }
@@ -116,7 +118,7 @@ TEST_CASE("a spring of zero stiffness and damping pulls with nothing: the body f
   const body_id held = add_box(w, {0, 10, 0}, 1.0);
   const body_id free = add_box(w, {5, 10, 0}, 1.0);
   const spring_id s = w.create_spring(body_spring<double>::to_anchor(held, {}, {0, 10.5, 0}, 0.0, 0.0, 0.5));
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   CHECK(w.body(held).position.y == w.body(free).position.y);  // bit for bit: nothing acted on it but gravity
   CHECK(w.body(held).position.y < 6);
   CHECK(w.spring_tension(s) == 0.0);
@@ -149,7 +151,7 @@ TEST_CASE("a cube hanging from springs at its four top corners still collides: a
     for (const float z : {-0.5f, 0.5f})
       w.create_spring(body_spring<float>::to_anchor(cube, {x, 0.5f, z}, {x, 7, z}, k, c, 1.5f));
   const body_id load = add_box(w, {0, 7, 0}, 1.0f);
-  ::test::run(w, 900);
+  impulse::test::run(w, 900);
   // Four springs of k share the two bodies' weight: the cube hangs
   // 2·m·g/(4k) below their rest, its top face at 7 − 1.5 − that.
   const float top = 7 - 1.5f - 2 * 9.81f / (4 * k);
@@ -159,23 +161,23 @@ TEST_CASE("a cube hanging from springs at its four top corners still collides: a
 }
 
 TEST_CASE("springs join islands: bodies on a spring sleep together, and waking one wakes the other") {
-  world<::test::sleeping_config> w;
-  ::test::add_ground(w);
-  const body_id a = ::test::add_cube(w, {0, 0.5f, 0});
-  const body_id b = ::test::add_cube(w, {3, 0.5f, 0});
+  world<impulse::test::sleeping_config> w;
+  impulse::test::add_ground(w);
+  const body_id a = impulse::test::add_cube(w, {0, 0.5f, 0});
+  const body_id b = impulse::test::add_cube(w, {3, 0.5f, 0});
   w.create_spring(body_spring<float>::between(a, {}, b, {}, 10.0f, 1.0f, 3.0f));
-  ::test::run(w, 120);
+  impulse::test::run(w, 120);
   REQUIRE(w.awake_body_count() == 0);
   w.wake(a);
   CHECK(w.is_awake(b));
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.last_step_counts().solved_springs == 1);
 }
 
 TEST_CASE("bad springs are refused and leave the world as it was; destroying a body removes its springs") {
   awake_world w;
-  const body_id a = ::test::add_cube(w, {0, 5, 0});
-  const body_id b = ::test::add_cube(w, {2, 5, 0});
+  const body_id a = impulse::test::add_cube(w, {0, 5, 0});
+  const body_id b = impulse::test::add_cube(w, {2, 5, 0});
   body_def<float> fixed;
   fixed.type = body_type::static_body;
   const body_id ground = w.create_body(fixed, box<float>::make({1, 1, 1}));
@@ -224,23 +226,25 @@ TEST_CASE("a force field acts on the awake bodies for one step: one that cancels
 
 TEST_CASE("a force field that gives a body a force that is not finite, or makes a body, is refused before any body moves") {
   awake_world w;
-  const body_id a = ::test::add_cube(w, {0, 5, 0});
-  const body_id b = ::test::add_cube(w, {3, 5, 0});
+  const body_id a = impulse::test::add_cube(w, {0, 5, 0});
+  const body_id b = impulse::test::add_cube(w, {3, 5, 0});
   const auto bad = [&](body_id id, const body_kinematics<float>&) {
     wrench<float> out;
     if (id == b) out.force = {std::numeric_limits<float>::infinity(), 0, 0};
     return out;
   };
-  CHECK(error_code_of([&] { w.step(::test::step_dt<float>, bad); }) == error_code::non_finite);
+  CHECK(error_code_of([&] { w.step(impulse::test::step_dt<float>, bad); }) == error_code::non_finite);
   CHECK(w.step_count() == 0);
   CHECK(w.body(a).force == vec3<float>{});
   // Nor may a field change what the step walks: a body made inside it is refused.
   const auto greedy = [&](body_id, const body_kinematics<float>&) {
-    (void)::test::add_cube(w, {9, 9, 9});
+    (void)impulse::test::add_cube(w, {9, 9, 9});
     return wrench<float>{};
   };
-  CHECK(error_code_of([&] { w.step(::test::step_dt<float>, greedy); }) == error_code::invalid_parameter);
+  CHECK(error_code_of([&] { w.step(impulse::test::step_dt<float>, greedy); }) == error_code::invalid_parameter);
   CHECK(w.body_count() == 2);
-  w.step(::test::step_dt<float>);  // the world steps on as before
+  w.step(impulse::test::step_dt<float>);  // the world steps on as before
   CHECK(w.body(a).position.y < 5);
 }
+
+}  // namespace world_springs_tests

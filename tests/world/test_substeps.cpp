@@ -16,11 +16,13 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_substeps_tests {
+
 using namespace impulse;
 
 namespace {
 
-using awake_world = world<::test::awake_config>;
+using awake_world = world<impulse::test::awake_config>;
 
 awake_world::settings_type in_parts(int parts, int sweeps) {
   awake_world::settings_type s;
@@ -33,11 +35,11 @@ awake_world::settings_type in_parts(int parts, int sweeps) {
 /// drift across and the height it lost.
 std::pair<double, double> tower(const awake_world::settings_type& s, int n, double seconds) {
   awake_world w(s);
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   body_id top;
-  for (int k = 0; k < n; ++k) top = ::test::add_cube(w, {0, 0.5f + float(k), 0}, 1000.0f);
+  for (int k = 0; k < n; ++k) top = impulse::test::add_cube(w, {0, 0.5f + float(k), 0}, 1000.0f);
   const vec3<float> start = w.body(top).position;
-  ::test::run(w, int(std::lround(seconds * 60)));
+  impulse::test::run(w, int(std::lround(seconds * 60)));
   const vec3<float> p = w.body(top).position;
   return {std::hypot(double(p.x - start.x), double(p.z - start.z)), double(start.y - p.y)};
 }
@@ -47,7 +49,7 @@ std::pair<double, double> tower(const awake_world::settings_type& s, int n, doub
 TEST_CASE("at default settings (4 parts of 8 sweeps) towers of 20 and 30 boxes stand 60 s within 1 cm") {
   // Measured: 20 boxes 4 µm, 30 boxes 1.5 mm across; 0.3 and 0.6 mm lower.
   for (const int n : {20, 30}) {
-    const auto [drift, lost] = tower({}, n, ::test::long_run(3600) / 60.0);
+    const auto [drift, lost] = tower({}, n, impulse::test::long_run(3600) / 60.0);
     CAPTURE(n);
     CHECK(drift < 0.01);
     CHECK(lost < 0.01);
@@ -63,12 +65,12 @@ TEST_CASE("at default settings a 1:1000:1:1000 stack stands 10 s, sinking less t
   // One step of 20 sweeps lets it sink 74 cm and slide 1.3 m; measured in
   // the default parts: 0.43 mm.
   awake_world w;
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   std::vector<body_id> boxes;
-  for (int k = 0; k < 4; ++k) boxes.push_back(::test::add_cube(w, {0, 0.5f + float(k), 0}, k % 2 ? 1000.0f : 1.0f));
+  for (int k = 0; k < 4; ++k) boxes.push_back(impulse::test::add_cube(w, {0, 0.5f + float(k), 0}, k % 2 ? 1000.0f : 1.0f));
   double sink = 0, slide = 0;
   for (int i = 0; i < 600; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     const vec3<float> p = w.body(boxes.back()).position;
     sink = std::max(sink, 3.5 - double(p.y));
     slide = std::max(slide, std::hypot(double(p.x), double(p.z)));
@@ -87,10 +89,10 @@ TEST_CASE("a force held for one step in parts changes the velocity by F·dt/m, a
   d.mass = 2;
   const body_id b = w.create_body(d, sphere<float>::make(0.5f));
   w.apply_force(b, {6, 0, 0});
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.body(b).linear_velocity().x == doctest::Approx(6.0f / 2.0f / 60.0f).epsilon(1e-6));
   CHECK(w.interpolated_pose(b, 0).position.x == 0.0f);
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.body(b).linear_velocity().x == doctest::Approx(6.0f / 2.0f / 60.0f).epsilon(1e-6));  // cleared
 }
 
@@ -109,7 +111,7 @@ TEST_CASE("a ball bounced in parts rebounds to 0.5 + e²·9.5 within 0.01 %") {
   float last = 10, peak = 0;
   bool rising = false;
   for (int i = 0; i < 400 && peak == 0; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     const float y = w.body(ball).position.y;
     if (y > last) rising = true;
     if (rising && y < last) peak = last;
@@ -127,3 +129,5 @@ TEST_CASE("substeps outside [1, 64] are refused and the world keeps its settings
     CHECK(w.settings().solver.substeps == 4);
   }
 }
+
+}  // namespace world_substeps_tests

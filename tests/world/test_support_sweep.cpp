@@ -12,11 +12,13 @@
 
 #include "scenes.hpp"
 
+namespace world_support_sweep_tests {
+
 using namespace impulse;
 
 namespace {
 
-using awake_world = world<::test::awake_config>;
+using awake_world = world<impulse::test::awake_config>;
 
 struct stack_result {
   double sink = 0;   // m: how far the top fell below where it began, at most
@@ -27,14 +29,14 @@ struct stack_result {
 /// up, run for `steps` steps at 60 Hz.
 stack_result stack(const awake_world::settings_type& settings, const std::vector<float>& masses, int steps) {
   awake_world w(settings);
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   std::vector<body_id> boxes;
   for (std::size_t k = 0; k < masses.size(); ++k)
-    boxes.push_back(::test::add_cube(w, {0, 0.5f + float(k), 0}, masses[k]));
+    boxes.push_back(impulse::test::add_cube(w, {0, 0.5f + float(k), 0}, masses[k]));
   const float top = 0.5f + float(masses.size() - 1);
   stack_result r;
   for (int i = 0; i < steps; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     r.sink = std::max(r.sink, double(top - w.body(boxes.back()).position.y));
     for (const body_id b : boxes) {
       const vec3<float> p = w.body(b).position;
@@ -75,12 +77,14 @@ TEST_CASE("at default settings a 1:10 000:1:10 000 stack stands 10 s, sinking le
 }
 
 TEST_CASE("the support sweep holds a 1:10 000 pair in double as in float") {
-  world<::test::awake_double_config> w;
-  ::test::add_ground(w);
-  ::test::add_cube(w, {0, 0.5, 0}, 1.0);
-  const body_id heavy = ::test::add_cube(w, {0, 1.5, 0}, 10000.0);
-  ::test::run(w, 600);
+  world<impulse::test::awake_double_config> w;
+  impulse::test::add_ground(w);
+  impulse::test::add_cube(w, {0, 0.5, 0}, 1.0);
+  const body_id heavy = impulse::test::add_cube(w, {0, 1.5, 0}, 10000.0);
+  impulse::test::run(w, 600);
   const vec3<double> p = w.body(heavy).position;
   CHECK(1.5 - p.y < 1e-4);
   CHECK(std::hypot(p.x, p.z) < 1e-4);
 }
+
+}  // namespace world_support_sweep_tests

@@ -16,6 +16,8 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_user_solver_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
@@ -118,10 +120,10 @@ struct plain_gauss_seidel_policy {
 static_assert(contact_solver<plain_gauss_seidel<float>, float>);
 static_assert(contact_solver<plain_gauss_seidel<double>, double>);
 
-struct user_config : ::test::awake_config {
+struct user_config : impulse::test::awake_config {
   using solver = plain_gauss_seidel_policy;
 };
-struct user_double_config : ::test::awake_double_config {
+struct user_double_config : impulse::test::awake_double_config {
   using solver = plain_gauss_seidel_policy;
 };
 
@@ -132,9 +134,9 @@ TEST_CASE_TEMPLATE("a user's own Gauss-Seidel solver, plugged in through the con
                    World, world<user_config>, world<user_double_config>) {
   using T = typename World::scalar;
   World w;
-  ::test::add_ground(w);
-  const body_id box = ::test::add_cube(w, {0, 2, 0});
-  ::test::run(w, 180);  // 3 s: it lands at 0.55 s
+  impulse::test::add_ground(w);
+  const body_id box = impulse::test::add_cube(w, {0, 2, 0});
+  impulse::test::run(w, 180);  // 3 s: it lands at 0.55 s
   // Its center rests half its size above the ground, less what the
   // Baumgarte term leaves in: 5 mm of slop, and under it the depth a step
   // of gravity (g·dt² = 2.7 mm) pushes in before the push-out answers.
@@ -160,11 +162,11 @@ TEST_CASE_TEMPLATE("a user's own solver holds a box on a 30 degree incline where
     w.create_body(slope, box<T>::make({20, 1, 20}));
     // A cube resting on the slope's top face (1 m above its center plane).
     const vec3<T> up = rotate(slope.pose.rotation, vec3<T>{0, 1, 0});
-    const body_id cube = ::test::add_cube(w, up * T(1.5), T(1), mu, slope.pose.rotation);
-    ::test::run(w, 60);
+    const body_id cube = impulse::test::add_cube(w, up * T(1.5), T(1), mu, slope.pose.rotation);
+    impulse::test::run(w, 60);
     const vec3<T> start = w.body(cube).position;
     const T speed_before = length(w.body(cube).linear_velocity());
-    ::test::run(w, 60);
+    impulse::test::run(w, 60);
     const T moved = length(w.body(cube).position - start);
     const T gained = length(w.body(cube).linear_velocity()) - speed_before;
     INFO("friction ", mu, ": moved ", moved, " m and gained ", gained, " m/s in the second second");
@@ -189,9 +191,9 @@ TEST_CASE("a user's solver's own settings are the world's: validated with them, 
     World::settings_type settings;
     settings.solver.slop = slop;
     World w(settings);
-    ::test::add_ground(w);
-    const body_id box = ::test::add_cube(w, {0, 0.47f, 0});
-    ::test::run(w, 60);
+    impulse::test::add_ground(w);
+    const body_id box = impulse::test::add_cube(w, {0, 0.47f, 0});
+    impulse::test::run(w, 60);
     return w.body(box).position.y;
   };
   CHECK(rest_after(0.05f) < 0.475f);
@@ -202,3 +204,5 @@ TEST_CASE("a user's solver's own settings are the world's: validated with them, 
   CHECK(error_code_of([&] { w.set_settings(bad); }) == error_code::invalid_parameter);
   CHECK(w.settings().solver.fraction == 0.2f);
 }
+
+}  // namespace world_user_solver_tests

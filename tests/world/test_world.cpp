@@ -10,13 +10,15 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_world_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
-using awake_world = world<::test::awake_config>;
-using sleeping_world = world<::test::sleeping_config>;
+using awake_world = world<impulse::test::awake_config>;
+using sleeping_world = world<impulse::test::sleeping_config>;
 
 body_id add_ball(awake_world& w, vec3<float> at, float radius = 0.5f) {
   body_def<float> d;
@@ -42,11 +44,11 @@ TEST_CASE("bodies keep their ids while others come and go and a destroyed id is 
   CHECK(w.contains(a));
   CHECK_FALSE(w.contains(b));
   CHECK(w.body(c).position.x == 6.0f);
-  const std::uint64_t before = ::test::transform_hash(w);
+  const std::uint64_t before = impulse::test::transform_hash(w);
   CHECK(error_code_of([&] { w.destroy_body(b); }) == error_code::out_of_range);
   CHECK(error_code_of([&] { (void)w.body(b); }) == error_code::out_of_range);
   CHECK(w.body_count() == 2);
-  CHECK(::test::transform_hash(w) == before);
+  CHECK(impulse::test::transform_hash(w) == before);
   const body_id d = add_ball(w, {9, 1, 0});  // takes b's slot, with a new generation
   CHECK(d.index == b.index);
   CHECK_FALSE(d == b);
@@ -55,10 +57,10 @@ TEST_CASE("bodies keep their ids while others come and go and a destroyed id is 
 
 TEST_CASE("bad input is refused with its error and leaves the world unchanged") {
   awake_world w;
-  ::test::add_ground(w);
+  impulse::test::add_ground(w);
   const body_id ball = add_ball(w, {0, 2, 0});
-  ::test::run(w, 10);
-  const std::uint64_t hash = ::test::transform_hash(w);
+  impulse::test::run(w, 10);
+  const std::uint64_t hash = impulse::test::transform_hash(w);
   const std::size_t count = w.body_count();
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
 
@@ -111,7 +113,7 @@ TEST_CASE("bad input is refused with its error and leaves the world unchanged") 
   CHECK(w.settings().contact_reuse_angle == world_settings<float>{}.contact_reuse_angle);
 
   CHECK(w.body_count() == count);
-  CHECK(::test::transform_hash(w) == hash);
+  CHECK(impulse::test::transform_hash(w) == hash);
   CHECK(w.body(ball).linear_velocity() == w.body(ball).linear_velocity());  // finite, unchanged
 }
 
@@ -126,7 +128,7 @@ TEST_CASE("a body whose state overflows in a step is named and left where it was
   w.set_velocity(other, {1, 0, 0}, {});
   w.apply_force(tiny, {3e38f, 0, 0});  // finite, but F·dt/m (5e42) is not, in float
   try {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     FAIL("the overflow was not reported");
   } catch (const invalid_argument& e) {
     CHECK(e.code() == error_code::non_finite);
@@ -134,16 +136,16 @@ TEST_CASE("a body whose state overflows in a step is named and left where it was
   }
   CHECK(w.body(tiny).position == vec3<float>{});
   CHECK(w.body(tiny).linear_velocity() == vec3<float>{});
-  CHECK(w.body(other).position.x == doctest::Approx(5.0f + ::test::step_dt<float>));
+  CHECK(w.body(other).position.x == doctest::Approx(5.0f + impulse::test::step_dt<float>));
 }
 
 TEST_CASE("a ball landing on the ground begins one contact, and lifting it away ends it") {
   awake_world w;
-  const body_id ground = ::test::add_ground(w);
+  const body_id ground = impulse::test::add_ground(w);
   const body_id ball = add_ball(w, {0, 1, 0});
   int begun = 0, ended = 0;
   for (int i = 0; i < 60; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     for (const contact_event& e : w.contact_begin_events()) {
       ++begun;
       CHECK(((e.a == ground && e.b == ball) || (e.a == ball && e.b == ground)));
@@ -154,11 +156,11 @@ TEST_CASE("a ball landing on the ground begins one contact, and lifting it away 
   CHECK(ended == 0);
   CHECK(w.touching_pair_count() == 1);
   w.set_pose(ball, {{0, 5, 0}, quat<float>::identity()});
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.contact_end_events().size() == 1);
   CHECK(w.touching_pair_count() == 0);
   // Destroying a body ends its contacts at once.
-  ::test::run(w, 120);
+  impulse::test::run(w, 120);
   REQUIRE(w.touching_pair_count() == 1);
   w.destroy_body(ball);
   CHECK(w.contact_end_events().size() == 1);
@@ -176,16 +178,16 @@ TEST_CASE("a pair that moved within the reuse limits keeps its manifold carried 
     world_settings<float> settings;
     settings.contact_reuse_distance = reuse_distance;
     awake_world w(settings);
-    ::test::add_ground(w);
-    const body_id base = ::test::add_cube(w, {0, 0.5f, 0});
+    impulse::test::add_ground(w);
+    const body_id base = impulse::test::add_cube(w, {0, 0.5f, 0});
     body_def<float> d;
     d.pose.position = {0.1f, 1.3f, -0.05f};
     d.mass = 1;
     const body_id top = w.create_body(d, box<float>::make({0.3f, 0.3f, 0.3f}));
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     const quat<float> turn = quat<float>::from_axis_angle(normalize(vec3<float>{0.6f, 0.3f, 0.8f}), angle);
     w.set_pose(top, {vec3<float>{0.1f, 1.3f, -0.05f} + shift, turn});
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     seen out{};
     w.for_each_contact([&](body_id a, body_id b, std::span<const contact_manifold<float>> m) {
       if (a == base && b == top) out = {m[0].normal, {m[0].points.begin(), m[0].points.begin() + m[0].count}};
@@ -219,8 +221,8 @@ TEST_CASE("a pair that moved within the reuse limits keeps its manifold carried 
 
 TEST_CASE("a ray cast finds the nearest body and an overlap query the bodies in a box") {
   awake_world w;
-  const body_id ground = ::test::add_ground(w);
-  const body_id cube = ::test::add_cube(w, {0, 0.5f, 0});
+  const body_id ground = impulse::test::add_ground(w);
+  const body_id cube = impulse::test::add_cube(w, {0, 0.5f, 0});
   const body_id ball = add_ball(w, {4, 0.5f, 0});
   const auto hit = w.ray_cast({{0, 10, 0}, {0, -20, 0}});
   REQUIRE(hit.has_value());
@@ -258,7 +260,7 @@ TEST_CASE("interpolated poses run from the last step's start to its end") {
   awake_world w;
   const body_id ball = add_ball(w, {0, 10, 0});
   w.set_velocity(ball, {6, 0, 0}, {});
-  w.step(::test::step_dt<float>);
+  w.step(impulse::test::step_dt<float>);
   const float start = w.interpolated_pose(ball, 0).position.x, end = w.interpolated_pose(ball, 1).position.x;
   CHECK(start == doctest::Approx(0.0f));
   CHECK(end == doctest::Approx(0.1f));
@@ -267,17 +269,17 @@ TEST_CASE("interpolated poses run from the last step's start to its end") {
 
 TEST_CASE("a resting box falls asleep and wakes on a force, an impulse and a body landing on it") {
   sleeping_world w;
-  ::test::add_ground(w);
-  const body_id cube = ::test::add_cube(w, {0, 0.5f, 0});
-  ::test::run(w, 60);
+  impulse::test::add_ground(w);
+  const body_id cube = impulse::test::add_cube(w, {0, 0.5f, 0});
+  impulse::test::run(w, 60);
   CHECK_FALSE(w.is_awake(cube));
   w.apply_force(cube, {0, 1, 0});
   CHECK(w.is_awake(cube));
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   REQUIRE_FALSE(w.is_awake(cube));
   w.apply_impulse_at(cube, {0.1f, 0, 0}, w.body(cube).position);
   CHECK(w.is_awake(cube));
-  ::test::run(w, 120);
+  impulse::test::run(w, 120);
   REQUIRE_FALSE(w.is_awake(cube));
   body_def<float> d;
   d.pose.position = {0, 3, 0};
@@ -285,7 +287,7 @@ TEST_CASE("a resting box falls asleep and wakes on a force, an impulse and a bod
   w.create_body(d, sphere<float>::make(0.25f));
   bool woke = false;
   for (int i = 0; i < 60 && !woke; ++i) {
-    w.step(::test::step_dt<float>);
+    w.step(impulse::test::step_dt<float>);
     woke = w.is_awake(cube);
   }
   CHECK(woke);
@@ -295,29 +297,29 @@ TEST_CASE("a snapshot restores the world to the bit, and the same state steps to
   // The determinism check: 600 steps of `pile` (150 in debug builds,
   // test::long_run), twice from the start and once from a snapshot taken
   // halfway, hash alike.
-  const int half = ::test::long_run(300);
+  const int half = impulse::test::long_run(300);
   sleeping_world first, second;
-  ::test::add_ground(first);
-  ::test::add_ground(second);
-  ::test::add_pile(first);
-  ::test::add_pile(second);
-  ::test::run(first, half);
-  const world_snapshot<::test::sleeping_config> halfway = first.snapshot();
-  ::test::run(first, half);
-  ::test::run(second, 2 * half);
-  const std::uint64_t hash = ::test::transform_hash(first);
-  CHECK(::test::transform_hash(second) == hash);
+  impulse::test::add_ground(first);
+  impulse::test::add_ground(second);
+  impulse::test::add_pile(first);
+  impulse::test::add_pile(second);
+  impulse::test::run(first, half);
+  const world_snapshot<impulse::test::sleeping_config> halfway = first.snapshot();
+  impulse::test::run(first, half);
+  impulse::test::run(second, 2 * half);
+  const std::uint64_t hash = impulse::test::transform_hash(first);
+  CHECK(impulse::test::transform_hash(second) == hash);
   first.restore(halfway);
   CHECK(first.step_count() == std::uint64_t(half));
-  ::test::run(first, half);
-  CHECK(::test::transform_hash(first) == hash);
+  impulse::test::run(first, half);
+  CHECK(impulse::test::transform_hash(first) == hash);
 }
 
 TEST_CASE("debug drawing shows each body's box, each contact point and normal, and each velocity") {
   awake_world w;
-  ::test::add_ground(w);
-  ::test::add_cube(w, {0, 0.5f, 0});
-  ::test::run(w, 30);
+  impulse::test::add_ground(w);
+  impulse::test::add_cube(w, {0, 0.5f, 0});
+  impulse::test::run(w, 30);
   draw_recorder r;
   debug_draw_flags flags;
   flags.aabbs = flags.velocities = true;
@@ -354,7 +356,7 @@ TEST_CASE("every shape rests where it should: a hull, a capsule and a sphere on 
     const body_id capsule_body = w.create_body(d, capsule<float>::make(0.25f, 0.5f));
     d.pose = {{-3, 1, 0}, quat<float>::identity()};
     const body_id ball = w.create_body(d, sphere<float>::make(0.5f));
-    ::test::run(w, 180);
+    impulse::test::run(w, 180);
     const float slop = w.settings().solver.linear_slop;
     CHECK(w.body(hull).position.y == doctest::Approx(0.5f).epsilon(2 * slop));
     CHECK(w.shape_pose(hull).position.y == doctest::Approx(-1.5f).epsilon(4 * slop));
@@ -373,10 +375,12 @@ TEST_CASE("a kinematic body moves at its velocity and is not pushed by what it h
   d.linear_velocity = {1, 0, 0};
   const body_id pusher = w.create_body(d, box<float>::make({0.5f, 0.5f, 0.5f}));
   const body_id ball = add_ball(w, {1.5f, 0, 0});
-  ::test::run(w, 60);
+  impulse::test::run(w, 60);
   CHECK(w.body(pusher).position.x == doctest::Approx(1.0f).epsilon(1e-5));
   CHECK(w.body(pusher).linear_velocity().x == 1.0f);
   // Pushed ahead of it: its face reached x = 1.5, the ball's center 0.5 beyond.
   CHECK(w.body(ball).position.x >= 2.0f - w.settings().solver.linear_slop);
   CHECK(w.body(ball).linear_velocity().x == doctest::Approx(1.0f).epsilon(1e-3));
 }
+
+}  // namespace world_world_tests

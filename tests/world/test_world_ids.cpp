@@ -11,19 +11,21 @@
 #include "../error_code_of.hpp"
 #include "scenes.hpp"
 
+namespace world_world_ids_tests {
+
 using namespace impulse;
 using impulse::test::error_code_of;
 
 namespace {
 
-using awake_world = world<::test::awake_config>;
+using awake_world = world<impulse::test::awake_config>;
 
 }  // namespace
 
 TEST_CASE("an id of one world is refused by another, though both have a body at its slot and generation") {
   awake_world first, second;
-  const body_id a = ::test::add_cube(first, {0, 0.5f, 0});
-  const body_id b = ::test::add_cube(second, {3, 0.5f, 0});
+  const body_id a = impulse::test::add_cube(first, {0, 0.5f, 0});
+  const body_id b = impulse::test::add_cube(second, {3, 0.5f, 0});
   REQUIRE(a.index == b.index);
   REQUIRE(a.generation == b.generation);
   CHECK_FALSE(a == b);
@@ -36,7 +38,7 @@ TEST_CASE("an id of one world is refused by another, though both have a body at 
   CHECK(second.body(b).force == vec3<float>{});  // nothing reached b
   CHECK(second.body_count() == 1);
   // Nor can a joint or a spring of one world name another's body.
-  const body_id c = ::test::add_cube(second, {5, 0.5f, 0});
+  const body_id c = impulse::test::add_cube(second, {5, 0.5f, 0});
   CHECK(error_code_of([&] { second.create_joint(joint_def<float>::ball(a, c, {4, 0.5f, 0})); }) ==
         error_code::out_of_range);
   CHECK(error_code_of([&] { second.create_spring(body_spring<float>::between(c, {}, a, {}, 10, 1, 1)); }) ==
@@ -54,9 +56,9 @@ TEST_CASE("an id of one world is refused by another, though both have a body at 
 
 TEST_CASE("every id a world reports is the id it gave: body_ids, events, contacts, ray hits and overlaps") {
   awake_world w;
-  const body_id ground = ::test::add_ground(w);
-  const body_id cube = ::test::add_cube(w, {0, 0.5f, 0});
-  w.step(::test::step_dt<float>);
+  const body_id ground = impulse::test::add_ground(w);
+  const body_id cube = impulse::test::add_cube(w, {0, 0.5f, 0});
+  w.step(impulse::test::step_dt<float>);
   CHECK(w.body_ids()[0] == ground);
   CHECK(w.body_ids()[1] == cube);
   REQUIRE(w.contact_begin_events().size() == 1);
@@ -79,14 +81,14 @@ TEST_CASE("every id a world reports is the id it gave: body_ids, events, contact
 
 TEST_CASE("a copy of a world, and a world restored from another's snapshot, answer to the ids they copied") {
   awake_world original;
-  ::test::add_ground(original);
-  const body_id cube = ::test::add_cube(original, {0, 2, 0});
+  impulse::test::add_ground(original);
+  const body_id cube = impulse::test::add_cube(original, {0, 2, 0});
   awake_world copy = original;  // a prediction run: the same bodies under the same ids
-  copy.step(::test::step_dt<float>);
+  copy.step(impulse::test::step_dt<float>);
   CHECK(copy.body(cube).position.y < 2.0f);
   CHECK(original.body(cube).position.y == 2.0f);
   awake_world other;
-  const body_id own = ::test::add_cube(other, {7, 7, 7});
+  const body_id own = impulse::test::add_cube(other, {7, 7, 7});
   other.restore(original.snapshot());  // other is now a copy of original
   CHECK(other.contains(cube));
   CHECK_FALSE(other.contains(own));
@@ -96,7 +98,7 @@ TEST_CASE("a copy of a world, and a world restored from another's snapshot, answ
 TEST_CASE("a body's inertia may be given: a box spun about x with I = 2 instead of its own keeps L = I·omega") {
   world_settings<double> settings;
   settings.gravity = {};
-  world<::test::awake_double_config> w(settings);
+  world<impulse::test::awake_double_config> w(settings);
   body_def<double> d;
   d.mass = 3;
   d.inertia = mat3<double>::diagonal({2, 4, 5});  // a box of mass 3 and half-extent 0.5 has 0.5 about each axis
@@ -177,3 +179,5 @@ TEST_CASE("without collision a body that overflows is held, named, and the other
   w.step(1.0 / 60);
   CHECK(w.held_bodies().empty());
 }
+
+}  // namespace world_world_ids_tests
