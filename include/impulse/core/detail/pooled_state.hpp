@@ -69,6 +69,7 @@ class buffer_pool {
 template <class E>
 class pooled_state {
  public:
+  /// A buffer from the pool, its contents as its last user left them.
   explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
   pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
     for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
@@ -104,14 +105,20 @@ class pooled_state {
   }
 
   // An rvalue operand lends its buffer to the result, so `a + b * h` uses
-  // one temporary, not two.
+  // one temporary, not two. Two lvalues are summed (or one scaled) into a
+  // fresh buffer in one pass, not copied and then summed: RK4's stages are
+  // mostly this, and on a large system each pass is a trip through memory.
   friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
     a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
     return std::move(a);
   }
   friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
   friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
-  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) {
+    pooled_state sum(*a.pool_);
+    sum.for_each([&](std::size_t i) { sum.data()[i] = a.data()[i] + b.data()[i]; });
+    return sum;
+  }
   template <class S>
   friend pooled_state operator*(pooled_state&& a, S h) {
     a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
@@ -119,7 +126,9 @@ class pooled_state {
   }
   template <class S>
   friend pooled_state operator*(const pooled_state& a, S h) {
-    return pooled_state(a) * h;
+    pooled_state product(*a.pool_);
+    product.for_each([&](std::size_t i) { product.data()[i] = a.data()[i] * h; });
+    return product;
   }
 
  private:
