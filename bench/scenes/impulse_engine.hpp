@@ -20,6 +20,8 @@
 //   adapter derives two configs from Config, one with it on and one with
 //   it off, and build() makes the world of whichever the scene asks for.
 // - one step is world::step(dt): exactly one step, no accumulator.
+// - on the calling thread alone, unless main.cpp lends the worlds workers
+//   (--threads: impulse_workers below, world::set_task_system).
 //
 // Materials need no translation: impulse combines friction as sqrt(f0·f1)
 // and restitution as max(e0, e1), the standard scenes' rules, so each body
@@ -27,6 +29,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -46,6 +49,10 @@
 #include "scene_spec.hpp"
 
 namespace bench::scenes {
+
+/// The workers the worlds built next step across (main.cpp, --threads);
+/// null: the calling thread alone.
+inline const impulse::task_system* impulse_workers = nullptr;
 
 namespace detail {
 
@@ -96,7 +103,8 @@ class impulse_engine {
     return std::string(detail::solver_name<sleeping_world>()) + (substepping ? " substeps=" : " iterations=") +
            std::to_string(count) + (parts > 1 ? " substeps=" + std::to_string(parts) : std::string()) + ' ' +
            std::string(detail::broad_phase_name<sleeping_world>()) +
-           (std::is_same_v<T, double> ? " double" : " float");
+           (std::is_same_v<T, double> ? " double" : " float") +
+           (workers_ > 1 ? " workers=" + std::to_string(workers_) : std::string());
   }
 
   void build(const scene_spec& spec) {
@@ -153,6 +161,8 @@ class impulse_engine {
 
   template <class World>
   void build_into(World& w, const scene_spec& spec) {
+    if (impulse_workers != nullptr) w.set_task_system(*impulse_workers);
+    workers_ = w.tasks().parallel() ? w.tasks().workers : 1;
     ids_.clear();
     ids_.reserve(spec.bodies.size());
     for (const body_spec& b : spec.bodies) {
@@ -192,6 +202,7 @@ class impulse_engine {
   std::vector<impulse::body_id> ids_;  // in spec order
   std::vector<body_state> states_;
   T dt_ = T(1) / T(60);
+  std::uint32_t workers_ = 1;
 };
 
 static_assert(scene_engine<impulse_engine<impulse::default_config>>);

@@ -1,7 +1,7 @@
 // bench/scenes: the standard rigid-body scenes (docs/standard_scenes.md,
 // scene_spec.hpp) on every engine compiled in, judged by the same metrics (metrics.hpp).
 //
-//   scenes [--scene NAME]... [--engine NAME]... [--csv FILE]
+//   scenes [--scene NAME]... [--engine NAME]... [--threads N,M,...] [--csv FILE]
 //
 // prints CSV on stdout, one row per metric:
 //
@@ -14,6 +14,13 @@
 // scene is built fresh for each engine. --csv FILE writes the same CSV to
 // FILE too; progress goes to stderr.
 //
+// --threads runs impulse's entries once per worker count listed, on an
+// impulse::thread_pool of that many workers (1: the calling thread alone),
+// the peers once. Each of those runs adds two rows: speedup, the first
+// count's median step time over this one's (in the same run, so the
+// machine's drift cancels), and same_bits, 1 when every body's final
+// position and orientation equal the first count's to the bit.
+//
 // An engine is a type modelling scene_engine (engine.hpp): to add one,
 // include its header and add it to engines() below. impulse is always
 // compiled in, once per set of policies compared (its rows tell them apart
@@ -23,13 +30,18 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "engine.hpp"
+#include "impulse/thread_pool.hpp"
 #include "impulse_engine.hpp"
 #include "metrics.hpp"
 #include "scene_spec.hpp"
@@ -49,7 +61,20 @@ struct scene_result {
   std::string config;
   double ms_per_step_median = 0;
   std::vector<metric_value> metrics;
+  std::uint64_t final_bits = 0;  ///< FNV-1a over every body's final position and orientation
 };
+
+std::uint64_t bits_of(std::span<const body_state> states) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const body_state& b : states)
+    for (const double x : {b.position.x, b.position.y, b.position.z, b.orientation.w, b.orientation.x,
+                           b.orientation.y, b.orientation.z}) {
+      unsigned char bytes[sizeof x];
+      std::memcpy(bytes, &x, sizeof x);
+      for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+    }
+  return h;
+}
 
 template <scene_engine E>
 scene_result run_scene(const scene_spec& spec) {
@@ -74,7 +99,8 @@ scene_result run_scene(const scene_spec& spec) {
     step_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
     if (recorder.wants(step)) recorder.observe(step, engine.states());
   }
-  scene_result result{engine.config(), median_of_last(step_ms, timing_window(spec.steps)), recorder.results()};
+  scene_result result{engine.config(), median_of_last(step_ms, timing_window(spec.steps)), recorder.results(),
+                      bits_of(engine.states())};
   if (spec.settle_limit > 0) result.metrics.push_back({"steps_to_sleep", double(settled)});
   return result;
 }
@@ -132,8 +158,24 @@ bool contains(const std::vector<std::string_view>& list, std::string_view s) {
   return false;
 }
 
+/// "1,2,4" as {1, 2, 4}; empty if any count is not between 1 and 256.
+std::vector<std::uint32_t> counts_of(std::string_view list) {
+  std::vector<std::uint32_t> counts;
+  while (!list.empty()) {
+    const std::size_t comma = list.find(',');
+    const std::string item(list.substr(0, comma));
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0' || n < 1 || n > impulse::thread_pool::max_workers) return {};
+    counts.push_back(std::uint32_t(n));
+    list = comma == std::string_view::npos ? std::string_view() : list.substr(comma + 1);
+  }
+  return counts;
+}
+
 int usage(const char* program) {
-  std::fprintf(stderr, "usage: %s [--scene NAME]... [--engine NAME]... [--csv FILE]\nscenes:", program);
+  std::fprintf(stderr, "usage: %s [--scene NAME]... [--engine NAME]... [--threads N,M,...] [--csv FILE]\nscenes:",
+               program);
   for (std::string_view s : scene_names()) std::fprintf(stderr, " %.*s", int(s.size()), s.data());
   std::fprintf(stderr, "\nengines:");
   std::string_view last;  // impulse's entries share a name: list it once
@@ -150,17 +192,21 @@ int usage(const char* program) {
 int main(int argc, char** argv) {
   std::vector<std::string_view> scenes, engine_names;
   const char* csv_path = nullptr;
+  std::vector<std::uint32_t> worker_counts;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    if ((arg == "--scene" || arg == "--engine" || arg == "--csv") && i + 1 < argc) {
+    if ((arg == "--scene" || arg == "--engine" || arg == "--csv" || arg == "--threads") && i + 1 < argc) {
       const char* value = argv[++i];
       if (arg == "--scene") scenes.emplace_back(value);
       else if (arg == "--engine") engine_names.emplace_back(value);
+      else if (arg == "--threads") worker_counts = counts_of(value);
       else csv_path = value;
+      if (arg == "--threads" && worker_counts.empty()) return usage(argv[0]);
     } else {
       return usage(argv[0]);
     }
   }
+  if (worker_counts.empty()) worker_counts.push_back(1);
   for (std::string_view s : scenes)
     if (!contains(scene_names(), s)) {
       std::fprintf(stderr, "unknown scene: %.*s\n", int(s.size()), s.data());
@@ -195,21 +241,38 @@ int main(int argc, char** argv) {
   for (std::string_view scene_name : scenes) {
     const scene_spec spec = make_scene(scene_name);
     for (const engine_entry& e : selected) {
-      std::fprintf(stderr, "%.*s %s: %zu bodies, %d steps ... ", int(e.name.size()), e.name.data(), spec.name.c_str(),
-                   spec.bodies.size(), spec.steps);
-      const auto start = std::chrono::steady_clock::now();
-      try {
-        const scene_result r = e.run(spec);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        // The config too: impulse's entries share a name.
-        std::fprintf(stderr, "%.4f ms/step (%.1f s) [%s]\n", r.ms_per_step_median, seconds, r.config.c_str());
-        for (const metric_value& m : r.metrics)
-          emit(std::string(e.name) + ',' + r.config + ',' + spec.name + ',' + number(r.ms_per_step_median) + ',' +
-               m.name + ',' + number(m.value) + '\n');
-        std::fflush(stdout);
-      } catch (const std::exception& error) {
-        std::fprintf(stderr, "failed: %s\n", error.what());
-        status = 1;
+      const bool threaded = e.name == impulse_engine<impulse_dynamic_bvh>::name && worker_counts.size() > 1;
+      scene_result first;
+      for (std::size_t k = 0; k < (threaded ? worker_counts.size() : 1); ++k) {
+        std::unique_ptr<impulse::thread_pool> pool;
+        impulse::task_system tasks;
+        if (worker_counts[k] > 1) {
+          pool = std::make_unique<impulse::thread_pool>(worker_counts[k]);
+          tasks = pool->tasks();
+        }
+        impulse_workers = &tasks;
+        std::fprintf(stderr, "%.*s %s: %zu bodies, %d steps ... ", int(e.name.size()), e.name.data(),
+                     spec.name.c_str(), spec.bodies.size(), spec.steps);
+        const auto start = std::chrono::steady_clock::now();
+        try {
+          scene_result r = e.run(spec);
+          const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          // The config too: impulse's entries share a name.
+          std::fprintf(stderr, "%.4f ms/step (%.1f s) [%s]\n", r.ms_per_step_median, seconds, r.config.c_str());
+          if (threaded) {
+            if (k == 0) first = r;
+            r.metrics.push_back({"speedup", first.ms_per_step_median / r.ms_per_step_median});
+            r.metrics.push_back({"same_bits", r.final_bits == first.final_bits ? 1.0 : 0.0});
+          }
+          for (const metric_value& m : r.metrics)
+            emit(std::string(e.name) + ',' + r.config + ',' + spec.name + ',' + number(r.ms_per_step_median) + ',' +
+                 m.name + ',' + number(m.value) + '\n');
+          std::fflush(stdout);
+        } catch (const std::exception& error) {
+          std::fprintf(stderr, "failed: %s\n", error.what());
+          status = 1;
+        }
+        impulse_workers = nullptr;
       }
     }
   }

@@ -7945,13 +7945,22 @@ class constraint_graph {
     for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
     for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[color_of_[i]]++] = std::uint32_t(i);
     batch_starts_.clear();
-    for (int c = 0; c < max_colors; ++c)
+    color_starts_.clear();
+    for (int c = 0; c < max_colors; ++c) {
+      if (start[c] == start[c + 1]) continue;
+      color_starts_.push_back(std::uint32_t(batch_starts_.size()));
       for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
+    }
+    color_starts_.push_back(std::uint32_t(batch_starts_.size()));
     batch_starts_.push_back(start[max_colors]);
     leftover_start_ = start[max_colors];
   }
 
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
+  /// The colors that have contacts; color q's batches are
+  /// [first_batch(q), first_batch(q + 1)), and share no moving body.
+  [[nodiscard]] std::size_t color_count() const noexcept { return color_starts_.size() - 1; }
+  [[nodiscard]] std::uint32_t first_batch(std::size_t q) const noexcept { return color_starts_[q]; }
   /// The contacts of batch k, by their place in the contact array.
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(batch_starts_[k], batch_starts_[k + 1] - batch_starts_[k]);
@@ -7966,6 +7975,7 @@ class constraint_graph {
   std::vector<std::uint8_t> color_of_;  // per contact
   std::vector<std::uint32_t> order_;     // contacts by color
   std::vector<std::uint32_t> batch_starts_;
+  std::vector<std::uint32_t> color_starts_{0};  // each color's first batch, then the batch count
   std::uint32_t leftover_start_ = 0;
 };
 
@@ -8094,6 +8104,10 @@ struct contact_batch {
   };
 
   std::uint32_t body_a[W] = {}, body_b[W] = {};
+  /// Bit l: lane l's body A (B) moves under impulses (its inverse mass is
+  /// not zero). scatter writes back only those: the batches of one color
+  /// may share a static or kinematic body, and run on different workers.
+  std::uint32_t moving_a = 0, moving_b = 0;
   std::uint32_t contact[W] = {};  ///< each lane's place in the contact array
   int size = 0;                   ///< lanes in use
   /// The batch's rows, one per point of its widest contact, are these in
@@ -8156,6 +8170,8 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.tangent2.set_lane(l, c.tangent2);
     out.inverse_mass_a.set(l, a.inverse_mass);
     out.inverse_mass_b.set(l, b.inverse_mass);
+    if (a.inverse_mass > T(0)) out.moving_a |= 1u << l;
+    if (b.inverse_mass > T(0)) out.moving_b |= 1u << l;
     for (int i = 0; i < c.count; ++i) {
       const contact_constraint_point<T>& p = c.points[i];
       batch_row<T, W>& r = own[std::size_t(i)];
@@ -8511,8 +8527,10 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     transpose8(ra);
     transpose8(rb);
     for (int l = 0; l < in.size; ++l) {
-      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
-      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
+      if (in.moving_a >> l & 1u)
+        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
+      if (in.moving_b >> l & 1u)
+        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
     }
     return;
   }
@@ -8524,7 +8542,9 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     solver_body<T>& a = bodies[in.body_a[l]];
     solver_body<T>& b = bodies[in.body_b[l]];
     vec3<T>* targets[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
-    for (int k = 0; k < 4; ++k) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
+    const bool moving[2] = {(in.moving_a >> l & 1u) != 0, (in.moving_b >> l & 1u) != 0};
+    for (int k = 0; k < 4; ++k)
+      if (moving[k / 2]) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
   }
 }
 
@@ -9937,6 +9957,12 @@ class basic_sequential_impulse {
   /// fourth-order integrator policy; contact_solver.hpp).
   void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
+  /// Spreads each color's batches, and the loops over bodies and batches,
+  /// across the hook's workers (core/task_system.hpp). The batches of one
+  /// color share no moving body, so the bodies come out the same, bit for
+  /// bit, whichever worker solves which; the rest stays on this thread.
+  void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
   }
@@ -9964,13 +9990,14 @@ class basic_sequential_impulse {
                                           settings.max_correction_speed, T(1) / h};
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    auto start_bodies = [&](std::size_t i) {
       solver_body<T>& b = bodies[i];
       if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
       synced_[i] = b.angular_velocity;
       b.linear_velocity += b.force_linear * share;
       b.angular_velocity += b.force_angular * share;
-    }
+    };
+    for_each_body(bodies.size(), start_bodies);
     // Restitution sees the velocities with one part's forces added: ½ +
     // 1/(2·parts) of the step's change, measured from its start
     // (contact_rows.hpp, restitution_pass).
@@ -9997,14 +10024,18 @@ class basic_sequential_impulse {
     int sweeps = 0;  // over all parts so far
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
-        for (solver_body<T>& b : bodies) {
+        auto next_part = [&](std::size_t i) {
+          solver_body<T>& b = bodies[i];
           b.linear_velocity += b.force_linear * share;
           b.angular_velocity += b.force_angular * share;
           b.bias_linear = {};
           b.bias_angular = {};
-        }
-        for (batch_type& b : batches_)
+        };
+        for_each_body(bodies.size(), next_part);
+        auto retarget = [&](batch_type& b) {
           detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+        };
+        for_each_batch(retarget);
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
           detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
@@ -10013,11 +10044,12 @@ class basic_sequential_impulse {
         for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
       const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
-      for (batch_type& b : batches_) {
+      auto warm_start = [&](batch_type& b) {
         detail::batch_velocities<T, width> v = detail::gather(read, b, real);
         detail::warm_start_batch(v, b, rows_of(b));
         detail::scatter(bodies, b, v, real);
-      }
+      };
+      for_each_batch_by_color(false, warm_start);
       for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
@@ -10028,8 +10060,7 @@ class basic_sequential_impulse {
         // The alternation runs on across parts: started forward in every
         // part, an odd number of sweeps a part (4 × 5, 8 × 3) let the
         // pyramid's top wander 15 to 22 cm.
-        for (std::size_t k = 0; k < batches_.size(); ++k) {
-          batch_type& b = batches_[(sweeps + iteration) % 2 == 0 ? k : batches_.size() - 1 - k];
+        auto sweep = [&](batch_type& b) {
           detail::batch_velocities<T, width> v = detail::gather(read, b, real);
           // Friction first: it is bounded by the normal impulses, and the
           // normal rows, solved last, are the ones that must hold (no
@@ -10037,7 +10068,8 @@ class basic_sequential_impulse {
           detail::solve_batch_friction(v, b, rows_of(b));
           detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, real);
-        }
+        };
+        for_each_batch_by_color((sweeps + iteration) % 2 != 0, sweep);
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
@@ -10050,12 +10082,13 @@ class basic_sequential_impulse {
       // Shared among the parts, one sweep each, it stalled a heap of 30
       // boxes pushed apart without gravity; four sweeps in each part cost
       // pile 14 % more and held no taller a tower.
+      auto push = [&](batch_type& b) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+        detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+        detail::scatter(bodies, b, v, pseudo);
+      };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        for (batch_type& b : batches_) {
-          detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
-          detail::scatter(bodies, b, v, pseudo);
-        }
+        for_each_batch_by_color(false, push);
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
@@ -10064,18 +10097,21 @@ class basic_sequential_impulse {
                                                                 settings.manifold_sweeps);
       // The bodies moved with the solved velocities plus the position
       // pass's pseudo-velocities, each turned with its L held.
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
+      auto move = [&](std::size_t i) {
         solver_body<T>& b = bodies[i];
         if (!moved_.empty()) {
           moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
           moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
         }
         detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
-      }
+      };
+      for_each_body(bodies.size(), move);
       if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
     }
-    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
-    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    auto store = [&](batch_type& b) { detail::store_batch(b, rows_of(b), contacts); };
+    for_each_batch(store);
+    auto sync = [&](std::size_t i) { detail::sync_momentum(bodies[i], synced_[i]); };
+    for_each_body(bodies.size(), sync);
   }
 
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
@@ -10098,6 +10134,11 @@ class basic_sequential_impulse {
     quat<T> orientation;
   };
 
+  /// Batches and bodies a worker takes at a time: a batch's sweep costs
+  /// about as much as a few dozen bodies' moves.
+  static constexpr std::uint32_t min_batches = 8, min_bodies = 256;
+
+  task_system tasks_{};
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   detail::support_order support_;
@@ -10132,6 +10173,37 @@ class basic_sequential_impulse {
       // Turned, an anisotropic body keeps L and takes the ω of its new pose.
       if (b.inverse_mass > T(0) && !b.principal.isotropic()) detail::reorient_inertia(b, synced_[i]);
     }
+  }
+
+  /// f(b) for every batch b, color after color (the last first when
+  /// `backward`), each color's batches across the workers.
+  template <class F>
+  void for_each_batch_by_color(bool backward, F& f) {
+    const std::size_t colors = graph_.color_count();
+    for (std::size_t i = 0; i < colors; ++i) {
+      const std::size_t q = backward ? colors - 1 - i : i;
+      const std::uint32_t first = graph_.first_batch(q), count = graph_.first_batch(q + 1) - first;
+      auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t k = begin; k < end; ++k) f(batches_[first + k]);
+      };
+      detail::parallel_for(tasks_, count, min_batches, range);
+    }
+  }
+  /// f(b) for every batch b, in any order: f reads and writes only b's own.
+  template <class F>
+  void for_each_batch(F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) f(batches_[k]);
+    };
+    detail::parallel_for(tasks_, std::uint32_t(batches_.size()), min_batches, range);
+  }
+  /// f(i) for every body i, in any order: f touches only body i's own.
+  template <class F>
+  void for_each_body(std::size_t count, F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t i = begin; i < end; ++i) f(std::size_t(i));
+    };
+    detail::parallel_for(tasks_, std::uint32_t(count), min_bodies, range);
   }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {
@@ -16541,6 +16613,7 @@ class buffer_pool {
 template <class E>
 class pooled_state {
  public:
+  /// A buffer from the pool, its contents as its last user left them.
   explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
   pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
     for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
@@ -16576,14 +16649,20 @@ class pooled_state {
   }
 
   // An rvalue operand lends its buffer to the result, so `a + b * h` uses
-  // one temporary, not two.
+  // one temporary, not two. Two lvalues are summed (or one scaled) into a
+  // fresh buffer in one pass, not copied and then summed: RK4's stages are
+  // mostly this, and on a large system each pass is a trip through memory.
   friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
     a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
     return std::move(a);
   }
   friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
   friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
-  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) { return pooled_state(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) {
+    pooled_state sum(*a.pool_);
+    sum.for_each([&](std::size_t i) { sum.data()[i] = a.data()[i] + b.data()[i]; });
+    return sum;
+  }
   template <class S>
   friend pooled_state operator*(pooled_state&& a, S h) {
     a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
@@ -16591,7 +16670,9 @@ class pooled_state {
   }
   template <class S>
   friend pooled_state operator*(const pooled_state& a, S h) {
-    return pooled_state(a) * h;
+    pooled_state product(*a.pool_);
+    product.for_each([&](std::size_t i) { product.data()[i] = a.data()[i] * h; });
+    return product;
   }
 
  private:
@@ -17176,15 +17257,19 @@ class particle_system {
   /// the whole kernel: six stores and six loads a batch more, on the common
   /// path too. Keeping the start of the step in registers for them spilled
   /// with AVX2's 16.
+  /// Always inlined, and stored lane column by lane column: GCC 12 kept
+  /// both the constructor and vec3_batch::store out of line, and x and v,
+  /// their addresses passed to them, then lived on the stack through the
+  /// planes' loop (the AVX2 kernel, 16 registers).
   struct parked {
     alignas(64) T rows[6][width];
-    parked(const state& x, const state& v) noexcept { put(x, v); }
-    void put(const state& x, const state& v) noexcept {
-      x.store(rows[0], rows[1], rows[2]);
-      v.store(rows[3], rows[4], rows[5]);
+    [[gnu::always_inline]] parked(const state& x, const state& v) noexcept { put(x, v); }
+    [[gnu::always_inline]] void put(const state& x, const state& v) noexcept {
+      x.x.store(rows[0]), x.y.store(rows[1]), x.z.store(rows[2]);
+      v.x.store(rows[3]), v.y.store(rows[4]), v.z.store(rows[5]);
     }
-    state position() const noexcept { return state::load(rows[0], rows[1], rows[2]); }
-    state velocity() const noexcept { return state::load(rows[3], rows[4], rows[5]); }
+    [[gnu::always_inline]] state position() const noexcept { return state::load(rows[0], rows[1], rows[2]); }
+    [[gnu::always_inline]] state velocity() const noexcept { return state::load(rows[3], rows[4], rows[5]); }
   };
 
   /// Where the batch at `first` started the step: its columns, before
@@ -18406,6 +18491,13 @@ struct world_settings : detail::world_settings_base<T> {
 // bodies. Pairs that start or stop touching become events. The records
 // stay sorted by proxy pair, merged with the broad phase's pairs in one
 // pass.
+//
+// The pair tests run across the world's workers (world::set_task_system):
+// each record is tested by one worker, which writes only that record and
+// the manifolds it holds. What is shared is done afterwards on the calling
+// thread in the records' order: the manifold slots of a record whose count
+// of manifolds changed, and the begin and end events. So a step gives the
+// same bits for any number of workers.
 
 
 // ---- begin impulse/world/detail/world_state.hpp ----
@@ -19242,6 +19334,34 @@ struct world_state {
   }
 };
 
+/// What one worker's pair tests leave for the calling thread to do in the
+/// records' order (contact_update.hpp, collide_all): the records whose
+/// count of manifolds changed, with what goes in their slots, and the
+/// records that began or stopped touching. A cache line of its own: the
+/// workers count into theirs at every record.
+template <scalar_type T>
+struct alignas(64) worker_pairs {
+  struct resized_record {
+    std::uint32_t record, count;
+    transform<T> pose_a;
+    std::array<contact_manifold<T>, max_manifolds> fresh;
+    std::array<manifold_impulse<T>, max_manifolds> carried;
+  };
+  struct touch_event {
+    std::uint32_t record;
+    bool begun;
+  };
+  std::vector<resized_record> resized;
+  std::vector<touch_event> events;
+  std::size_t updated = 0;  ///< records tested or carried
+
+  void clear() noexcept {
+    resized.clear();
+    events.clear();
+    updated = 0;
+  }
+};
+
 /// What one step rebuilds: the solver and its arrays, the next contact
 /// records, the islands. Not part of the state (a snapshot leaves it out);
 /// kept to allocate nothing once warm.
@@ -19263,7 +19383,10 @@ struct step_scratch {
   };
 
   solver_type solver{};
+  /// The workers a step may spread over (world::set_task_system).
+  task_system tasks{};
   std::vector<contact_record<T>> next_contacts;
+  std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;
@@ -19333,6 +19456,11 @@ template <class Config>
 struct contact_update {
   using T = typename Config::scalar;
   using dispatcher = typename world_state<Config>::dispatcher;
+  using pair_work = worker_pairs<T>;
+  using resized_record = typename pair_work::resized_record;
+  using touch_event = typename pair_work::touch_event;
+  /// Records a worker tests at a time: a pair test takes 0.1 to a few µs.
+  static constexpr std::uint32_t min_pairs_per_range = 64;
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -19379,14 +19507,15 @@ struct contact_update {
                        state.broad.ended().empty();
     state.pairs_stale = false;
     if (quiet) {
-      for (const std::uint32_t k : state.awake_contacts) collide(old[k], limits);
+      const std::span<const std::uint32_t> awake = state.awake_contacts;
+      collide_all(std::uint32_t(awake.size()), [&](std::uint32_t i) { return awake[i]; }, limits);
       return;
     }
     state.counts.pairs_merged = true;
     // Most steps have the last step's pairs: then the records are updated
     // where they are, rather than copied over.
     if (same_pairs(pairs)) {
-      for (contact_record<T>& c : old) collide(c, limits);
+      collide_all(std::uint32_t(old.size()), [](std::uint32_t i) { return i; }, limits);
       return;
     }
     scratch.next_contacts.clear();
@@ -19418,11 +19547,49 @@ struct contact_update {
         c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
         scratch.next_contacts.push_back(c);
       }
-      collide(scratch.next_contacts.back(), limits);
     }
     while (i < old.size()) state.end_contact(old[i++]);
     old.swap(scratch.next_contacts);
     state.awake_stale = true;
+    collide_all(std::uint32_t(old.size()), [](std::uint32_t i) { return i; }, limits);
+  }
+
+  /// Tests the records index(0), …, index(count − 1) (collide), across
+  /// the workers, then does in the records' order what they share.
+  template <class Index>
+  void collide_all(std::uint32_t count, Index index, const reuse_limits& limits) {
+    const task_system& tasks = scratch.tasks;
+    std::vector<pair_work>& work = scratch.pair_work;
+    work.resize(tasks.parallel() ? tasks.workers : 1);
+    for (pair_work& w : work) w.clear();
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
+      pair_work& w = work[worker];
+      for (std::uint32_t i = begin; i < end; ++i) collide(index(i), limits, w);
+    };
+    parallel_for(tasks, count, min_pairs_per_range, range);
+    // Gathered in the records' order, whichever worker tested which.
+    pair_work& all = work[0];
+    for (std::size_t k = 1; k < work.size(); ++k) {
+      all.resized.insert(all.resized.end(), work[k].resized.begin(), work[k].resized.end());
+      all.events.insert(all.events.end(), work[k].events.begin(), work[k].events.end());
+      all.updated += work[k].updated;
+    }
+    if (work.size() > 1) {
+      std::sort(all.resized.begin(), all.resized.end(),
+                [](const resized_record& x, const resized_record& y) { return x.record < y.record; });
+      std::sort(all.events.begin(), all.events.end(),
+                [](const touch_event& x, const touch_event& y) { return x.record < y.record; });
+    }
+    for (const resized_record& r : all.resized) {
+      contact_record<T>& c = state.contacts[r.record];
+      resize_slots(c, int(r.count));
+      for (std::size_t m = 0; m < r.count; ++m) keep(c, m, r.fresh[m], r.carried[m], r.pose_a);
+    }
+    for (const touch_event& e : all.events) {
+      const contact_record<T>& c = state.contacts[e.record];
+      (e.begun ? state.begun : state.ended).push_back({c.a, c.b});
+    }
+    state.counts.updated_contacts += all.updated;
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
@@ -19463,13 +19630,17 @@ struct contact_update {
     }
   }
 
-  void collide(contact_record<T>& c, const reuse_limits& limits) {
+  /// The record `record` tested again, or its manifolds carried (below).
+  /// Writes only the record and the manifolds it holds; a change in their
+  /// count, and an event, go to the worker's `w` for collide_all.
+  void collide(std::uint32_t record, const reuse_limits& limits, pair_work& w) const {
+    contact_record<T>& c = state.contacts[record];
     const body_record<T>& ra = state.bodies[c.a];
     const body_record<T>& rb = state.bodies[c.b];
     // Two bodies that are not moving keep their manifolds: sleeping ones
     // wake with the contacts they slept on.
     if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
-    ++state.counts.updated_contacts;
+    ++w.updated;
     const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
     const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
     if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
@@ -19501,23 +19672,32 @@ struct contact_update {
             break;
           }
     }
-    resize_slots(c, int(n));
     c.tested = true;
     c.tested_relative = relative;
-    for (std::size_t m = 0; m < n; ++m) {
-      manifold_slot<T>& slot = state.slot_of(c, int(m));
-      slot.manifold = fresh[m];
-      slot.impulse = carried[m];
-      contact_manifold<T>& local = slot.tested_local;
-      local = fresh[m];
-      local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
-      for (int p = 0; p < local.count; ++p)
-        local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh[m].points[std::size_t(p)].position);
+    if (n == std::size_t(c.manifold_count)) {
+      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
+    } else {
+      resized_record& r = w.resized.emplace_back();
+      r.record = record, r.count = std::uint32_t(n), r.pose_a = pose_a;
+      for (std::size_t m = 0; m < n; ++m) r.fresh[m] = fresh[m], r.carried[m] = carried[m];
     }
     const bool touching = n > 0;
-    if (touching && !c.touching) state.begun.push_back({c.a, c.b});
-    if (!touching && c.touching) state.ended.push_back({c.a, c.b});
+    if (touching != c.touching) w.events.push_back({record, touching});
     c.touching = touching;
+  }
+
+  /// A fresh manifold and the impulses carried to it, in the record's
+  /// m-th slot, with the manifold in A's frame for reuse_manifolds.
+  void keep(contact_record<T>& c, std::size_t m, const contact_manifold<T>& fresh,
+            const manifold_impulse<T>& carried, const transform<T>& pose_a) const noexcept {
+    manifold_slot<T>& slot = state.slot_of(c, int(m));
+    slot.manifold = fresh;
+    slot.impulse = carried;
+    contact_manifold<T>& local = slot.tested_local;
+    local = fresh;
+    local.normal = inverse_rotate(pose_a.rotation, fresh.normal);
+    for (int p = 0; p < local.count; ++p)
+      local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh.points[std::size_t(p)].position);
   }
 
   /// How far ahead the pair's contacts reach: speculative_distance, or as
@@ -19580,7 +19760,7 @@ struct contact_update {
   /// persistent manifolds' points the same way; Jolt's body pair cache
   /// reuses manifolds within the same limits.)
   bool reuse_manifolds(contact_record<T>& c, const transform<T>& pose_a, const transform<T>& relative,
-                       const reuse_limits& limits) noexcept {
+                       const reuse_limits& limits) const noexcept {
     const vec3<T> shift = relative.position - c.tested_relative.position;
     if (!(length_squared(shift) < limits.distance_squared)) return false;
     // B's turn in A's frame since the test; |w| = cos(angle / 2).
@@ -20473,6 +20653,8 @@ struct body_solve {
     state.counts.solved_springs = scratch.spring_sources.size();
     if constexpr (requires { scratch.solver.set_fourth_order_turns(true); })
       scratch.solver.set_fourth_order_turns(integrator::order >= 4);
+    if constexpr (requires { scratch.solver.set_task_system(scratch.tasks); })
+      scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);
@@ -20791,6 +20973,24 @@ class world {
     state_.settings = changed;
     state_.wake_all();
   }
+
+  // ---- threads ----
+
+  /// Spreads the step's stages across the hook's workers
+  /// (core/task_system.hpp, impulse/thread_pool.hpp); the default runs
+  /// everything on the calling thread, and the world never starts a thread
+  /// of its own. A step gives the same bits for any worker count. Kept
+  /// apart from the state: a snapshot neither saves nor restores it.
+  void set_task_system(const task_system& tasks) {
+    refuse_in_callback("world::set_task_system: called from inside a world callback");
+    if (tasks.workers < 1)
+      detail::report_error(error_code::invalid_parameter, "world::set_task_system: a task system needs at least one worker");
+    if ((tasks.enqueue == nullptr) != (tasks.finish == nullptr))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::set_task_system: a task system needs both enqueue and finish, or neither");
+    scratch_.tasks = tasks;
+  }
+  [[nodiscard]] const task_system& tasks() const noexcept { return scratch_.tasks; }
 
   // ---- bodies ----
 

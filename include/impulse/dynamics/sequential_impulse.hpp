@@ -66,6 +66,7 @@
 #include <vector>
 
 #include "../core/policy.hpp"
+#include "../core/task_system.hpp"
 #include "detail/constraint_graph.hpp"
 #include "detail/contact_batch.hpp"
 #include "contact_constraint.hpp"
@@ -92,6 +93,12 @@ class basic_sequential_impulse {
   /// Whether the turns are fourth order (the world asks for them under a
   /// fourth-order integrator policy; contact_solver.hpp).
   void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
+
+  /// Spreads each color's batches, and the loops over bodies and batches,
+  /// across the hook's workers (core/task_system.hpp). The batches of one
+  /// color share no moving body, so the bodies come out the same, bit for
+  /// bit, whichever worker solves which; the rest stays on this thread.
+  void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     detail::prepare_contacts(bodies, contacts);
@@ -120,13 +127,14 @@ class basic_sequential_impulse {
                                           settings.max_correction_speed, T(1) / h};
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    auto start_bodies = [&](std::size_t i) {
       solver_body<T>& b = bodies[i];
       if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
       synced_[i] = b.angular_velocity;
       b.linear_velocity += b.force_linear * share;
       b.angular_velocity += b.force_angular * share;
-    }
+    };
+    for_each_body(bodies.size(), start_bodies);
     // Restitution sees the velocities with one part's forces added: ½ +
     // 1/(2·parts) of the step's change, measured from its start
     // (contact_rows.hpp, restitution_pass).
@@ -153,14 +161,18 @@ class basic_sequential_impulse {
     int sweeps = 0;  // over all parts so far
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
-        for (solver_body<T>& b : bodies) {
+        auto next_part = [&](std::size_t i) {
+          solver_body<T>& b = bodies[i];
           b.linear_velocity += b.force_linear * share;
           b.angular_velocity += b.force_angular * share;
           b.bias_linear = {};
           b.bias_angular = {};
-        }
-        for (batch_type& b : batches_)
+        };
+        for_each_body(bodies.size(), next_part);
+        auto retarget = [&](batch_type& b) {
           detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+        };
+        for_each_batch(retarget);
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
           detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
@@ -169,11 +181,12 @@ class basic_sequential_impulse {
         for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
       const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
-      for (batch_type& b : batches_) {
+      auto warm_start = [&](batch_type& b) {
         detail::batch_velocities<T, width> v = detail::gather(read, b, real);
         detail::warm_start_batch(v, b, rows_of(b));
         detail::scatter(bodies, b, v, real);
-      }
+      };
+      for_each_batch_by_color(false, warm_start);
       for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
@@ -184,8 +197,7 @@ class basic_sequential_impulse {
         // The alternation runs on across parts: started forward in every
         // part, an odd number of sweeps a part (4 × 5, 8 × 3) let the
         // pyramid's top wander 15 to 22 cm.
-        for (std::size_t k = 0; k < batches_.size(); ++k) {
-          batch_type& b = batches_[(sweeps + iteration) % 2 == 0 ? k : batches_.size() - 1 - k];
+        auto sweep = [&](batch_type& b) {
           detail::batch_velocities<T, width> v = detail::gather(read, b, real);
           // Friction first: it is bounded by the normal impulses, and the
           // normal rows, solved last, are the ones that must hold (no
@@ -193,7 +205,8 @@ class basic_sequential_impulse {
           detail::solve_batch_friction(v, b, rows_of(b));
           detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, real);
-        }
+        };
+        for_each_batch_by_color((sweeps + iteration) % 2 != 0, sweep);
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
@@ -206,12 +219,13 @@ class basic_sequential_impulse {
       // Shared among the parts, one sweep each, it stalled a heap of 30
       // boxes pushed apart without gravity; four sweeps in each part cost
       // pile 14 % more and held no taller a tower.
+      auto push = [&](batch_type& b) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+        detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+        detail::scatter(bodies, b, v, pseudo);
+      };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        for (batch_type& b : batches_) {
-          detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
-          detail::scatter(bodies, b, v, pseudo);
-        }
+        for_each_batch_by_color(false, push);
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
@@ -220,18 +234,21 @@ class basic_sequential_impulse {
                                                                 settings.manifold_sweeps);
       // The bodies moved with the solved velocities plus the position
       // pass's pseudo-velocities, each turned with its L held.
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
+      auto move = [&](std::size_t i) {
         solver_body<T>& b = bodies[i];
         if (!moved_.empty()) {
           moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
           moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
         }
         detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
-      }
+      };
+      for_each_body(bodies.size(), move);
       if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
     }
-    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
-    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    auto store = [&](batch_type& b) { detail::store_batch(b, rows_of(b), contacts); };
+    for_each_batch(store);
+    auto sync = [&](std::size_t i) { detail::sync_momentum(bodies[i], synced_[i]); };
+    for_each_body(bodies.size(), sync);
   }
 
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
@@ -254,6 +271,11 @@ class basic_sequential_impulse {
     quat<T> orientation;
   };
 
+  /// Batches and bodies a worker takes at a time: a batch's sweep costs
+  /// about as much as a few dozen bodies' moves.
+  static constexpr std::uint32_t min_batches = 8, min_bodies = 256;
+
+  task_system tasks_{};
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   detail::support_order support_;
@@ -288,6 +310,37 @@ class basic_sequential_impulse {
       // Turned, an anisotropic body keeps L and takes the ω of its new pose.
       if (b.inverse_mass > T(0) && !b.principal.isotropic()) detail::reorient_inertia(b, synced_[i]);
     }
+  }
+
+  /// f(b) for every batch b, color after color (the last first when
+  /// `backward`), each color's batches across the workers.
+  template <class F>
+  void for_each_batch_by_color(bool backward, F& f) {
+    const std::size_t colors = graph_.color_count();
+    for (std::size_t i = 0; i < colors; ++i) {
+      const std::size_t q = backward ? colors - 1 - i : i;
+      const std::uint32_t first = graph_.first_batch(q), count = graph_.first_batch(q + 1) - first;
+      auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t k = begin; k < end; ++k) f(batches_[first + k]);
+      };
+      detail::parallel_for(tasks_, count, min_batches, range);
+    }
+  }
+  /// f(b) for every batch b, in any order: f reads and writes only b's own.
+  template <class F>
+  void for_each_batch(F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) f(batches_[k]);
+    };
+    detail::parallel_for(tasks_, std::uint32_t(batches_.size()), min_batches, range);
+  }
+  /// f(i) for every body i, in any order: f touches only body i's own.
+  template <class F>
+  void for_each_body(std::size_t count, F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t i = begin; i < end; ++i) f(std::size_t(i));
+    };
+    detail::parallel_for(tasks_, std::uint32_t(count), min_bodies, range);
   }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {

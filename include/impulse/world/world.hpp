@@ -35,6 +35,7 @@
 
 #include "../config.hpp"
 #include "../core/error.hpp"
+#include "../core/task_system.hpp"
 #include "../narrowphase/ray_cast.hpp"
 #include "body_def.hpp"
 #include "world_events.hpp"
@@ -109,6 +110,24 @@ class world {
     state_.settings = changed;
     state_.wake_all();
   }
+
+  // ---- threads ----
+
+  /// Spreads the step's stages across the hook's workers
+  /// (core/task_system.hpp, impulse/thread_pool.hpp); the default runs
+  /// everything on the calling thread, and the world never starts a thread
+  /// of its own. A step gives the same bits for any worker count. Kept
+  /// apart from the state: a snapshot neither saves nor restores it.
+  void set_task_system(const task_system& tasks) {
+    refuse_in_callback("world::set_task_system: called from inside a world callback");
+    if (tasks.workers < 1)
+      detail::report_error(error_code::invalid_parameter, "world::set_task_system: a task system needs at least one worker");
+    if ((tasks.enqueue == nullptr) != (tasks.finish == nullptr))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::set_task_system: a task system needs both enqueue and finish, or neither");
+    scratch_.tasks = tasks;
+  }
+  [[nodiscard]] const task_system& tasks() const noexcept { return scratch_.tasks; }
 
   // ---- bodies ----
 

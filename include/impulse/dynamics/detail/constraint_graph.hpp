@@ -64,13 +64,22 @@ class constraint_graph {
     for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
     for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[color_of_[i]]++] = std::uint32_t(i);
     batch_starts_.clear();
-    for (int c = 0; c < max_colors; ++c)
+    color_starts_.clear();
+    for (int c = 0; c < max_colors; ++c) {
+      if (start[c] == start[c + 1]) continue;
+      color_starts_.push_back(std::uint32_t(batch_starts_.size()));
       for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
+    }
+    color_starts_.push_back(std::uint32_t(batch_starts_.size()));
     batch_starts_.push_back(start[max_colors]);
     leftover_start_ = start[max_colors];
   }
 
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
+  /// The colors that have contacts; color q's batches are
+  /// [first_batch(q), first_batch(q + 1)), and share no moving body.
+  [[nodiscard]] std::size_t color_count() const noexcept { return color_starts_.size() - 1; }
+  [[nodiscard]] std::uint32_t first_batch(std::size_t q) const noexcept { return color_starts_[q]; }
   /// The contacts of batch k, by their place in the contact array.
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
     return std::span<const std::uint32_t>(order_).subspan(batch_starts_[k], batch_starts_[k + 1] - batch_starts_[k]);
@@ -85,6 +94,7 @@ class constraint_graph {
   std::vector<std::uint8_t> color_of_;  // per contact
   std::vector<std::uint32_t> order_;     // contacts by color
   std::vector<std::uint32_t> batch_starts_;
+  std::vector<std::uint32_t> color_starts_{0};  // each color's first batch, then the batch count
   std::uint32_t leftover_start_ = 0;
 };
 

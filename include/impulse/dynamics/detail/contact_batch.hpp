@@ -62,6 +62,10 @@ struct contact_batch {
   };
 
   std::uint32_t body_a[W] = {}, body_b[W] = {};
+  /// Bit l: lane l's body A (B) moves under impulses (its inverse mass is
+  /// not zero). scatter writes back only those: the batches of one color
+  /// may share a static or kinematic body, and run on different workers.
+  std::uint32_t moving_a = 0, moving_b = 0;
   std::uint32_t contact[W] = {};  ///< each lane's place in the contact array
   int size = 0;                   ///< lanes in use
   /// The batch's rows, one per point of its widest contact, are these in
@@ -124,6 +128,8 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.tangent2.set_lane(l, c.tangent2);
     out.inverse_mass_a.set(l, a.inverse_mass);
     out.inverse_mass_b.set(l, b.inverse_mass);
+    if (a.inverse_mass > T(0)) out.moving_a |= 1u << l;
+    if (b.inverse_mass > T(0)) out.moving_b |= 1u << l;
     for (int i = 0; i < c.count; ++i) {
       const contact_constraint_point<T>& p = c.points[i];
       batch_row<T, W>& r = own[std::size_t(i)];
@@ -479,8 +485,10 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     transpose8(ra);
     transpose8(rb);
     for (int l = 0; l < in.size; ++l) {
-      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
-      __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
+      if (in.moving_a >> l & 1u)
+        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
+      if (in.moving_b >> l & 1u)
+        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
     }
     return;
   }
@@ -492,7 +500,9 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     solver_body<T>& a = bodies[in.body_a[l]];
     solver_body<T>& b = bodies[in.body_b[l]];
     vec3<T>* targets[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
-    for (int k = 0; k < 4; ++k) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
+    const bool moving[2] = {(in.moving_a >> l & 1u) != 0, (in.moving_b >> l & 1u) != 0};
+    for (int k = 0; k < 4; ++k)
+      if (moving[k / 2]) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
   }
 }
 

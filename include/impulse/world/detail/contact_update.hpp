@@ -9,6 +9,13 @@
 // bodies. Pairs that start or stop touching become events. The records
 // stay sorted by proxy pair, merged with the broad phase's pairs in one
 // pass.
+//
+// The pair tests run across the world's workers (world::set_task_system):
+// each record is tested by one worker, which writes only that record and
+// the manifolds it holds. What is shared is done afterwards on the calling
+// thread in the records' order: the manifold slots of a record whose count
+// of manifolds changed, and the begin and end events. So a step gives the
+// same bits for any number of workers.
 #pragma once
 
 #include <algorithm>
@@ -29,6 +36,11 @@ template <class Config>
 struct contact_update {
   using T = typename Config::scalar;
   using dispatcher = typename world_state<Config>::dispatcher;
+  using pair_work = worker_pairs<T>;
+  using resized_record = typename pair_work::resized_record;
+  using touch_event = typename pair_work::touch_event;
+  /// Records a worker tests at a time: a pair test takes 0.1 to a few µs.
+  static constexpr std::uint32_t min_pairs_per_range = 64;
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -75,14 +87,15 @@ struct contact_update {
                        state.broad.ended().empty();
     state.pairs_stale = false;
     if (quiet) {
-      for (const std::uint32_t k : state.awake_contacts) collide(old[k], limits);
+      const std::span<const std::uint32_t> awake = state.awake_contacts;
+      collide_all(std::uint32_t(awake.size()), [&](std::uint32_t i) { return awake[i]; }, limits);
       return;
     }
     state.counts.pairs_merged = true;
     // Most steps have the last step's pairs: then the records are updated
     // where they are, rather than copied over.
     if (same_pairs(pairs)) {
-      for (contact_record<T>& c : old) collide(c, limits);
+      collide_all(std::uint32_t(old.size()), [](std::uint32_t i) { return i; }, limits);
       return;
     }
     scratch.next_contacts.clear();
@@ -114,11 +127,49 @@ struct contact_update {
         c.restitution = combine_restitution(ra.material.restitution, rb.material.restitution);
         scratch.next_contacts.push_back(c);
       }
-      collide(scratch.next_contacts.back(), limits);
     }
     while (i < old.size()) state.end_contact(old[i++]);
     old.swap(scratch.next_contacts);
     state.awake_stale = true;
+    collide_all(std::uint32_t(old.size()), [](std::uint32_t i) { return i; }, limits);
+  }
+
+  /// Tests the records index(0), …, index(count − 1) (collide), across
+  /// the workers, then does in the records' order what they share.
+  template <class Index>
+  void collide_all(std::uint32_t count, Index index, const reuse_limits& limits) {
+    const task_system& tasks = scratch.tasks;
+    std::vector<pair_work>& work = scratch.pair_work;
+    work.resize(tasks.parallel() ? tasks.workers : 1);
+    for (pair_work& w : work) w.clear();
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
+      pair_work& w = work[worker];
+      for (std::uint32_t i = begin; i < end; ++i) collide(index(i), limits, w);
+    };
+    parallel_for(tasks, count, min_pairs_per_range, range);
+    // Gathered in the records' order, whichever worker tested which.
+    pair_work& all = work[0];
+    for (std::size_t k = 1; k < work.size(); ++k) {
+      all.resized.insert(all.resized.end(), work[k].resized.begin(), work[k].resized.end());
+      all.events.insert(all.events.end(), work[k].events.begin(), work[k].events.end());
+      all.updated += work[k].updated;
+    }
+    if (work.size() > 1) {
+      std::sort(all.resized.begin(), all.resized.end(),
+                [](const resized_record& x, const resized_record& y) { return x.record < y.record; });
+      std::sort(all.events.begin(), all.events.end(),
+                [](const touch_event& x, const touch_event& y) { return x.record < y.record; });
+    }
+    for (const resized_record& r : all.resized) {
+      contact_record<T>& c = state.contacts[r.record];
+      resize_slots(c, int(r.count));
+      for (std::size_t m = 0; m < r.count; ++m) keep(c, m, r.fresh[m], r.carried[m], r.pose_a);
+    }
+    for (const touch_event& e : all.events) {
+      const contact_record<T>& c = state.contacts[e.record];
+      (e.begun ? state.begun : state.ended).push_back({c.a, c.b});
+    }
+    state.counts.updated_contacts += all.updated;
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
@@ -159,13 +210,17 @@ struct contact_update {
     }
   }
 
-  void collide(contact_record<T>& c, const reuse_limits& limits) {
+  /// The record `record` tested again, or its manifolds carried (below).
+  /// Writes only the record and the manifolds it holds; a change in their
+  /// count, and an event, go to the worker's `w` for collide_all.
+  void collide(std::uint32_t record, const reuse_limits& limits, pair_work& w) const {
+    contact_record<T>& c = state.contacts[record];
     const body_record<T>& ra = state.bodies[c.a];
     const body_record<T>& rb = state.bodies[c.b];
     // Two bodies that are not moving keep their manifolds: sleeping ones
     // wake with the contacts they slept on.
     if (!is_moving(ra) && !is_moving(rb) && c.manifold_count > 0) return;
-    ++state.counts.updated_contacts;
+    ++w.updated;
     const transform<T> pose_a = shape_pose_of(ra), pose_b = shape_pose_of(rb);
     const transform<T> relative{inverse_apply(pose_a, pose_b.position), conjugate(pose_a.rotation) * pose_b.rotation};
     if (c.tested && reuse_manifolds(c, pose_a, relative, limits)) return;
@@ -197,23 +252,32 @@ struct contact_update {
             break;
           }
     }
-    resize_slots(c, int(n));
     c.tested = true;
     c.tested_relative = relative;
-    for (std::size_t m = 0; m < n; ++m) {
-      manifold_slot<T>& slot = state.slot_of(c, int(m));
-      slot.manifold = fresh[m];
-      slot.impulse = carried[m];
-      contact_manifold<T>& local = slot.tested_local;
-      local = fresh[m];
-      local.normal = inverse_rotate(pose_a.rotation, fresh[m].normal);
-      for (int p = 0; p < local.count; ++p)
-        local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh[m].points[std::size_t(p)].position);
+    if (n == std::size_t(c.manifold_count)) {
+      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
+    } else {
+      resized_record& r = w.resized.emplace_back();
+      r.record = record, r.count = std::uint32_t(n), r.pose_a = pose_a;
+      for (std::size_t m = 0; m < n; ++m) r.fresh[m] = fresh[m], r.carried[m] = carried[m];
     }
     const bool touching = n > 0;
-    if (touching && !c.touching) state.begun.push_back({c.a, c.b});
-    if (!touching && c.touching) state.ended.push_back({c.a, c.b});
+    if (touching != c.touching) w.events.push_back({record, touching});
     c.touching = touching;
+  }
+
+  /// A fresh manifold and the impulses carried to it, in the record's
+  /// m-th slot, with the manifold in A's frame for reuse_manifolds.
+  void keep(contact_record<T>& c, std::size_t m, const contact_manifold<T>& fresh,
+            const manifold_impulse<T>& carried, const transform<T>& pose_a) const noexcept {
+    manifold_slot<T>& slot = state.slot_of(c, int(m));
+    slot.manifold = fresh;
+    slot.impulse = carried;
+    contact_manifold<T>& local = slot.tested_local;
+    local = fresh;
+    local.normal = inverse_rotate(pose_a.rotation, fresh.normal);
+    for (int p = 0; p < local.count; ++p)
+      local.points[std::size_t(p)].position = inverse_apply(pose_a, fresh.points[std::size_t(p)].position);
   }
 
   /// How far ahead the pair's contacts reach: speculative_distance, or as
@@ -276,7 +340,7 @@ struct contact_update {
   /// persistent manifolds' points the same way; Jolt's body pair cache
   /// reuses manifolds within the same limits.)
   bool reuse_manifolds(contact_record<T>& c, const transform<T>& pose_a, const transform<T>& relative,
-                       const reuse_limits& limits) noexcept {
+                       const reuse_limits& limits) const noexcept {
     const vec3<T> shift = relative.position - c.tested_relative.position;
     if (!(length_squared(shift) < limits.distance_squared)) return false;
     // B's turn in A's frame since the test; |w| = cos(angle / 2).

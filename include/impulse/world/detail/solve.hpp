@@ -190,6 +190,8 @@ struct body_solve {
     state.counts.solved_springs = scratch.spring_sources.size();
     if constexpr (requires { scratch.solver.set_fourth_order_turns(true); })
       scratch.solver.set_fourth_order_turns(integrator::order >= 4);
+    if constexpr (requires { scratch.solver.set_task_system(scratch.tasks); })
+      scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     keep_joint_impulses(dt);

@@ -496,6 +496,34 @@ struct world_state {
   }
 };
 
+/// What one worker's pair tests leave for the calling thread to do in the
+/// records' order (contact_update.hpp, collide_all): the records whose
+/// count of manifolds changed, with what goes in their slots, and the
+/// records that began or stopped touching. A cache line of its own: the
+/// workers count into theirs at every record.
+template <scalar_type T>
+struct alignas(64) worker_pairs {
+  struct resized_record {
+    std::uint32_t record, count;
+    transform<T> pose_a;
+    std::array<contact_manifold<T>, max_manifolds> fresh;
+    std::array<manifold_impulse<T>, max_manifolds> carried;
+  };
+  struct touch_event {
+    std::uint32_t record;
+    bool begun;
+  };
+  std::vector<resized_record> resized;
+  std::vector<touch_event> events;
+  std::size_t updated = 0;  ///< records tested or carried
+
+  void clear() noexcept {
+    resized.clear();
+    events.clear();
+    updated = 0;
+  }
+};
+
 /// What one step rebuilds: the solver and its arrays, the next contact
 /// records, the islands. Not part of the state (a snapshot leaves it out);
 /// kept to allocate nothing once warm.
@@ -517,7 +545,10 @@ struct step_scratch {
   };
 
   solver_type solver{};
+  /// The workers a step may spread over (world::set_task_system).
+  task_system tasks{};
   std::vector<contact_record<T>> next_contacts;
+  std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;

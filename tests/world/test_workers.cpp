@@ -1,0 +1,186 @@
+// A world stepped across workers (world::set_task_system): the same bits as
+// one thread, whatever the worker count and however the scheduler cuts and
+// orders the ranges. The scenes reach every stage that runs across workers:
+// the pair tests (boxes, spheres, walls), manifold counts that change and
+// contacts that begin and end, the solver's colors, and joints beside them.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "../core/schedulers.hpp"
+#include "../error_code_of.hpp"
+#include "impulse/core/random.hpp"
+#include "impulse/thread_pool.hpp"
+#include "scenes.hpp"
+
+namespace world_workers_tests {
+
+namespace {
+
+using namespace impulse;
+using impulse::test::awake_config;
+using world_type = world<awake_config>;
+
+/// What a run leaves: every body's transform (transform_hash), and the
+/// contact events of every step, their pairs in the order given (FNV-1a).
+struct outcome {
+  std::uint64_t transforms = 0, events = 1469598103934665603ull;
+  std::size_t begun = 0, ended = 0;
+  bool operator==(const outcome&) const = default;
+
+  void add(std::span<const contact_event> list, std::uint64_t kind) {
+    for (const contact_event& e : list)
+      for (const std::uint64_t word : {kind, std::uint64_t(e.a.index), std::uint64_t(e.b.index)})
+        events = (events ^ word) * 1099511628211ull;
+  }
+};
+
+/// Builds a scene with `build`, steps it `steps` times across `tasks` (none:
+/// on this thread) and reports what it left.
+outcome run(const std::function<void(world_type&)>& build, int steps, const task_system* tasks) {
+  world_type w;
+  if (tasks != nullptr) w.set_task_system(*tasks);
+  build(w);
+  outcome out;
+  for (int i = 0; i < steps; ++i) {
+    w.step(impulse::test::step_dt<float>);
+    out.begun += w.contact_begin_events().size();
+    out.ended += w.contact_end_events().size();
+    out.add(w.contact_begin_events(), 1);
+    out.add(w.contact_end_events(), 2);
+  }
+  out.transforms = impulse::test::transform_hash(w);
+  return out;
+}
+
+/// The scene at 1 worker, then at 2, 3 and 8 (8 more than this machine's
+/// cores) on impulse::thread_pool, and on a scheduler that runs the ranges
+/// back to front: all the same.
+void check_any_worker_count(const std::function<void(world_type&)>& build, int steps) {
+  const outcome one = run(build, steps, nullptr);
+  CHECK(one.begun > 0);
+  for (const std::uint32_t workers : {2u, 3u, 8u}) {
+    CAPTURE(workers);
+    thread_pool pool{workers};
+    const task_system tasks = pool.tasks();
+    CHECK(run(build, steps, &tasks) == one);
+  }
+  const task_system backwards = impulse::test::backwards_scheduler::tasks();
+  CHECK(run(build, steps, &backwards) == one);
+}
+
+/// `spheres` (docs/standard_scenes.md), its first `layers` of 25 layers:
+/// 400 balls of radius 0.25 a layer on a jittered grid, dropped into a box
+/// of four walls.
+void add_spheres(world_type& w, int layers) {
+  impulse::test::add_ground(w);
+  const auto wall = [&](vec3<float> half, vec3<float> at) {
+    body_def<float> d;
+    d.type = body_type::static_body;
+    d.pose.position = at;
+    d.material.friction = 0.6f;
+    w.create_body(d, box<float>::make(half));
+  };
+  wall({0.5f, 10, 8}, {7.5f, 10, 0});
+  wall({0.5f, 10, 8}, {-7.5f, 10, 0});
+  wall({8, 10, 0.5f}, {0, 10, 7.5f});
+  wall({8, 10, 0.5f}, {0, 10, -7.5f});
+  lcg32 random{12345};
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < layers; ++j)
+      for (int k = 0; k < 20; ++k) {
+        const float jitter_x = (random.uniform<float>() - 0.5f) * 0.1f;
+        const float jitter_z = (random.uniform<float>() - 0.5f) * 0.1f;
+        body_def<float> d;
+        d.pose.position = {(float(i) - 9.5f) * 0.6f + jitter_x, 1 + 0.6f * float(j), (float(k) - 9.5f) * 0.6f + jitter_z};
+        d.material.friction = 0.6f;
+        w.create_body(d, sphere<float>::make(0.25f));
+      }
+}
+
+/// `large_pyramid`: a 100-box base, 5 050 boxes of 100 kg.
+void add_large_pyramid(world_type& w) {
+  impulse::test::add_ground(w, 0.6f, {}, 400.0f);
+  for (int k = 0; k < 100; ++k) {
+    const int n = 100 - k;
+    for (int i = 0; i < n; ++i) impulse::test::add_cube(w, {float(i) - float(n - 1) / 2, 0.5f + float(k), 0}, 100.0f);
+  }
+}
+
+/// Eight chains of ten boxes on ball joints, hung from static posts and
+/// let go from horizontal, swinging into a row of boxes on the ground.
+void add_chains(world_type& w) {
+  impulse::test::add_ground(w);
+  for (int c = 0; c < 8; ++c) {
+    const float z = 1.5f * float(c);
+    body_def<float> post;
+    post.type = body_type::static_body;
+    post.pose.position = {0, 12, z};
+    body_id above = w.create_body(post, box<float>::make({0.1f, 0.1f, 0.1f}));
+    vec3<float> anchor{0, 12, z};
+    for (int i = 0; i < 10; ++i) {
+      const body_id link = impulse::test::add_cube(w, anchor + vec3<float>{0.55f, 0, 0}, 1.0f);
+      w.create_joint(joint_def<float>::ball(above, link, anchor));
+      anchor += vec3<float>{1.1f, 0, 0};
+      above = link;
+    }
+    for (int i = 0; i < 6; ++i) impulse::test::add_cube(w, {-3.0f + 1.2f * float(i), 0.5f, z});
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the pile is bit-identical for 1, 2, 3 and 8 workers, over 600 steps") {
+  check_any_worker_count([](world_type& w) {
+    impulse::test::add_ground(w);
+    impulse::test::add_pile(w);
+  }, impulse::test::long_run(600));
+}
+
+// The standard scenes run 600 steps of 10 000 balls and 5 050 boxes;
+// bench/scenes --threads compares those whole runs at each worker count
+// (docs/performance.md). Here, the heap's first five layers until they
+// have landed and piled up (the lowest lands at step 24), and the
+// pyramid's first steps, in which all of its contacts begin.
+TEST_CASE("the sphere heap's first 2 000 balls are bit-identical for 1, 2, 3 and 8 workers, over 60 steps") {
+  check_any_worker_count([](world_type& w) { add_spheres(w, 5); }, 60);
+}
+
+TEST_CASE("large_pyramid is bit-identical for 1, 2, 3 and 8 workers, over its first 10 steps") {
+  check_any_worker_count(add_large_pyramid, impulse::test::long_run(10));
+}
+
+TEST_CASE("chains on joints swinging into boxes are bit-identical for 1, 2, 3 and 8 workers, over 300 steps") {
+  check_any_worker_count(add_chains, impulse::test::long_run(300));
+}
+
+TEST_CASE("a snapshot restored into a world with workers steps on as it would have on one thread") {
+  world_type one, many;
+  impulse::test::add_ground(one);
+  impulse::test::add_pile(one);
+  impulse::test::run(one, 30);
+  thread_pool pool{2};
+  many.set_task_system(pool.tasks());
+  many.restore(one.snapshot());
+  CHECK(many.tasks().workers == 2);  // restore leaves the task system as it was
+  impulse::test::run(one, 30);
+  impulse::test::run(many, 30);
+  CHECK(impulse::test::transform_hash(many) == impulse::test::transform_hash(one));
+}
+
+TEST_CASE("set_task_system refuses a hook with no worker or with one callback of two") {
+  world_type w;
+  task_system none;
+  none.workers = 0;
+  CHECK(impulse::test::error_code_of([&] { w.set_task_system(none); }) == error_code::invalid_parameter);
+  thread_pool pool{2};
+  task_system half = pool.tasks();
+  half.finish = nullptr;
+  CHECK(impulse::test::error_code_of([&] { w.set_task_system(half); }) == error_code::invalid_parameter);
+  CHECK(w.tasks().workers == 1);  // the refused hooks left it on this thread
+}
+
+}  // namespace world_workers_tests
