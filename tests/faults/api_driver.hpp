@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "../world/scenes.hpp"
 #include "impulse/world.hpp"
 
 namespace impulse::test {
@@ -64,17 +65,6 @@ std::uint64_t state_hash(const World& w) {
   mix(s.max_contact_pairs), mix(s.solver.velocity_iterations), mix(s.solver.speculative_distance);
   mix(w.time()), mix(w.step_count());
   return h;
-}
-
-template <class World>
-bool all_finite(const World& w) {
-  for (const impulse::body_id id : w.body_ids()) {
-    const auto& b = w.body(id);
-    if (!impulse::is_finite(b.position) || !impulse::is_finite(b.orientation) ||
-        !impulse::is_finite(b.linear_momentum) || !impulse::is_finite(b.angular_momentum))
-      return false;
-  }
-  return true;
 }
 
 /// SplitMix64: the test's stream of numbers. (A linear congruential

@@ -57,16 +57,7 @@ struct small_id {
   friend constexpr bool operator==(const small_id&, const small_id&) = default;
 };
 
-template <class World>
-bool all_finite(const World& w) {
-  for (const body_id id : w.body_ids()) {
-    const auto& b = w.body(id);
-    if (!is_finite(b.position) || !is_finite(b.orientation) || !is_finite(b.linear_momentum) ||
-        !is_finite(b.angular_momentum))
-      return false;
-  }
-  return true;
-}
+using impulse::test::all_finite;
 
 template <class T>
 body_id add_box(world<T>& w, vec3<typename world<T>::scalar> at) {

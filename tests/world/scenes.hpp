@@ -116,6 +116,18 @@ std::vector<impulse::vec3<typename World::scalar>> positions(const World& w, con
   return p;
 }
 
+/// Whether every body's position, orientation and momenta are finite.
+template <class World>
+bool all_finite(const World& w) {
+  for (const impulse::body_id id : w.body_ids()) {
+    const auto& b = w.body(id);
+    if (!impulse::is_finite(b.position) || !impulse::is_finite(b.orientation) ||
+        !impulse::is_finite(b.linear_momentum) || !impulse::is_finite(b.angular_momentum))
+      return false;
+  }
+  return true;
+}
+
 /// FNV-1a over the bits of every body's position and orientation, in id
 /// order: equal hashes mean bit-identical transforms.
 template <class World>
