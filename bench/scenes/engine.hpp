@@ -10,6 +10,10 @@
 //   void step();                            // exactly one step of spec.dt
 //   std::span<const body_state> states();   // every body, in spec order
 //
+// An adapter may also report the last step's time per stage, in ms:
+//
+//   stage_times profile() const;            // after step(), outside the clock
+//
 // step() is the only call that is timed, so it must hold the whole of an
 // engine's step (collision detection, solving, integration) and nothing
 // else; states() may copy, it is called outside the clock. Adding an
@@ -34,6 +38,19 @@ struct body_state {
   vec3 linear_velocity;   ///< m/s
   vec3 angular_velocity;  ///< rad/s, world frame
   bool awake = false;     ///< simulated this step (not asleep, not static)
+};
+
+/// The stages of a step an engine may report (impulse's step_profile),
+/// in ms, in this order.
+inline constexpr const char* stage_names[] = {"broad", "narrow", "prepare", "solve", "integrate", "continuous", "sleep"};
+inline constexpr int stage_count = 7;
+struct stage_times {
+  double ms[stage_count] = {};
+};
+
+template <class E>
+concept profiled_engine = requires(const E& ce) {
+  { ce.profile() } -> std::convertible_to<stage_times>;
 };
 
 template <class E>

@@ -125,6 +125,19 @@ class impulse_engine {
       a->step(dt_);
   }
 
+  [[nodiscard]] stage_times profile() const {
+    return std::visit(
+        [](const auto& w) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(w)>, std::monostate>) {
+            return stage_times{};
+          } else {
+            const impulse::step_profile& p = w.last_step_profile();
+            return stage_times{{p.broad, p.narrow, p.prepare, p.solve, p.integrate, p.continuous, p.sleep}};
+          }
+        },
+        world_);
+  }
+
   std::span<const body_state> states() {
     if (const auto* w = std::get_if<sleeping_world>(&world_))
       read_states(*w);

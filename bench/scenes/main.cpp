@@ -1,7 +1,7 @@
 // bench/scenes: the standard rigid-body scenes (docs/standard_scenes.md,
 // scene_spec.hpp) on every engine compiled in, judged by the same metrics (metrics.hpp).
 //
-//   scenes [--scene NAME]... [--engine NAME]... [--threads N,M,...] [--csv FILE]
+//   scenes [--scene NAME]... [--engine NAME]... [--config TEXT]... [--threads N,M,...] [--csv FILE]
 //
 // prints CSV on stdout, one row per metric:
 //
@@ -19,14 +19,18 @@
 // the peers once. Each of those runs adds two rows: speedup, the first
 // count's median step time over this one's (in the same run, so the
 // machine's drift cancels), and same_bits, 1 when every body's final
-// position and orientation equal the first count's to the bit.
+// position and orientation equal the first count's to the bit. impulse's
+// runs add, per stage of its step (world::last_step_profile: broad,
+// narrow, prepare, solve, integrate, continuous, sleep), ms_STAGE, the
+// stage's mean time over the same window, and speedup_STAGE.
 //
 // An engine is a type modelling scene_engine (engine.hpp): to add one,
 // include its header and add it to engines() below. impulse is always
 // compiled in, once per set of policies compared (its rows tell them apart
 // by the config column); Bullet and ODE when the build found them.
 // --engine NAME selects every entry of that name: `--engine impulse` runs
-// all of impulse's.
+// all of impulse's. --config TEXT keeps the entries whose config (as a
+// fresh engine reports it) contains TEXT: `--config sweep_and_prune`.
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -62,6 +66,8 @@ struct scene_result {
   double ms_per_step_median = 0;
   std::vector<metric_value> metrics;
   std::uint64_t final_bits = 0;  ///< FNV-1a over every body's final position and orientation
+  bool profiled = false;         ///< whether stage_ms holds the engine's stages
+  double stage_ms[stage_count] = {};  ///< each stage's mean over the timed window
 };
 
 std::uint64_t bits_of(std::span<const body_state> states) {
@@ -92,15 +98,23 @@ scene_result run_scene(const scene_spec& spec) {
   metric_recorder recorder{spec};
   std::vector<double> step_ms;
   step_ms.reserve(static_cast<std::size_t>(spec.steps));
+  std::vector<stage_times> stages;
   for (int step = 1; step <= spec.steps; ++step) {
     const auto start = std::chrono::steady_clock::now();
     engine.step();
     const auto stop = std::chrono::steady_clock::now();
     step_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+    if constexpr (profiled_engine<E>) stages.push_back(engine.profile());
     if (recorder.wants(step)) recorder.observe(step, engine.states());
   }
-  scene_result result{engine.config(), median_of_last(step_ms, timing_window(spec.steps)), recorder.results(),
-                      bits_of(engine.states())};
+  const std::size_t window = timing_window(spec.steps);
+  scene_result result{engine.config(), median_of_last(step_ms, window), recorder.results(), bits_of(engine.states())};
+  // Means, not medians, over the same window: they add up to the step.
+  if constexpr (profiled_engine<E>) {
+    result.profiled = true;
+    for (std::size_t s = stages.size() - window; s < stages.size(); ++s)
+      for (int k = 0; k < stage_count; ++k) result.stage_ms[k] += stages[s].ms[k] / double(window);
+  }
   if (spec.settle_limit > 0) result.metrics.push_back({"steps_to_sleep", double(settled)});
   return result;
 }
@@ -125,22 +139,27 @@ using impulse_soft_step = impulse_set<impulse::broadphase::dynamic_bvh, impulse:
 struct engine_entry {
   std::string_view name;
   scene_result (*run)(const scene_spec&);
+  std::string (*config)();  ///< a fresh engine's config column
 };
+
+template <scene_engine E>
+engine_entry entry() {
+  return {E::name, &run_scene<E>, [] { return E{}.config(); }};
+}
 
 std::vector<engine_entry> engines() {
   std::vector<engine_entry> list;
-  list.push_back({impulse_engine<impulse_dynamic_bvh>::name, &run_scene<impulse_engine<impulse_dynamic_bvh>>});
-  list.push_back(
-      {impulse_engine<impulse_sweep_and_prune>::name, &run_scene<impulse_engine<impulse_sweep_and_prune>>});
-  list.push_back({impulse_engine<impulse_spatial_hash>::name, &run_scene<impulse_engine<impulse_spatial_hash>>});
-  list.push_back({impulse_engine<impulse_octree>::name, &run_scene<impulse_engine<impulse_octree>>});
-  list.push_back({impulse_engine<impulse_brute_force>::name, &run_scene<impulse_engine<impulse_brute_force>>});
-  list.push_back({impulse_engine<impulse_soft_step>::name, &run_scene<impulse_engine<impulse_soft_step>>});
+  list.push_back(entry<impulse_engine<impulse_dynamic_bvh>>());
+  list.push_back(entry<impulse_engine<impulse_sweep_and_prune>>());
+  list.push_back(entry<impulse_engine<impulse_spatial_hash>>());
+  list.push_back(entry<impulse_engine<impulse_octree>>());
+  list.push_back(entry<impulse_engine<impulse_brute_force>>());
+  list.push_back(entry<impulse_engine<impulse_soft_step>>());
 #ifdef IMPULSE_BENCH_HAVE_BULLET
-  list.push_back({bullet_engine::name, &run_scene<bullet_engine>});
+  list.push_back(entry<bullet_engine>());
 #endif
 #ifdef IMPULSE_BENCH_HAVE_ODE
-  list.push_back({ode_engine::name, &run_scene<ode_engine>});
+  list.push_back(entry<ode_engine>());
 #endif
   return list;
 }
@@ -174,7 +193,9 @@ std::vector<std::uint32_t> counts_of(std::string_view list) {
 }
 
 int usage(const char* program) {
-  std::fprintf(stderr, "usage: %s [--scene NAME]... [--engine NAME]... [--threads N,M,...] [--csv FILE]\nscenes:",
+  std::fprintf(stderr,
+               "usage: %s [--scene NAME]... [--engine NAME]... [--config TEXT]... [--threads N,M,...] [--csv FILE]\n"
+               "scenes:",
                program);
   for (std::string_view s : scene_names()) std::fprintf(stderr, " %.*s", int(s.size()), s.data());
   std::fprintf(stderr, "\nengines:");
@@ -190,15 +211,17 @@ int usage(const char* program) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string_view> scenes, engine_names;
+  std::vector<std::string_view> scenes, engine_names, config_texts;
   const char* csv_path = nullptr;
   std::vector<std::uint32_t> worker_counts;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    if ((arg == "--scene" || arg == "--engine" || arg == "--csv" || arg == "--threads") && i + 1 < argc) {
+    if ((arg == "--scene" || arg == "--engine" || arg == "--config" || arg == "--csv" || arg == "--threads") &&
+        i + 1 < argc) {
       const char* value = argv[++i];
       if (arg == "--scene") scenes.emplace_back(value);
       else if (arg == "--engine") engine_names.emplace_back(value);
+      else if (arg == "--config") config_texts.emplace_back(value);
       else if (arg == "--threads") worker_counts = counts_of(value);
       else csv_path = value;
       if (arg == "--threads" && worker_counts.empty()) return usage(argv[0]);
@@ -216,13 +239,21 @@ int main(int argc, char** argv) {
   std::vector<std::string_view> known;
   for (const engine_entry& e : engines()) {
     known.push_back(e.name);
-    if (engine_names.empty() || contains(engine_names, e.name)) selected.push_back(e);
+    if (!engine_names.empty() && !contains(engine_names, e.name)) continue;
+    const std::string config = e.config();
+    bool wanted = config_texts.empty();
+    for (std::string_view text : config_texts) wanted = wanted || config.find(text) != std::string::npos;
+    if (wanted) selected.push_back(e);
   }
   for (std::string_view n : engine_names)
     if (!contains(known, n)) {
       std::fprintf(stderr, "no such engine compiled in: %.*s\n", int(n.size()), n.data());
       return usage(argv[0]);
     }
+  if (selected.empty()) {
+    std::fprintf(stderr, "no engine entry matches the --engine and --config given\n");
+    return usage(argv[0]);
+  }
   if (scenes.empty()) scenes = scene_names();
 
   std::FILE* csv = nullptr;
@@ -263,6 +294,11 @@ int main(int argc, char** argv) {
             if (k == 0) first = r;
             r.metrics.push_back({"speedup", first.ms_per_step_median / r.ms_per_step_median});
             r.metrics.push_back({"same_bits", r.final_bits == first.final_bits ? 1.0 : 0.0});
+            for (int s = 0; r.profiled && s < stage_count; ++s) {
+              const std::string stage = stage_names[s];
+              r.metrics.push_back({"ms_" + stage, r.stage_ms[s]});
+              if (r.stage_ms[s] > 0) r.metrics.push_back({"speedup_" + stage, first.stage_ms[s] / r.stage_ms[s]});
+            }
           }
           for (const metric_value& m : r.metrics)
             emit(std::string(e.name) + ',' + r.config + ',' + spec.name + ',' + number(r.ms_per_step_median) + ',' +

@@ -1643,6 +1643,74 @@ struct brute_force {
 // pass over the candidates is cheap next to a traversal.
 
 
+// ---- begin impulse/core/task_system.hpp ----
+// impulse/core/task_system.hpp — the hook through which a program lends
+// impulse its worker threads.
+//
+// impulse never creates a thread. A step that can spread over cores hands
+// each parallel loop to two callbacks the program provides: `enqueue` starts
+// a loop over items [0, item_count) on the program's own scheduler (a job
+// system, TBB, enkiTS, or impulse/thread_pool.hpp), split into ranges of at
+// least `min_range` items however it likes, and `finish` returns once every
+// range has run. Without callbacks, or with one worker, a loop runs on the
+// calling thread as a plain call.
+//
+// What impulse runs through the hook does not depend on how the items are
+// split or which worker runs which range: each range writes only its own
+// items, and whatever is gathered across items is gathered in item order
+// afterwards. So the results are bit-identical for any worker count and any
+// scheduler.
+//
+//   impulse::thread_pool pool{2};
+//   particles.set_task_system(pool.tasks());
+
+
+namespace impulse {
+
+/// One range of a parallel loop: items [begin, end), run by worker
+/// `worker` (0 ≤ worker < task_system::workers), with the loop's context.
+using task_function = void(std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* task_context);
+
+struct task_system {
+  /// How many threads may run a loop's ranges at once, the calling thread
+  /// included; a worker index is below it.
+  std::uint32_t workers = 1;
+  /// Starts `task` over [0, item_count) in ranges of at least min_range
+  /// items (the last may be shorter) and returns a handle for `finish`.
+  /// It may run ranges before it returns, on any thread.
+  void* (*enqueue)(task_function* task, std::uint32_t item_count, std::uint32_t min_range,
+                   void* task_context, void* user_context) = nullptr;
+  /// Returns when every range of the loop `handle` names has run.
+  void (*finish)(void* handle, void* user_context) = nullptr;
+  /// Passed back to both callbacks.
+  void* user_context = nullptr;
+
+  /// Whether loops go through the callbacks at all.
+  [[nodiscard]] bool parallel() const noexcept { return workers > 1 && enqueue != nullptr && finish != nullptr; }
+};
+
+namespace detail {
+
+/// Runs body(begin, end, worker) over [0, count): through the hook when it
+/// has more than one worker and the loop more than one range, else as one
+/// call on this thread.
+template <class Body>
+void parallel_for(const task_system& tasks, std::uint32_t count, std::uint32_t min_range, Body& body) {
+  if (count == 0) return;
+  if (!tasks.parallel() || count <= min_range) {
+    body(std::uint32_t(0), count, std::uint32_t(0));
+    return;
+  }
+  task_function* run = [](std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* context) {
+    (*static_cast<Body*>(context))(begin, end, worker);
+  };
+  void* handle = tasks.enqueue(run, count, min_range, &body, tasks.user_context);
+  tasks.finish(handle, tasks.user_context);
+}
+
+}  // namespace detail
+}  // namespace impulse
+// ---- end impulse/core/task_system.hpp ----
 // ---- begin impulse/broadphase/detail/dynamic_tree.hpp ----
 // impulse/broadphase/detail/dynamic_tree.hpp — a dynamic AABB tree: a binary
 // bounding volume hierarchy over boxes that come, go and move, kept good
@@ -2057,7 +2125,12 @@ class basic_dynamic_bvh {
     fat_box_changed(id.index);  // its candidates go at the next update
   }
 
-  void update() {
+  void update() { update(task_system{}); }
+
+  /// The same, the carried candidates checked across the hook's workers
+  /// (core/task_system.hpp): the same pairs and candidates, in the same
+  /// order, for any worker count.
+  void update(const task_system& tasks) {
     if (!store_.take_changed()) {  // nothing came, moved or went
       reinserted_ = 0;
       return pairs_.keep();
@@ -2075,8 +2148,7 @@ class basic_dynamic_bvh {
 
     next_candidates_.clear();
     found_.clear();
-    for (const candidate& c : candidates_)
-      if (slots_[c.a].changed != epoch_ && slots_[c.b].changed != epoch_) keep_candidate(c.a, c.b);
+    keep_candidates(tasks);
     if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
     candidates_.swap(next_candidates_);
     pairs_.publish(found_);
@@ -2227,6 +2299,41 @@ class basic_dynamic_bvh {
     if (overlaps(x.exact, y.exact)) found_.push_back(pair_of(proxy_id{a, x.generation}, proxy_id{b, y.generation}));
   }
 
+  /// The last update's candidates whose fat boxes have not changed, kept
+  /// (keep_candidate). Across workers, in two passes: each candidate's
+  /// verdict side by side, where the time goes (two slots read at random),
+  /// then the kept ones in order.
+  void keep_candidates(const task_system& tasks) {
+    const std::uint32_t count = std::uint32_t(candidates_.size());
+    if (!tasks.parallel() || count < 2 * min_candidates) {
+      for (const candidate& c : candidates_)
+        if (slots_[c.a].changed != epoch_ && slots_[c.b].changed != epoch_) keep_candidate(c.a, c.b);
+      return;
+    }
+    verdicts_.resize(count);
+    overlapping_.resize(count);
+    auto judge = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const slot_data& x = slots_[candidates_[i].a];
+        const slot_data& y = slots_[candidates_[i].b];
+        verdicts_[i] = x.changed == epoch_ || y.changed == epoch_ ? drop : overlaps(x.exact, y.exact) ? touching : kept;
+        if (verdicts_[i] == touching)
+          overlapping_[i] = pair_of(proxy_id{candidates_[i].a, x.generation}, proxy_id{candidates_[i].b, y.generation});
+      }
+    };
+    impulse::detail::parallel_for(tasks, count, min_candidates, judge);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (verdicts_[i] == drop) continue;
+      next_candidates_.push_back(candidates_[i]);
+      if (verdicts_[i] == touching) found_.push_back(overlapping_[i]);
+    }
+  }
+  /// A carried candidate's verdict: dropped (a fat box changed), kept, or
+  /// kept and its exact boxes touching.
+  enum verdict : std::uint8_t { drop, kept, touching };
+  /// Candidates a worker judges at a time: a few ns each.
+  static constexpr std::uint32_t min_candidates = 4096;
+
   /// Every pair of leaves whose fat boxes overlap and at least one of
   /// which is stamped: each stamped subtree against itself (its halves each
   /// against themselves and against each other), opening a pair of
@@ -2281,6 +2388,8 @@ class basic_dynamic_bvh {
   std::vector<std::uint32_t> changed_;                   ///< slots whose fat box changed since the last update, each once
   std::vector<std::int32_t> selves_;                     ///< scratch for the self traversal
   std::vector<node_pair> cross_;                         ///< scratch for the self traversal
+  std::vector<verdict> verdicts_;                        ///< scratch for keep_candidates, by candidate
+  std::vector<proxy_pair> overlapping_;                  ///< scratch for keep_candidates, by candidate
   std::uint32_t epoch_ = 1;
   std::size_t reinserted_ = 0, reinserted_since_update_ = 0;
 };
@@ -5455,74 +5564,6 @@ constexpr T hash_signed_unit(std::uint32_t x) noexcept {
 
 }  // namespace impulse
 // ---- end impulse/core/random.hpp ----
-// ---- begin impulse/core/task_system.hpp ----
-// impulse/core/task_system.hpp — the hook through which a program lends
-// impulse its worker threads.
-//
-// impulse never creates a thread. A step that can spread over cores hands
-// each parallel loop to two callbacks the program provides: `enqueue` starts
-// a loop over items [0, item_count) on the program's own scheduler (a job
-// system, TBB, enkiTS, or impulse/thread_pool.hpp), split into ranges of at
-// least `min_range` items however it likes, and `finish` returns once every
-// range has run. Without callbacks, or with one worker, a loop runs on the
-// calling thread as a plain call.
-//
-// What impulse runs through the hook does not depend on how the items are
-// split or which worker runs which range: each range writes only its own
-// items, and whatever is gathered across items is gathered in item order
-// afterwards. So the results are bit-identical for any worker count and any
-// scheduler.
-//
-//   impulse::thread_pool pool{2};
-//   particles.set_task_system(pool.tasks());
-
-
-namespace impulse {
-
-/// One range of a parallel loop: items [begin, end), run by worker
-/// `worker` (0 ≤ worker < task_system::workers), with the loop's context.
-using task_function = void(std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* task_context);
-
-struct task_system {
-  /// How many threads may run a loop's ranges at once, the calling thread
-  /// included; a worker index is below it.
-  std::uint32_t workers = 1;
-  /// Starts `task` over [0, item_count) in ranges of at least min_range
-  /// items (the last may be shorter) and returns a handle for `finish`.
-  /// It may run ranges before it returns, on any thread.
-  void* (*enqueue)(task_function* task, std::uint32_t item_count, std::uint32_t min_range,
-                   void* task_context, void* user_context) = nullptr;
-  /// Returns when every range of the loop `handle` names has run.
-  void (*finish)(void* handle, void* user_context) = nullptr;
-  /// Passed back to both callbacks.
-  void* user_context = nullptr;
-
-  /// Whether loops go through the callbacks at all.
-  [[nodiscard]] bool parallel() const noexcept { return workers > 1 && enqueue != nullptr && finish != nullptr; }
-};
-
-namespace detail {
-
-/// Runs body(begin, end, worker) over [0, count): through the hook when it
-/// has more than one worker and the loop more than one range, else as one
-/// call on this thread.
-template <class Body>
-void parallel_for(const task_system& tasks, std::uint32_t count, std::uint32_t min_range, Body& body) {
-  if (count == 0) return;
-  if (!tasks.parallel() || count <= min_range) {
-    body(std::uint32_t(0), count, std::uint32_t(0));
-    return;
-  }
-  task_function* run = [](std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* context) {
-    (*static_cast<Body*>(context))(begin, end, worker);
-  };
-  void* handle = tasks.enqueue(run, count, min_range, &body, tasks.user_context);
-  tasks.finish(handle, tasks.user_context);
-}
-
-}  // namespace detail
-}  // namespace impulse
-// ---- end impulse/core/task_system.hpp ----
 // ---- begin impulse/core/version.hpp ----
 // impulse/core/version.hpp — the library version, one place for it.
 //
@@ -8147,18 +8188,30 @@ struct batch_velocities {
 template <scalar_type T, int W>
 using batch_row = typename contact_batch<T, W>::row;
 
+/// The rows a batch of the contacts `members` takes: one per point of its
+/// widest contact.
+template <scalar_type T>
+[[nodiscard]] int rows_needed(std::span<const contact_constraint<T>> contacts,
+                              std::span<const std::uint32_t> members) noexcept {
+  int rows = 0;
+  for (const std::uint32_t m : members) rows = std::max(rows, contacts[m].count);
+  return rows;
+}
+
 /// Fills `out` with the contacts `members` (prepared by prepare_contacts,
-/// with their row targets), and appends its rows to `rows`.
+/// with their row targets), its rows being rows[first_row, first_row +
+/// rows_needed): those it zeroes and fills, and touches nothing else, so
+/// that batches load side by side.
 template <scalar_type T, int W>
 void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
                 std::span<const std::uint32_t> members, contact_batch<T, W>& out,
-                std::vector<batch_row<T, W>>& rows) {
+                std::span<batch_row<T, W>> rows, std::uint32_t first_row) {
   out = contact_batch<T, W>{};
   out.size = int(members.size());
-  for (const std::uint32_t m : members) out.rows_used = std::max(out.rows_used, contacts[m].count);
-  out.first_row = std::uint32_t(rows.size());
-  rows.resize(rows.size() + std::size_t(out.rows_used));
-  const std::span<batch_row<T, W>> own = std::span<batch_row<T, W>>(rows).subspan(out.first_row);
+  out.rows_used = rows_needed(contacts, members);
+  out.first_row = first_row;
+  const std::span<batch_row<T, W>> own = rows.subspan(first_row, std::size_t(out.rows_used));
+  for (batch_row<T, W>& r : own) r = batch_row<T, W>{};
   for (int l = 0; l < out.size; ++l) {
     const contact_constraint<T>& c = contacts[members[std::size_t(l)]];
     const solver_body<T>& a = bodies[c.body_a];
@@ -8220,6 +8273,16 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.twist_radius.set(l, c.twist_radius);
     out.twist_impulse.set(l, c.twist_impulse);
   }
+}
+
+/// The same, its rows appended to `rows`.
+template <scalar_type T, int W>
+void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+                std::span<const std::uint32_t> members, contact_batch<T, W>& out,
+                std::vector<batch_row<T, W>>& rows) {
+  const std::uint32_t first_row = std::uint32_t(rows.size());
+  rows.resize(rows.size() + std::size_t(rows_needed(contacts, members)));
+  load_batch(bodies, contacts, members, out, std::span<batch_row<T, W>>(rows), first_row);
 }
 
 /// Writes a batch's accumulated impulses back to its contacts.
@@ -8468,7 +8531,7 @@ template <class Body>
 /// columns and a column at a time into lanes (writing single lanes of a
 /// vector register goes through memory once per lane).
 template <scalar_type T, int W>
-[[nodiscard]] batch_velocities<T, W> gather(std::span<const solver_body<T>> bodies, const contact_batch<T, W>& in,
+[[nodiscard, gnu::always_inline]] inline batch_velocities<T, W> gather(std::span<const solver_body<T>> bodies, const contact_batch<T, W>& in,
                                             velocity_kind kind) noexcept {
   batch_velocities<T, W> v;
 #if defined(__GNUC__)
@@ -8512,12 +8575,19 @@ template <scalar_type T, int W>
   return v;
 }
 
-/// Writes the lanes back. Lanes may share a static or kinematic body: each
-/// writes back the velocity it read, unchanged (its inverse mass and
-/// inertia are zero).
+/// Which lanes scatter writes back. A lane whose body does not move (a
+/// static or kinematic body, inverse mass and inertia zero) holds the
+/// velocity it read, bit for bit: v + 0·p is v, and a solver body that
+/// does not move never has a −0 component (solve.hpp). On one thread
+/// every lane writes back, which costs less than a test per lane; the
+/// batches of one color may share such a body, so across workers only
+/// the moving lanes write.
+enum class lanes_written { every, moving };
+
+/// Writes the lanes back.
 template <scalar_type T, int W>
-void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, const batch_velocities<T, W>& v,
-             velocity_kind kind) noexcept {
+[[gnu::always_inline]] inline void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, const batch_velocities<T, W>& v,
+             velocity_kind kind, lanes_written which = lanes_written::every) noexcept {
 #if defined(__GNUC__)
   if constexpr (W == 8) {
     using row = detail::lanes<T, 8>;
@@ -8526,11 +8596,16 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     row rb[8] = {v.vb.x.v, v.vb.y.v, v.vb.z.v, v.wb.x.v, v.wb.y.v, v.wb.z.v, v.after_b[0].v, v.after_b[1].v};
     transpose8(ra);
     transpose8(rb);
+    const auto write = [&](std::uint32_t body, const row& r) {
+      __builtin_memcpy(reinterpret_cast<char*>(&bodies[body]) + start, &r, sizeof(row));
+    };
+    if (which == lanes_written::every) {
+      for (int l = 0; l < in.size; ++l) write(in.body_a[l], ra[l]), write(in.body_b[l], rb[l]);
+      return;
+    }
     for (int l = 0; l < in.size; ++l) {
-      if (in.moving_a >> l & 1u)
-        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
-      if (in.moving_b >> l & 1u)
-        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
+      if (in.moving_a >> l & 1u) write(in.body_a[l], ra[l]);
+      if (in.moving_b >> l & 1u) write(in.body_b[l], rb[l]);
     }
     return;
   }
@@ -8542,7 +8617,8 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     solver_body<T>& a = bodies[in.body_a[l]];
     solver_body<T>& b = bodies[in.body_b[l]];
     vec3<T>* targets[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
-    const bool moving[2] = {(in.moving_a >> l & 1u) != 0, (in.moving_b >> l & 1u) != 0};
+    const bool every = which == lanes_written::every;
+    const bool moving[2] = {every || (in.moving_a >> l & 1u) != 0, every || (in.moving_b >> l & 1u) != 0};
     for (int k = 0; k < 4; ++k)
       if (moving[k / 2]) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
   }
@@ -8618,7 +8694,7 @@ void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& i
 
 /// Friction at the patch, as solve_friction in contact_rows.hpp.
 template <scalar_type T, int W>
-void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
+[[gnu::always_inline]] inline void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
                           std::span<const batch_row<T, W>> rows) noexcept {
   using lanes = batch<T, W>;
   lanes pressed = lanes::broadcast(T(0));
@@ -9441,6 +9517,323 @@ class joint_tree {
 
 }  // namespace impulse::detail
 // ---- end impulse/dynamics/detail/joint_tree.hpp ----
+// ---- begin impulse/dynamics/detail/solver_stages.hpp ----
+// impulse/dynamics/detail/solver_stages.hpp — the contact solvers' loops,
+// spread over the workers of a task hook (core/task_system.hpp).
+//
+// A solver runs its whole solve as one program of a stage_runner
+// (core/detail/stage_runner.hpp): one call of the hook a step, however
+// many loops. Its loops go over batches color by color (the batches of one
+// color share no moving body, constraint_graph.hpp), over all batches, or
+// over bodies; each item is written by one block only, so the bodies come
+// out the same, bit for bit, for any worker count.
+//
+// The loops hand f a range to loop over, not one item at a time: called
+// once per batch, the solver's lambdas stayed out of line and their
+// batch's velocities went through memory (pile 7 % slower).
+
+
+// ---- begin impulse/core/detail/stage_runner.hpp ----
+// impulse/core/detail/stage_runner.hpp — a sequence of parallel loops,
+// hundreds a step, through one call of the task hook.
+//
+// The contact solver sweeps each color once per iteration: a few hundred
+// loops a step, each a few microseconds long. Handed to the hook one at a
+// time, each would pay an enqueue, a wake-up and a wait, about as long as
+// the loop itself. So the solver enqueues helpers once, on the hook's
+// other workers, and runs its program on the calling thread, the leader.
+// A helper spins until the leader publishes a loop, claims blocks of it
+// with a compare-and-swap and runs them; the leader claims blocks too,
+// and goes on when every block of its loop is done (the stages of Box2D
+// v3's solver work the same way).
+//
+// No one waits for a thread that may not be running: a helper waits only
+// for the leader, and only a bounded time for it to start; the leader
+// waits only for blocks already claimed, which are running. So the
+// program completes whatever the scheduler does, also on one that runs
+// the helpers inside enqueue or finish on the leader's own thread: they
+// find nothing to do, and the leader does all the work.
+//
+// Which thread runs which block does not change what is computed: each
+// block of a loop writes only its own items, as with parallel_for
+// (core/task_system.hpp).
+
+#include <atomic>
+// sched_yield where there is one: <thread> would add 12 000 lines to what
+// every world program parses.
+#if __has_include(<sched.h>)
+#include <sched.h>
+#else
+#include <thread>
+#endif
+
+
+namespace impulse::detail {
+
+/// Gives this thread's core to another thread that is ready to run.
+inline void yield_core() noexcept {
+#if __has_include(<sched.h>)
+  sched_yield();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+class stage_runner {
+ public:
+  stage_runner() = default;
+  // Copies start idle: the state means something only during run().
+  stage_runner(const stage_runner&) noexcept {}
+  stage_runner& operator=(const stage_runner&) noexcept { return *this; }
+
+  /// Runs program() on this thread while the hook's other workers help
+  /// with its loops; without workers, its loops are plain calls.
+  template <class Program>
+  void run(const task_system& tasks, Program& program) {
+    if (!tasks.parallel()) {
+      program();
+      return;
+    }
+    claim_.store(0);
+    done_.store(0);
+    started_.store(false);
+    leader_ = thread_tag();
+    workers_ = tasks.workers;
+    task_function* helper = [](std::uint32_t, std::uint32_t, std::uint32_t, void* self) {
+      static_cast<stage_runner*>(self)->help();
+    };
+    void* const handle = tasks.enqueue(helper, tasks.workers - 1, 1, this, tasks.user_context);
+    started_.store(true);
+    shared_ = true;
+    program();
+    shared_ = false;
+    claim_.store(finished);
+    tasks.finish(handle, tasks.user_context);
+  }
+
+  /// Whether loop() may hand blocks to other threads: inside run(), with workers.
+  [[nodiscard]] bool shared() const noexcept { return shared_; }
+
+  /// f(begin, end) over [0, count): when shared(), in one block per worker
+  /// (of at least min_block items) that any thread may claim; else in one
+  /// call. Returns when every block has run. Only the leader calls it.
+  ///
+  /// One block per worker: in the solver's sweeps (10 µs a color in
+  /// `pile`), four per worker spent more on the claims, each a cache line
+  /// passed between the cores, than they saved in balance.
+  template <class F>
+  void loop(std::uint32_t count, std::uint32_t min_block, F& f) {
+    if (count == 0) return;
+    const std::uint64_t pieces = std::min(workers_, max_blocks);
+    const std::uint32_t block =
+        shared_ ? std::max({min_block, std::uint32_t((count + pieces - 1) / pieces), 1u}) : count;
+    const std::uint32_t blocks = std::uint32_t((std::uint64_t(count) + block - 1) / block);
+    if (blocks == 1) {
+      f(std::uint32_t(0), count);
+      return;
+    }
+    task_.store(&call<F>, std::memory_order_relaxed);
+    context_.store(&f, std::memory_order_relaxed);
+    count_.store(count, std::memory_order_relaxed);
+    block_.store(block, std::memory_order_relaxed);
+    done_.store(0, std::memory_order_relaxed);
+    // Published with block 0 claimed: the leader's, run before it looks
+    // for more. done_ counts the blocks the others run.
+    const std::uint64_t stage = (claim_.load(std::memory_order_relaxed) >> 32) + 1;
+    claim_.store(stage << 32 | std::uint64_t(blocks) << 16 | 1u, std::memory_order_release);
+    f(std::uint32_t(0), std::min(count, block));
+    const std::uint32_t mine = 1 + run_blocks(claim_.load(std::memory_order_acquire), false);
+    for (std::uint32_t spins = 0; done_.load(std::memory_order_acquire) != blocks - mine; ++spins) relax(spins);
+  }
+
+ private:
+  using block_function = void(std::uint32_t begin, std::uint32_t end, void* context);
+  template <class F>
+  static void call(std::uint32_t begin, std::uint32_t end, void* context) {
+    (*static_cast<F*>(context))(begin, end);
+  }
+
+  /// The claim word: the published loop's stage (a count of loops, the
+  /// high 32 bits), its blocks (16 bits) and its next block to claim (the
+  /// low 16).
+  static constexpr std::uint64_t finished = ~std::uint64_t(0);  ///< the program is over
+  static constexpr std::uint32_t max_blocks = 0xffffu;
+  static std::uint32_t blocks_of(std::uint64_t c) noexcept { return std::uint32_t(c >> 16) & 0xffffu; }
+  static std::uint32_t next_of(std::uint64_t c) noexcept { return std::uint32_t(c) & 0xffffu; }
+  static bool open(std::uint64_t c) noexcept { return c != finished && next_of(c) < blocks_of(c); }
+
+  /// Claims and runs blocks of the loop `c` names until none is left, and
+  /// returns how many; a helper (`counted`) adds each to done_. A
+  /// successful claim proves that loop is still the published one, and
+  /// its description with it: the leader publishes the next only once
+  /// every block of this one is done.
+  std::uint32_t run_blocks(std::uint64_t c, bool counted = true) {
+    std::uint32_t ran = 0;
+    while (open(c)) {
+      if (!claim_.compare_exchange_weak(c, c + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+      const std::uint32_t b = next_of(c), block = block_.load(std::memory_order_relaxed);
+      const std::uint32_t count = count_.load(std::memory_order_relaxed);
+      task_.load(std::memory_order_relaxed)(b * block, std::min(count, (b + 1) * block),
+                                            context_.load(std::memory_order_relaxed));
+      if (counted) done_.fetch_add(1, std::memory_order_release);
+      ++ran;
+      c = claim_.load(std::memory_order_acquire);
+    }
+    return ran;
+  }
+
+  /// A helper's life: whatever loop is published, claim from it, until
+  /// the leader says the program is over. On the leader's own thread (a
+  /// scheduler may run ranges inside enqueue or finish) it cannot help:
+  /// the program has not started there, or is over. On another thread it
+  /// waits a while for the leader to start, then gives up: a scheduler may
+  /// also hold the leader in enqueue until the helpers return.
+  void help() {
+    if (thread_tag() == leader_) return;
+    for (std::uint32_t spins = 0; !started_.load(std::memory_order_acquire); ++spins) {
+      if (spins == patience) return;
+      relax(spins);
+    }
+    std::uint32_t spins = 0;
+    for (std::uint64_t c = claim_.load(std::memory_order_acquire); c != finished;
+         c = claim_.load(std::memory_order_acquire)) {
+      if (open(c)) {
+        run_blocks(c);
+        spins = 0;
+      } else {
+        relax(spins++);
+      }
+    }
+  }
+
+  /// Turns of relax() a helper waits for the leader to start.
+  static constexpr std::uint32_t patience = 4096;
+
+  /// An address that differs from thread to thread.
+  static const void* thread_tag() noexcept {
+    static thread_local const char tag = 0;
+    return &tag;
+  }
+
+  /// One turn of a wait: a pause for the core's sibling, and past a few
+  /// hundred turns the core itself, for a thread the machine has not
+  /// given a core of its own (more workers than cores).
+  static void relax(std::uint32_t spins) noexcept {
+    if (spins > 256 && spins % 16 == 0) {
+      yield_core();
+      return;
+    }
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#endif
+  }
+
+  // The claim word and the loop it names share a cache line: a helper
+  // reads both in one miss.
+  alignas(64) std::atomic<std::uint64_t> claim_{0};  ///< the published loop's stage and next block
+  std::atomic<block_function*> task_{nullptr};
+  std::atomic<void*> context_{nullptr};
+  std::atomic<std::uint32_t> count_{0}, block_{0};
+  alignas(64) std::atomic<std::uint32_t> done_{0};  ///< the loop's blocks the helpers have run
+  alignas(64) std::atomic<bool> started_{false};  ///< the leader is past enqueue
+  const void* leader_ = nullptr;      ///< the leader's thread_tag()
+  std::uint32_t workers_ = 1;
+  bool shared_ = false;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/stage_runner.hpp ----
+
+namespace impulse::detail {
+
+/// Places each batch's rows one after another: first_rows[k] is batch
+/// k's first row (load_batch); returns how many rows there are. Worked out
+/// before the batches load side by side.
+template <scalar_type T>
+std::uint32_t place_batch_rows(const constraint_graph& graph, std::span<const contact_constraint<T>> contacts,
+                               std::vector<std::uint32_t>& first_rows) {
+  first_rows.resize(graph.batch_count());
+  std::uint32_t rows = 0;
+  for (std::size_t k = 0; k < first_rows.size(); ++k) {
+    first_rows[k] = rows;
+    rows += std::uint32_t(rows_needed(contacts, graph.batch(k)));
+  }
+  return rows;
+}
+
+class solver_stages {
+ public:
+  /// Batches, bodies and contacts a worker takes at a time, at the least:
+  /// a batch's sweep costs about as much as a few dozen bodies' moves.
+  static constexpr std::uint32_t min_batches = 8, min_bodies = 256, min_contacts = 128;
+
+  void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
+  [[nodiscard]] const task_system& tasks() const noexcept { return tasks_; }
+
+  /// Runs program() on this thread, its loops shared with the workers.
+  template <class Program>
+  void run(Program& program) {
+    runner_.run(tasks_, program);
+  }
+
+  /// f(written, range, backward) over the batches, color after color,
+  /// each color's batches split in ranges across the workers (a stage
+  /// each); `written` says which lanes scatter may write (contact_batch.hpp,
+  /// lanes_written), a constant. When `backward`, the colors go last to
+  /// first and f walks each range back. On one thread, f gets every batch
+  /// at once.
+  template <class Batch, class F>
+  void by_color(const constraint_graph& graph, std::span<Batch> batches, bool backward, F& f) {
+    using lanes = lanes_written;
+    if (!runner_.shared()) {
+      f(std::integral_constant<lanes, lanes::every>{}, batches, backward);
+      return;
+    }
+    const std::size_t colors = graph.color_count();
+    for (std::size_t i = 0; i < colors; ++i) {
+      const std::size_t q = backward ? colors - 1 - i : i;
+      const std::uint32_t first = graph.first_batch(q), count = graph.first_batch(q + 1) - first;
+      auto range = [&](std::uint32_t begin, std::uint32_t end) {
+        f(std::integral_constant<lanes, lanes::moving>{}, batches.subspan(first + begin, end - begin), backward);
+      };
+      runner_.loop(count, min_batches, range);
+    }
+  }
+
+  /// f(range) over the batches in ranges, in any order: f reads and
+  /// writes only its batches' own.
+  template <class Batch, class F>
+  void each_batch(std::span<Batch> batches, F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end) { f(batches.subspan(begin, end - begin)); };
+    runner_.loop(std::uint32_t(batches.size()), min_batches, range);
+  }
+
+  /// f(begin, end) over [0, count) in ranges of at least `least`, in any
+  /// order: f touches only its items' own.
+  template <class F>
+  void each_index(std::size_t count, std::uint32_t least, F& f) {
+    auto range = [&](std::uint32_t begin, std::uint32_t end) { f(std::size_t(begin), std::size_t(end)); };
+    runner_.loop(std::uint32_t(count), least, range);
+  }
+
+  /// prepare_contacts across the workers, as one hook call of its own.
+  template <scalar_type T>
+  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
+    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      prepare_contacts(bodies, contacts.subspan(begin, end - begin));
+    };
+    parallel_for(tasks_, std::uint32_t(contacts.size()), min_contacts, range);
+  }
+
+ private:
+  task_system tasks_{};
+  stage_runner runner_;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/dynamics/detail/solver_stages.hpp ----
 // ---- begin impulse/dynamics/detail/solver_parts.hpp ----
 // impulse/dynamics/detail/solver_parts.hpp — what both shipped solvers do at
 // each part (substep) of a step, as solvers that move the bodies themselves
@@ -9961,10 +10354,10 @@ class basic_sequential_impulse {
   /// across the hook's workers (core/task_system.hpp). The batches of one
   /// color share no moving body, so the bodies come out the same, bit for
   /// bit, whichever worker solves which; the rest stays on this thread.
-  void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
+  void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    detail::prepare_contacts(bodies, contacts);
+    stages_.prepare(bodies, contacts);
   }
 
   /// Steps 1–5 above, and the bodies moved: once, or in `substeps` equal
@@ -9982,22 +10375,43 @@ class basic_sequential_impulse {
   /// the contacts of each, from where the bodies are at each part; one
   /// pass of project_joints removes their drift between parts, and
   /// project_joints once the step is done.
+  ///
+  /// With a task hook the whole solve is one call of it: its loops are the
+  /// stages of a stage_runner (core/detail/stage_runner.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+    stages_.run(program);
+  }
+
+  /// Non-linear Gauss–Seidel on the joints, position_iterations passes
+  /// over the bodies' poses after they have moved (joint.hpp,
+  /// project_joint), each with a Newton step on the joint trees
+  /// (joint_tree.hpp).
+  void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
+                      const settings_type& settings) {
+    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
+  }
+
+ private:
+  void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int parts = settings.substeps;
     const T h = dt / T(parts), share = T(1) / T(parts);
     const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
                                           settings.max_correction_speed, T(1) / h};
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
-    auto start_bodies = [&](std::size_t i) {
-      solver_body<T>& b = bodies[i];
-      if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
-      synced_[i] = b.angular_velocity;
-      b.linear_velocity += b.force_linear * share;
-      b.angular_velocity += b.force_angular * share;
+    auto start_bodies = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        solver_body<T>& b = bodies[i];
+        if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
+        synced_[i] = b.angular_velocity;
+        b.linear_velocity += b.force_linear * share;
+        b.angular_velocity += b.force_angular * share;
+      }
     };
-    for_each_body(bodies.size(), start_bodies);
+    stages_.each_index(bodies.size(), min_bodies, start_bodies);
     // Restitution sees the velocities with one part's forces added: ½ +
     // 1/(2·parts) of the step's change, measured from its start
     // (contact_rows.hpp, restitution_pass).
@@ -10013,29 +10427,34 @@ class basic_sequential_impulse {
     if (parts > 1)
       for (const std::uint32_t i : graph_.leftover())
         leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+    // Each batch's rows placed first, then the batches loaded side by side.
     batches_.resize(graph_.batch_count());
-    rows_.clear();
-    for (std::size_t k = 0; k < batches_.size(); ++k)
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                         rows_);
+    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    auto load = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                           std::span<row_type>(rows_), first_rows_[k]);
+    };
+    stages_.each_index(batches_.size(), min_batches, load);
     if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
-        auto next_part = [&](std::size_t i) {
-          solver_body<T>& b = bodies[i];
-          b.linear_velocity += b.force_linear * share;
-          b.angular_velocity += b.force_angular * share;
-          b.bias_linear = {};
-          b.bias_angular = {};
+        auto next_part = [&](std::size_t begin, std::size_t end) {
+          for (solver_body<T>& b : bodies.subspan(begin, end - begin)) {
+            b.linear_velocity += b.force_linear * share;
+            b.angular_velocity += b.force_angular * share;
+            b.bias_linear = {};
+            b.bias_angular = {};
+          }
         };
-        for_each_body(bodies.size(), next_part);
-        auto retarget = [&](batch_type& b) {
-          detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+        stages_.each_index(bodies.size(), min_bodies, next_part);
+        auto retarget = [&](std::span<batch_type> range) {
+          for (batch_type& b : range) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
         };
-        for_each_batch(retarget);
+        stages_.each_batch(std::span<batch_type>(batches_), retarget);
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
           detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
@@ -10044,12 +10463,14 @@ class basic_sequential_impulse {
         for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
       const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
-      auto warm_start = [&](batch_type& b) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-        detail::warm_start_batch(v, b, rows_of(b));
-        detail::scatter(bodies, b, v, real);
+      auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
+        for (batch_type& b : range) {
+          detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+          detail::warm_start_batch(v, b, rows_of(b));
+          detail::scatter(bodies, b, v, real, written);
+        }
       };
-      for_each_batch_by_color(false, warm_start);
+      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
       for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
@@ -10060,16 +10481,19 @@ class basic_sequential_impulse {
         // The alternation runs on across parts: started forward in every
         // part, an odd number of sweeps a part (4 × 5, 8 × 3) let the
         // pyramid's top wander 15 to 22 cm.
-        auto sweep = [&](batch_type& b) {
-          detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-          // Friction first: it is bounded by the normal impulses, and the
-          // normal rows, solved last, are the ones that must hold (no
-          // sinking).
-          detail::solve_batch_friction(v, b, rows_of(b));
-          detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
-          detail::scatter(bodies, b, v, real);
+        auto sweep = [&](auto written, std::span<batch_type> range, bool backward) {
+          for (std::size_t k = 0; k < range.size(); ++k) {
+            batch_type& b = range[backward ? range.size() - 1 - k : k];
+            detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+            // Friction first: it is bounded by the normal impulses, and the
+            // normal rows, solved last, are the ones that must hold (no
+            // sinking).
+            detail::solve_batch_friction(v, b, rows_of(b));
+            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
+            detail::scatter(bodies, b, v, real, written);
+          }
         };
-        for_each_batch_by_color((sweeps + iteration) % 2 != 0, sweep);
+        stages_.by_color(graph_, std::span<batch_type>(batches_), (sweeps + iteration) % 2 != 0, sweep);
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
@@ -10082,13 +10506,15 @@ class basic_sequential_impulse {
       // Shared among the parts, one sweep each, it stalled a heap of 30
       // boxes pushed apart without gravity; four sweeps in each part cost
       // pile 14 % more and held no taller a tower.
-      auto push = [&](batch_type& b) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-        detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
-        detail::scatter(bodies, b, v, pseudo);
+      auto push = [&](auto written, std::span<batch_type> range, bool) {
+        for (batch_type& b : range) {
+          detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+          detail::scatter(bodies, b, v, pseudo, written);
+        }
       };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        for_each_batch_by_color(false, push);
+        stages_.by_color(graph_, std::span<batch_type>(batches_), false, push);
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
@@ -10097,33 +10523,29 @@ class basic_sequential_impulse {
                                                                 settings.manifold_sweeps);
       // The bodies moved with the solved velocities plus the position
       // pass's pseudo-velocities, each turned with its L held.
-      auto move = [&](std::size_t i) {
-        solver_body<T>& b = bodies[i];
-        if (!moved_.empty()) {
-          moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
-          moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+      auto move = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          solver_body<T>& b = bodies[i];
+          if (!moved_.empty()) {
+            moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
+            moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+          }
+          detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
         }
-        detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
       };
-      for_each_body(bodies.size(), move);
+      stages_.each_index(bodies.size(), min_bodies, move);
       if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
     }
-    auto store = [&](batch_type& b) { detail::store_batch(b, rows_of(b), contacts); };
-    for_each_batch(store);
-    auto sync = [&](std::size_t i) { detail::sync_momentum(bodies[i], synced_[i]); };
-    for_each_body(bodies.size(), sync);
+    auto store = [&](std::span<batch_type> range) {
+      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), store);
+    auto sync = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    };
+    stages_.each_index(bodies.size(), min_bodies, sync);
   }
 
-  /// Non-linear Gauss–Seidel on the joints, position_iterations passes
-  /// over the bodies' poses after they have moved (joint.hpp,
-  /// project_joint), each with a Newton step on the joint trees
-  /// (joint_tree.hpp).
-  void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
-  }
-
- private:
   static constexpr int width = detail::contact_lanes<T>;
   using batch_type = detail::contact_batch<T, width>;
   using row_type = detail::batch_row<T, width>;
@@ -10134,11 +10556,11 @@ class basic_sequential_impulse {
     quat<T> orientation;
   };
 
-  /// Batches and bodies a worker takes at a time: a batch's sweep costs
-  /// about as much as a few dozen bodies' moves.
-  static constexpr std::uint32_t min_batches = 8, min_bodies = 256;
+  static constexpr std::uint32_t min_batches = detail::solver_stages::min_batches;
+  static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
 
-  task_system tasks_{};
+  detail::solver_stages stages_;
+  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   detail::support_order support_;
@@ -10173,37 +10595,6 @@ class basic_sequential_impulse {
       // Turned, an anisotropic body keeps L and takes the ω of its new pose.
       if (b.inverse_mass > T(0) && !b.principal.isotropic()) detail::reorient_inertia(b, synced_[i]);
     }
-  }
-
-  /// f(b) for every batch b, color after color (the last first when
-  /// `backward`), each color's batches across the workers.
-  template <class F>
-  void for_each_batch_by_color(bool backward, F& f) {
-    const std::size_t colors = graph_.color_count();
-    for (std::size_t i = 0; i < colors; ++i) {
-      const std::size_t q = backward ? colors - 1 - i : i;
-      const std::uint32_t first = graph_.first_batch(q), count = graph_.first_batch(q + 1) - first;
-      auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-        for (std::uint32_t k = begin; k < end; ++k) f(batches_[first + k]);
-      };
-      detail::parallel_for(tasks_, count, min_batches, range);
-    }
-  }
-  /// f(b) for every batch b, in any order: f reads and writes only b's own.
-  template <class F>
-  void for_each_batch(F& f) {
-    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t k = begin; k < end; ++k) f(batches_[k]);
-    };
-    detail::parallel_for(tasks_, std::uint32_t(batches_.size()), min_batches, range);
-  }
-  /// f(i) for every body i, in any order: f touches only body i's own.
-  template <class F>
-  void for_each_body(std::size_t count, F& f) {
-    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t i = begin; i < end; ++i) f(std::size_t(i));
-    };
-    detail::parallel_for(tasks_, std::uint32_t(count), min_bodies, range);
   }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {
@@ -10324,8 +10715,13 @@ class basic_soft_step {
   /// fourth-order integrator policy; contact_solver.hpp).
   void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
+  /// Spreads the solve's loops across the hook's workers, as
+  /// sequential_impulse does (solver_stages.hpp): the bodies come out the
+  /// same, bit for bit, for any worker count.
+  void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    detail::prepare_contacts(bodies, contacts);
+    stages_.prepare(bodies, contacts);
   }
 
   /// The whole step: velocities solved and bodies moved.
@@ -10346,70 +10742,8 @@ class basic_soft_step {
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    const int n = settings.substeps;
-    const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
-    const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
-    moving_ = soften(hertz, settings.contact_damping_ratio, h);
-    fixed_ = soften(T(2) * hertz, settings.contact_damping_ratio, h);
-    const joint_pass<T> joint_solve{soften(std::min(settings.joint_hertz, T(0.25) * inverse_h),
-                                           settings.joint_damping_ratio, h),
-                                    h};
-    const joint_pass<T> joint_relax{softness<T>::rigid(), h};
-    synced_.resize(bodies.size());
-    moved_.assign(bodies.size(), {});
-    for (std::size_t i = 0; i < bodies.size(); ++i) synced_[i] = moved_[i].spin = bodies[i].angular_velocity;
-
-    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
-                             T(0.5) - T(0.5) * share, dt);
-    if (!settings.warm_starting)
-      for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
-    const std::span<const solver_body<T>> read = bodies;
-    tree_.build(read, joints, settings.exact_joint_trees);
-    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
-    leftover_slips_.clear();
-    for (const std::uint32_t i : graph_.leftover())
-      leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
-    batches_.resize(graph_.batch_count());
-    rows_.clear();
-    for (std::size_t k = 0; k < batches_.size(); ++k) {
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                         rows_);
-      detail::soften_batch(batches_[k], moving_, fixed_);
-    }
-    retarget(read, contacts, settings, inverse_h);
-    constexpr auto real = detail::velocity_kind::real;
-    for (int substep = 0; substep < n; ++substep) {
-      for (solver_body<T>& b : bodies) {
-        b.linear_velocity += b.force_linear * share;
-        b.angular_velocity += b.force_angular * share;
-      }
-      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
-      for (batch_type& b : batches_) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-        detail::warm_start_batch(v, b, rows_of(b));
-        detail::scatter(bodies, b, v, real);
-      }
-      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
-      for (int i = 0; i < settings.substep_iterations; ++i) {
-        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
-        if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
-        sweep<detail::normal_pass::soft>(bodies, contacts, settings);
-      }
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        solver_body<T>& b = bodies[i];
-        moved_[i].linear += b.linear_velocity * h;
-        moved_[i].angular += b.angular_velocity * h;
-        detail::move_body(b, synced_[i], h, fourth_order_);
-      }
-      retarget(read, contacts, settings, inverse_h);
-      for (int i = 0; i < settings.relax_iterations; ++i) {
-        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
-        if (exact) tree_.solve_velocities(bodies, joints);
-        sweep<detail::normal_pass::relax>(bodies, contacts, settings);
-      }
-    }
-    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
-    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+    stages_.run(program);
   }
 
   /// The joints' drift removed once the step is done, as
@@ -10428,6 +10762,98 @@ class basic_soft_step {
   using batch_type = detail::contact_batch<T, width>;
   using row_type = detail::batch_row<T, width>;
   using displacement = detail::body_displacement<T>;
+  static constexpr std::uint32_t min_batches = detail::solver_stages::min_batches;
+  static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
+
+  void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    const int n = settings.substeps;
+    const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
+    const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
+    moving_ = soften(hertz, settings.contact_damping_ratio, h);
+    fixed_ = soften(T(2) * hertz, settings.contact_damping_ratio, h);
+    const joint_pass<T> joint_solve{soften(std::min(settings.joint_hertz, T(0.25) * inverse_h),
+                                           settings.joint_damping_ratio, h),
+                                    h};
+    const joint_pass<T> joint_relax{softness<T>::rigid(), h};
+    synced_.resize(bodies.size());
+    moved_.assign(bodies.size(), {});
+    auto start_bodies = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) synced_[i] = moved_[i].spin = bodies[i].angular_velocity;
+    };
+    stages_.each_index(bodies.size(), min_bodies, start_bodies);
+
+    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
+                             T(0.5) - T(0.5) * share, dt);
+    if (!settings.warm_starting)
+      for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
+    const std::span<const solver_body<T>> read = bodies;
+    tree_.build(read, joints, settings.exact_joint_trees);
+    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    leftover_slips_.clear();
+    for (const std::uint32_t i : graph_.leftover())
+      leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+    // Each batch's rows placed first, then the batches loaded side by side.
+    batches_.resize(graph_.batch_count());
+    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    auto load = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                           std::span<row_type>(rows_), first_rows_[k]);
+        detail::soften_batch(batches_[k], moving_, fixed_);
+      }
+    };
+    stages_.each_index(batches_.size(), min_batches, load);
+    retarget(read, contacts, settings, inverse_h);
+    constexpr auto real = detail::velocity_kind::real;
+    auto forces = [&](std::size_t begin, std::size_t end) {
+      for (solver_body<T>& b : bodies.subspan(begin, end - begin)) {
+        b.linear_velocity += b.force_linear * share;
+        b.angular_velocity += b.force_angular * share;
+      }
+    };
+    auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
+      for (batch_type& b : range) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        detail::warm_start_batch(v, b, rows_of(b));
+        detail::scatter(bodies, b, v, real, written);
+      }
+    };
+    auto move = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        solver_body<T>& b = bodies[i];
+        moved_[i].linear += b.linear_velocity * h;
+        moved_[i].angular += b.angular_velocity * h;
+        detail::move_body(b, synced_[i], h, fourth_order_);
+      }
+    };
+    for (int substep = 0; substep < n; ++substep) {
+      stages_.each_index(bodies.size(), min_bodies, forces);
+      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
+      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
+      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
+      for (int i = 0; i < settings.substep_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
+        if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
+        sweep<detail::normal_pass::soft>(bodies, contacts, settings);
+      }
+      stages_.each_index(bodies.size(), min_bodies, move);
+      retarget(read, contacts, settings, inverse_h);
+      for (int i = 0; i < settings.relax_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
+        if (exact) tree_.solve_velocities(bodies, joints);
+        sweep<detail::normal_pass::relax>(bodies, contacts, settings);
+      }
+    }
+    auto store = [&](std::span<batch_type> range) {
+      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), store);
+    auto sync = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    };
+    stages_.each_index(bodies.size(), min_bodies, sync);
+  }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
@@ -10440,7 +10866,10 @@ class basic_soft_step {
                 const settings_type& settings, T inverse_h) {
     const std::span<const displacement> moved = moved_;
     const T slop = settings.linear_slop, fastest = settings.max_correction_speed;
-    for (batch_type& b : batches_) detail::soft_targets_batch(b, rows_of(b), moved, slop, fastest, inverse_h);
+    auto aim = [&](std::span<batch_type> range) {
+      for (batch_type& b : range) detail::soft_targets_batch(b, rows_of(b), moved, slop, fastest, inverse_h);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), aim);
     for (std::size_t k = 0; k < graph_.leftover().size(); ++k) {
       contact_constraint<T>& c = contacts[graph_.leftover()[k]];
       detail::turn_slip_targets(c, moved, leftover_slips_[k]);
@@ -10466,12 +10895,15 @@ class basic_soft_step {
              const settings_type& settings) {
     constexpr auto real = detail::velocity_kind::real;
     const std::span<const solver_body<T>> read = bodies;
-    for (batch_type& b : batches_) {
-      detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-      detail::solve_batch_normals<Pass>(v, b, rows_of(b), settings.manifold_sweeps);
-      detail::solve_batch_friction(v, b, rows_of(b));
-      detail::scatter(bodies, b, v, real);
-    }
+    auto pass = [&](auto written, std::span<batch_type> range, bool) {
+      for (batch_type& b : range) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        detail::solve_batch_normals<Pass>(v, b, rows_of(b), settings.manifold_sweeps);
+        detail::solve_batch_friction(v, b, rows_of(b));
+        detail::scatter(bodies, b, v, real, written);
+      }
+    };
+    stages_.by_color(graph_, std::span<batch_type>(batches_), false, pass);
     for (const std::uint32_t i : graph_.leftover()) {
       contact_constraint<T>& c = contacts[i];
       solver_body<T>& a = bodies[c.body_a];
@@ -10489,10 +10921,12 @@ class basic_soft_step {
     }
   }
 
+  detail::solver_stages stages_;
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   std::vector<batch_type> batches_;
   std::vector<row_type> rows_;
+  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
   std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start
   std::vector<displacement> moved_;  // each body's displacement since the start of the step
   std::vector<vec3<T>> synced_;      // each body's ω when its L was last brought in step (solver_parts.hpp)
@@ -17793,7 +18227,6 @@ struct point_forces {
 // writing the same value: each spring's force goes to its own slot, `width`
 // springs at a time; then each particle sums its own springs' forces.
 
-#include <atomic>
 
 
 namespace impulse::particles {
@@ -18300,6 +18733,22 @@ struct joint_broken_event {
   friend constexpr bool operator==(const joint_broken_event&, const joint_broken_event&) = default;
 };
 
+/// How long the last step took, stage by stage, in milliseconds of the
+/// monotonic clock (world::last_step_profile). Always measured: a few clock
+/// reads a step. The stages run in this order; with a task hook
+/// (world::set_task_system) the narrow phase and the solve run across the
+/// workers, the rest on the thread that called step().
+struct step_profile {
+  double broad = 0;       ///< the moving bodies' boxes into the broad phase, and its pairs
+  double narrow = 0;      ///< the contact records merged with the pairs, and the pair tests
+  double prepare = 0;     ///< the solver's bodies, contacts, joints and springs, and the contacts' masses
+  double solve = 0;       ///< the contact and joint solver
+  double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected
+  double continuous = 0;  ///< continuous collision of fast bodies
+  double sleep = 0;       ///< islands woken, then put to sleep
+  double total = 0;       ///< the whole step, these and what lies between them
+};
+
 /// How much of the world the last step worked on (world::last_step_counts):
 /// what a profile needs beside the times, and what shows that sleeping
 /// bodies cost nothing (docs/world.md, "Sleeping costs nothing").
@@ -18514,6 +18963,44 @@ struct world_settings : detail::world_settings_base<T> {
 // allocates nothing.
 
 
+// ---- begin impulse/core/detail/stopwatch.hpp ----
+// impulse/core/detail/stopwatch.hpp — the time between laps, for the
+// world's step profile (world_events.hpp, step_profile).
+//
+// The monotonic clock through <ctime>, where the system has one; else
+// timespec_get's calendar time. <chrono> would add 13 500 lines to what
+// every world program parses.
+
+#include <ctime>
+
+namespace impulse::detail {
+
+class stopwatch {
+ public:
+  stopwatch() noexcept { read(last_); }
+
+  /// Milliseconds since construction or the last lap.
+  double lap_ms() noexcept {
+    std::timespec now{};
+    read(now);
+    const double ms = double(now.tv_sec - last_.tv_sec) * 1e3 + double(now.tv_nsec - last_.tv_nsec) * 1e-6;
+    last_ = now;
+    return ms;
+  }
+
+ private:
+  static void read(std::timespec& t) noexcept {
+#if defined(CLOCK_MONOTONIC)
+    clock_gettime(CLOCK_MONOTONIC, &t);
+#else
+    std::timespec_get(&t, TIME_UTC);
+#endif
+  }
+  std::timespec last_{};
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/stopwatch.hpp ----
 // ---- begin impulse/world/detail/shape_store.hpp ----
 // impulse/world/detail/shape_store.hpp — the shapes of a world's bodies, one array
 // per shape type of the config's shape_list.
@@ -19385,8 +19872,10 @@ struct step_scratch {
   solver_type solver{};
   /// The workers a step may spread over (world::set_task_system).
   task_system tasks{};
+  step_profile profile;  ///< the last step's (world::last_step_profile)
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
+  std::vector<aabb<T>> proxy_boxes;        ///< each awake body's, when it moves (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;
@@ -19437,12 +19926,24 @@ struct step_scratch {
   /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).
   void hold(world_state<Config>& state, std::size_t i) {
+    hold_quietly(i);
     held[i] = 1;
+    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
+  }
+  /// Holds solver body i as hold() does, touching nothing but its own,
+  /// so that bodies are held side by side; report_holds lists them.
+  void hold_quietly(std::size_t i) {
+    held[i] = 2;
     solver_body<T>& s = solver_bodies[i];
     s.inverse_mass = T(0);
     s.inverse_inertia = mat3<T>{};
     s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
-    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
+  }
+  /// Adds the bodies held quietly since the last call to the world's
+  /// held list, in solver order.
+  void report_holds(world_state<Config>& state) {
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (held[i] == 2) held[i] = 1, state.held.push_back(state.bodies.ids()[solver_dense[i]]);
   }
   [[nodiscard]] bool is_held(std::uint32_t i) const noexcept { return held[i] != 0; }
 };
@@ -19461,6 +19962,8 @@ struct contact_update {
   using touch_event = typename pair_work::touch_event;
   /// Records a worker tests at a time: a pair test takes 0.1 to a few µs.
   static constexpr std::uint32_t min_pairs_per_range = 64;
+  /// Bodies whose boxes a worker works out at a time: about 100 ns each.
+  static constexpr std::uint32_t min_bodies_per_range = 512;
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -19471,17 +19974,35 @@ struct contact_update {
     step = h;
     state.counts = step_counts{};
     state.refresh_awake();
+    stopwatch lap;
     update_broad_phase(h);
+    scratch.profile.broad = lap.lap_ms();
     update_contacts();
+    scratch.profile.narrow = lap.lap_ms();
   }
 
  private:
+  /// The moving bodies' boxes, worked out across the workers (each its own
+  /// body's reach and box), then moved into the broad phase in order.
   void update_broad_phase(T h) {
-    for (const std::uint32_t i : state.awake_bodies) {
-      body_record<T>& r = state.bodies.values()[i];
-      if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r, state.set_reach(r, h)));
+    const std::span<const std::uint32_t> awake = state.awake_bodies;
+    std::vector<aabb<T>>& boxes = scratch.proxy_boxes;
+    boxes.resize(awake.size());
+    auto reach = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        body_record<T>& r = state.bodies.values()[awake[k]];
+        if (is_moving(r)) boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+      }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies_per_range, reach);
+    for (std::size_t k = 0; k < awake.size(); ++k) {
+      const body_record<T>& r = state.bodies.values()[awake[k]];
+      if (is_moving(r)) state.broad.move(r.proxy, boxes[k]);
     }
-    state.broad.update();
+    if constexpr (requires { state.broad.update(scratch.tasks); })
+      state.broad.update(scratch.tasks);
+    else
+      state.broad.update();
   }
 
 
@@ -20511,11 +21032,17 @@ struct body_solve {
   using integrator = typename Config::integrator;
   using support = typename step_scratch<Config>::support;
 
+  /// Constraints a worker builds or keeps at a time: a few hundred ns each.
+  static constexpr std::uint32_t min_constraints = 128;
+  /// Bodies a worker gathers or moves at a time.
+  static constexpr std::uint32_t min_bodies = 256;
+
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
   /// Solves and moves the bodies over dt (above).
   void run(T dt) {
+    stopwatch lap;
     std::vector<body_record<T>>& bodies = state.bodies.values();
     state.refresh_awake();
     settle_sleepers();
@@ -20527,54 +21054,45 @@ struct body_solve {
     scratch.solver_bodies.resize(count + (scratch.anchored ? 1 : 0));
     scratch.held.assign(scratch.solver_bodies.size(), 0);
     if (scratch.anchored) scratch.solver_bodies[count] = solver_body<T>{};
-    for (std::size_t i = 0; i < count; ++i) {
-      const body_record<T>& r = bodies[scratch.solver_dense[i]];
-      const rigid_body<T>& b = r.body;
-      solver_body<T>& s = scratch.solver_bodies[i];
-      s = solver_body<T>{};
-      s.position = b.position;
-      s.orientation = b.orientation;
-      if (is_solved(r)) {
-        s.inverse_mass = b.inverse_mass;
-        s.inverse_inertia = b.inverse_inertia_world();
-        s.angular_momentum = b.angular_momentum;
-        s.principal = b.principal;
-        s.linear_velocity = b.linear_momentum * b.inverse_mass;
-        s.angular_velocity = s.inverse_inertia * b.angular_momentum;
-        s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
-        s.force_angular = s.inverse_inertia * (b.torque * dt);
-        // A body its loads would take out of finite numbers, or past the
-        // speed limits, is held before anything couples it to another: a
-        // joint solved with it would carry the overflow into its partner.
-        if (!state.within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) scratch.hold(state, i);
-      } else if (b.type == body_type::kinematic) {
-        s.linear_velocity = b.kinematic_velocity;
-        s.angular_velocity = b.kinematic_angular_velocity;
-      }
-    }
+    auto gather = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::size_t i = begin; i < end; ++i) gather_body(bodies[scratch.solver_dense[i]], i, gravity_step, dt);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, gather);
+    scratch.report_holds(state);
     // How long the bodies move in a straight line at a time: the solver's
     // impulse step (a part's or substep's length).
     const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
-    scratch.constraints.clear();
-    scratch.sources.clear();
+    // The solved manifolds first, in the records' order; then their
+    // constraints, built across the workers: each writes only its own.
     // Reserved exactly: grown by doubling, the largest per-step array
     // would hold up to twice what it needs, and three times while it moves.
     std::size_t manifold_count = 0;
     for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
-    scratch.constraints.reserve(manifold_count);
+    scratch.sources.clear();
     scratch.sources.reserve(manifold_count);
     for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
-      const body_record<T>& ra = state.bodies[c.a];
-      const body_record<T>& rb = state.bodies[c.b];
-      if (!is_solved(ra) && !is_solved(rb)) continue;
+      if (!is_solved(state.bodies[c.a]) && !is_solved(state.bodies[c.b])) continue;
       const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
       if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
-      for (int m = 0; m < c.manifold_count; ++m) {
+      for (int m = 0; m < c.manifold_count; ++m) scratch.sources.push_back({k, std::uint32_t(m)});
+    }
+    // Not cleared: every constraint is written whole below, and a vector
+    // that keeps its size between steps is not zeroed twice.
+    scratch.constraints.reserve(scratch.sources.size());
+    scratch.constraints.resize(scratch.sources.size());
+    auto build = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t j = begin; j < end; ++j) {
+        const std::uint32_t k = scratch.sources[j].record;
+        const int m = int(scratch.sources[j].manifold);
+        const contact_record<T>& c = state.contacts[k];
+        const body_record<T>& ra = state.bodies[c.a];
+        const body_record<T>& rb = state.bodies[c.b];
+        const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
         const contact_manifold<T>& manifold = state.slot_of(c, m).manifold;
-        // Built in place: a manifold's rows are 520 bytes in float.
-        contact_constraint<T>& cc = scratch.constraints.emplace_back();
+        contact_constraint<T>& cc = scratch.constraints[j];
+        cc = contact_constraint<T>{};
         cc.body_a = ia, cc.body_b = ib;
         cc.normal = manifold.normal;
         cc.friction = c.friction;
@@ -20627,9 +21145,9 @@ struct body_solve {
           cp.depth = point.depth;
           cp.normal_impulse = carried.normal[std::size_t(p)];
         }
-        scratch.sources.push_back({k, std::uint32_t(m)});
       }
-    }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(scratch.sources.size()), min_constraints, build);
     if (state.settings.solver.warm_starting) {
       estimate_cold_loads(solver_type::impulse_step(state.settings.solver, dt));
     }
@@ -20656,68 +21174,111 @@ struct body_solve {
     if constexpr (requires { scratch.solver.set_task_system(scratch.tasks); })
       scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
+    scratch.profile.prepare = lap.lap_ms();
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    scratch.profile.solve = lap.lap_ms();
     keep_joint_impulses(dt);
-    for (std::size_t j = 0; j < scratch.constraints.size(); ++j) {
-      contact_record<T>& c = state.contacts[scratch.sources[j].record];
-      const contact_constraint<T>& cc = scratch.constraints[j];
-      manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
-      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
-      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
-      kept.twist = cc.twist_impulse;
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      body_record<T>& r = bodies[scratch.solver_dense[i]];
-      rigid_body<T>& b = r.body;
-      r.previous = b.pose();
-      if (scratch.is_held(std::uint32_t(i))) {
-        b.linear_momentum = {};
-        b.angular_momentum = {};
-      } else if (is_solved(r)) {
-        const solver_body<T>& s = scratch.solver_bodies[i];
-        body_pose<T> x{b.position, b.orientation};
-        // L changes by the torque's impulse and by what the contacts did to
-        // ω; written as that change rather than as I_w·ω, it stays constant
-        // to the bit when nothing acts on the body.
-        const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
-        body_momentum<T> momentum{s.linear_velocity * b.mass,
-                                  b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
-        if constexpr (!solver_type::moves_bodies) {
-          // Free motion under the solved momenta: a straight line, and the
-          // torque-free turn with L held (free_rotation.hpp), to fourth
-          // order under a fourth-order policy; the position pass's
-          // pseudo-velocities with them.
-          x.position += (s.linear_velocity + s.bias_linear) * dt;
-          x.orientation = free_turn(x.orientation, b.principal, momentum.angular, dt, integrator::order >= 4, s.bias_angular);
-        } else {
-          // The solver turned the body substep by substep, with its L.
-          x = {s.position, s.orientation};
-          momentum.angular = s.angular_momentum;
-        }
-        // What the solve gave it can still overflow (or pass the limits):
-        // the body is then held after all, where it started the step.
-        const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
-                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
-                            state.within_speed_limits(s.linear_velocity, s.angular_velocity) && state.within_bounds(x.position);
-        if (finite) {
-          b.linear_momentum = momentum.linear;
-          b.angular_momentum = momentum.angular;
-          b.position = x.position;
-          b.orientation = normalize(x.orientation);
-        } else {
-          b.linear_momentum = {};
-          b.angular_momentum = {};
-          scratch.hold(state, i);
-        }
-      } else if (b.type == body_type::kinematic) {
-        if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
+    auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t j = begin; j < end; ++j) {
+        contact_record<T>& c = state.contacts[scratch.sources[j].record];
+        const contact_constraint<T>& cc = scratch.constraints[j];
+        manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
+        for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+        kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+        kept.twist = cc.twist_impulse;
       }
-      b.clear_loads();
-    }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
+    auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::size_t i = begin; i < end; ++i) finish_body(bodies[scratch.solver_dense[i]], i, dt);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
+    scratch.profile.integrate = lap.lap_ms();
   }
 
  private:
+  /// Solver body i from the body record r (held, quietly, if its loads
+  /// would take it out of finite numbers or past the speed limits).
+  void gather_body(const body_record<T>& r, std::size_t i, const vec3<T>& gravity_step, T dt) {
+    const rigid_body<T>& b = r.body;
+    solver_body<T>& s = scratch.solver_bodies[i];
+    s = solver_body<T>{};
+    s.position = b.position;
+    s.orientation = b.orientation;
+    if (is_solved(r)) {
+      s.inverse_mass = b.inverse_mass;
+      s.inverse_inertia = b.inverse_inertia_world();
+      s.angular_momentum = b.angular_momentum;
+      s.principal = b.principal;
+      s.linear_velocity = b.linear_momentum * b.inverse_mass;
+      s.angular_velocity = s.inverse_inertia * b.angular_momentum;
+      s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
+      s.force_angular = s.inverse_inertia * (b.torque * dt);
+      // A body its loads would take out of finite numbers, or past the
+      // speed limits, is held before anything couples it to another: a
+      // joint solved with it would carry the overflow into its partner.
+      if (!state.within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) scratch.hold_quietly(i);
+    } else if (b.type == body_type::kinematic) {
+      // + 0 turns a −0 into +0: the contact solver's lanes write a body
+      // that does not move back as v + 0·p, which must be v to the bit
+      // (contact_batch.hpp, lanes_written).
+      s.linear_velocity = b.kinematic_velocity + vec3<T>{};
+      s.angular_velocity = b.kinematic_angular_velocity + vec3<T>{};
+    }
+  }
+
+  /// Moves the body of record r, solver body i, by what the solve gave it
+  /// (held, quietly, if that overflows), and clears its loads.
+  void finish_body(body_record<T>& r, std::size_t i, T dt) {
+    rigid_body<T>& b = r.body;
+    r.previous = b.pose();
+    if (scratch.is_held(std::uint32_t(i))) {
+      b.linear_momentum = {};
+      b.angular_momentum = {};
+    } else if (is_solved(r)) {
+      const solver_body<T>& s = scratch.solver_bodies[i];
+      body_pose<T> x{b.position, b.orientation};
+      // L changes by the torque's impulse and by what the contacts did to
+      // ω; written as that change rather than as I_w·ω, it stays constant
+      // to the bit when nothing acts on the body.
+      const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
+      body_momentum<T> momentum{s.linear_velocity * b.mass,
+                                b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
+      if constexpr (!solver_type::moves_bodies) {
+        // Free motion under the solved momenta: a straight line, and the
+        // torque-free turn with L held (free_rotation.hpp), to fourth
+        // order under a fourth-order policy; the position pass's
+        // pseudo-velocities with them.
+        x.position += (s.linear_velocity + s.bias_linear) * dt;
+        x.orientation = free_turn(x.orientation, b.principal, momentum.angular, dt, integrator::order >= 4, s.bias_angular);
+      } else {
+        // The solver turned the body substep by substep, with its L.
+        x = {s.position, s.orientation};
+        momentum.angular = s.angular_momentum;
+      }
+      // What the solve gave it can still overflow (or pass the limits):
+      // the body is then held after all, where it started the step.
+      const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
+                          is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
+                          state.within_speed_limits(s.linear_velocity, s.angular_velocity) && state.within_bounds(x.position);
+      if (finite) {
+        b.linear_momentum = momentum.linear;
+        b.angular_momentum = momentum.angular;
+        b.position = x.position;
+        b.orientation = normalize(x.orientation);
+      } else {
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+        scratch.hold_quietly(i);
+      }
+    } else if (b.type == body_type::kinematic) {
+      if (!state.move_kinematic(r, dt)) scratch.hold_quietly(i);
+    }
+    b.clear_loads();
+  }
+
   /// The springs with a solved body, after the joints: each a distance row
   /// of its stiffness and damping (joint.hpp, soften_absolute), from its
   /// point on A to its point on B or, anchored, to the anchor on the
@@ -21220,6 +21781,8 @@ class world {
   [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
   /// How much of the world the last step worked on (step_counts).
   [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
+  /// How long the last step took in each stage (step_profile).
+  [[nodiscard]] const step_profile& last_step_profile() const noexcept { return scratch_.profile; }
 
   // ---- events and contacts ----
 
@@ -21392,18 +21955,28 @@ world<Config>::~world() = default;
 
 template <class Config>
 void world<Config>::step(T dt) {
+  detail::stopwatch whole, lap;
+  step_profile& p = scratch_.profile;
+  p = step_profile{};
   begin_step(dt);
   if constexpr (collision) {
-    detail::contact_update<Config>{state_, scratch_}.run(dt);
+    detail::contact_update<Config>{state_, scratch_}.run(dt);  // broad and narrow
+    lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
-    detail::body_solve<Config>{state_, scratch_}.run(dt);
+    p.sleep = lap.lap_ms();
+    detail::body_solve<Config>{state_, scratch_}.run(dt);  // prepare, solve and integrate
+    lap.lap_ms();
     if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
+    p.continuous = lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+    p.sleep += lap.lap_ms();
   } else {
     detail::no_force_field none;
     detail::force_motion<Config>{state_, scratch_}.run(dt, none);
+    p.integrate = lap.lap_ms();
   }
   finish_step(dt);
+  p.total = whole.lap_ms();
 }
 
 template <class Config>

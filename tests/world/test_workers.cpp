@@ -2,7 +2,8 @@
 // one thread, whatever the worker count and however the scheduler cuts and
 // orders the ranges. The scenes reach every stage that runs across workers:
 // the pair tests (boxes, spheres, walls), manifold counts that change and
-// contacts that begin and end, the solver's colors, and joints beside them.
+// contacts that begin and end, the solver's colors, and joints beside
+// them, under either contact solver.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -23,6 +24,10 @@ namespace {
 using namespace impulse;
 using impulse::test::awake_config;
 using world_type = world<awake_config>;
+struct soft_config : awake_config {
+  using solver = impulse::solver::soft_step;
+};
+using soft_world = world<soft_config>;
 
 /// What a run leaves: every body's transform (transform_hash), and the
 /// contact events of every step, their pairs in the order given (FNV-1a).
@@ -40,8 +45,9 @@ struct outcome {
 
 /// Builds a scene with `build`, steps it `steps` times across `tasks` (none:
 /// on this thread) and reports what it left.
-outcome run(const std::function<void(world_type&)>& build, int steps, const task_system* tasks) {
-  world_type w;
+template <class World>
+outcome run(const std::function<void(World&)>& build, int steps, const task_system* tasks) {
+  World w;
   if (tasks != nullptr) w.set_task_system(*tasks);
   build(w);
   outcome out;
@@ -59,7 +65,8 @@ outcome run(const std::function<void(world_type&)>& build, int steps, const task
 /// The scene at 1 worker, then at 2, 3 and 8 (8 more than this machine's
 /// cores) on impulse::thread_pool, and on a scheduler that runs the ranges
 /// back to front: all the same.
-void check_any_worker_count(const std::function<void(world_type&)>& build, int steps) {
+template <class World = world_type>
+void check_any_worker_count(const std::function<void(World&)>& build, int steps) {
   const outcome one = run(build, steps, nullptr);
   CHECK(one.begun > 0);
   for (const std::uint32_t workers : {2u, 3u, 8u}) {
@@ -75,7 +82,8 @@ void check_any_worker_count(const std::function<void(world_type&)>& build, int s
 /// `spheres` (docs/standard_scenes.md), its first `layers` of 25 layers:
 /// 400 balls of radius 0.25 a layer on a jittered grid, dropped into a box
 /// of four walls.
-void add_spheres(world_type& w, int layers) {
+template <class World>
+void add_spheres(World& w, int layers) {
   impulse::test::add_ground(w);
   const auto wall = [&](vec3<float> half, vec3<float> at) {
     body_def<float> d;
@@ -102,7 +110,8 @@ void add_spheres(world_type& w, int layers) {
 }
 
 /// `large_pyramid`: a 100-box base, 5 050 boxes of 100 kg.
-void add_large_pyramid(world_type& w) {
+template <class World>
+void add_large_pyramid(World& w) {
   impulse::test::add_ground(w, 0.6f, {}, 400.0f);
   for (int k = 0; k < 100; ++k) {
     const int n = 100 - k;
@@ -112,7 +121,8 @@ void add_large_pyramid(world_type& w) {
 
 /// Eight chains of ten boxes on ball joints, hung from static posts and
 /// let go from horizontal, swinging into a row of boxes on the ground.
-void add_chains(world_type& w) {
+template <class World>
+void add_chains(World& w) {
   impulse::test::add_ground(w);
   for (int c = 0; c < 8; ++c) {
     const float z = 1.5f * float(c);
@@ -134,7 +144,7 @@ void add_chains(world_type& w) {
 }  // namespace
 
 TEST_CASE("the pile is bit-identical for 1, 2, 3 and 8 workers, over 600 steps") {
-  check_any_worker_count([](world_type& w) {
+  check_any_worker_count<world_type>([](world_type& w) {
     impulse::test::add_ground(w);
     impulse::test::add_pile(w);
   }, impulse::test::long_run(600));
@@ -146,15 +156,23 @@ TEST_CASE("the pile is bit-identical for 1, 2, 3 and 8 workers, over 600 steps")
 // have landed and piled up (the lowest lands at step 24), and the
 // pyramid's first steps, in which all of its contacts begin.
 TEST_CASE("the sphere heap's first 2 000 balls are bit-identical for 1, 2, 3 and 8 workers, over 60 steps") {
-  check_any_worker_count([](world_type& w) { add_spheres(w, 5); }, 60);
+  check_any_worker_count<world_type>([](world_type& w) { add_spheres(w, 5); }, 60);
 }
 
 TEST_CASE("large_pyramid is bit-identical for 1, 2, 3 and 8 workers, over its first 10 steps") {
-  check_any_worker_count(add_large_pyramid, impulse::test::long_run(10));
+  check_any_worker_count<world_type>(add_large_pyramid<world_type>, impulse::test::long_run(10));
 }
 
 TEST_CASE("chains on joints swinging into boxes are bit-identical for 1, 2, 3 and 8 workers, over 300 steps") {
-  check_any_worker_count(add_chains, impulse::test::long_run(300));
+  check_any_worker_count<world_type>(add_chains<world_type>, impulse::test::long_run(300));
+}
+
+TEST_CASE("soft_step's pile and chains are bit-identical for 1, 2, 3 and 8 workers, over 300 steps") {
+  check_any_worker_count<soft_world>([](soft_world& w) {
+    impulse::test::add_ground(w);
+    impulse::test::add_pile(w);
+  }, impulse::test::long_run(300));
+  check_any_worker_count<soft_world>(add_chains<soft_world>, impulse::test::long_run(300));
 }
 
 TEST_CASE("a snapshot restored into a world with workers steps on as it would have on one thread") {

@@ -383,4 +383,26 @@ TEST_CASE("a kinematic body moves at its velocity and is not pushed by what it h
   CHECK(w.body(ball).linear_velocity().x == doctest::Approx(1.0f).epsilon(1e-3));
 }
 
+TEST_CASE("a step's profile times each stage once: none negative, together within the whole step") {
+  awake_world w;
+  impulse::test::add_ground(w);
+  impulse::test::add_pyramid(w, 10);
+  CHECK(w.last_step_profile().total == 0);  // no step yet
+  for (int step = 0; step < 30; ++step) {
+    w.step(1.0f / 60);
+    const step_profile& p = w.last_step_profile();
+    const double stages[] = {p.broad, p.narrow, p.prepare, p.solve, p.integrate, p.continuous, p.sleep};
+    double sum = 0;
+    for (const double ms : stages) {
+      CHECK(ms >= 0);
+      sum += ms;
+    }
+    // The stages are disjoint parts of the step, read off the same clock:
+    // their sum is at most the whole, up to the rounding of the sums.
+    CHECK(sum <= p.total + 1e-9);
+    CHECK(p.total > 0);
+    CHECK(p.solve > 0);  // the pyramid stands on its contacts
+  }
+}
+
 }  // namespace world_world_tests

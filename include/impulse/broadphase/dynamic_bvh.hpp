@@ -38,6 +38,7 @@
 
 #include "../core/error.hpp"
 #include "../core/policy.hpp"
+#include "../core/task_system.hpp"
 #include "../math/aabb.hpp"
 #include "../math/vec3.hpp"
 #include "detail/dynamic_tree.hpp"
@@ -92,7 +93,12 @@ class basic_dynamic_bvh {
     fat_box_changed(id.index);  // its candidates go at the next update
   }
 
-  void update() {
+  void update() { update(task_system{}); }
+
+  /// The same, the carried candidates checked across the hook's workers
+  /// (core/task_system.hpp): the same pairs and candidates, in the same
+  /// order, for any worker count.
+  void update(const task_system& tasks) {
     if (!store_.take_changed()) {  // nothing came, moved or went
       reinserted_ = 0;
       return pairs_.keep();
@@ -110,8 +116,7 @@ class basic_dynamic_bvh {
 
     next_candidates_.clear();
     found_.clear();
-    for (const candidate& c : candidates_)
-      if (slots_[c.a].changed != epoch_ && slots_[c.b].changed != epoch_) keep_candidate(c.a, c.b);
+    keep_candidates(tasks);
     if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
     candidates_.swap(next_candidates_);
     pairs_.publish(found_);
@@ -262,6 +267,41 @@ class basic_dynamic_bvh {
     if (overlaps(x.exact, y.exact)) found_.push_back(pair_of(proxy_id{a, x.generation}, proxy_id{b, y.generation}));
   }
 
+  /// The last update's candidates whose fat boxes have not changed, kept
+  /// (keep_candidate). Across workers, in two passes: each candidate's
+  /// verdict side by side, where the time goes (two slots read at random),
+  /// then the kept ones in order.
+  void keep_candidates(const task_system& tasks) {
+    const std::uint32_t count = std::uint32_t(candidates_.size());
+    if (!tasks.parallel() || count < 2 * min_candidates) {
+      for (const candidate& c : candidates_)
+        if (slots_[c.a].changed != epoch_ && slots_[c.b].changed != epoch_) keep_candidate(c.a, c.b);
+      return;
+    }
+    verdicts_.resize(count);
+    overlapping_.resize(count);
+    auto judge = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const slot_data& x = slots_[candidates_[i].a];
+        const slot_data& y = slots_[candidates_[i].b];
+        verdicts_[i] = x.changed == epoch_ || y.changed == epoch_ ? drop : overlaps(x.exact, y.exact) ? touching : kept;
+        if (verdicts_[i] == touching)
+          overlapping_[i] = pair_of(proxy_id{candidates_[i].a, x.generation}, proxy_id{candidates_[i].b, y.generation});
+      }
+    };
+    impulse::detail::parallel_for(tasks, count, min_candidates, judge);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (verdicts_[i] == drop) continue;
+      next_candidates_.push_back(candidates_[i]);
+      if (verdicts_[i] == touching) found_.push_back(overlapping_[i]);
+    }
+  }
+  /// A carried candidate's verdict: dropped (a fat box changed), kept, or
+  /// kept and its exact boxes touching.
+  enum verdict : std::uint8_t { drop, kept, touching };
+  /// Candidates a worker judges at a time: a few ns each.
+  static constexpr std::uint32_t min_candidates = 4096;
+
   /// Every pair of leaves whose fat boxes overlap and at least one of
   /// which is stamped: each stamped subtree against itself (its halves each
   /// against themselves and against each other), opening a pair of
@@ -316,6 +356,8 @@ class basic_dynamic_bvh {
   std::vector<std::uint32_t> changed_;                   ///< slots whose fat box changed since the last update, each once
   std::vector<std::int32_t> selves_;                     ///< scratch for the self traversal
   std::vector<node_pair> cross_;                         ///< scratch for the self traversal
+  std::vector<verdict> verdicts_;                        ///< scratch for keep_candidates, by candidate
+  std::vector<proxy_pair> overlapping_;                  ///< scratch for keep_candidates, by candidate
   std::uint32_t epoch_ = 1;
   std::size_t reinserted_ = 0, reinserted_since_update_ = 0;
 };

@@ -73,6 +73,7 @@
 #include "detail/contact_rows.hpp"
 #include "joint.hpp"
 #include "detail/joint_tree.hpp"
+#include "detail/solver_stages.hpp"
 #include "detail/solver_parts.hpp"
 #include "detail/support_sweep.hpp"
 #include "solver_settings.hpp"
@@ -98,10 +99,10 @@ class basic_sequential_impulse {
   /// across the hook's workers (core/task_system.hpp). The batches of one
   /// color share no moving body, so the bodies come out the same, bit for
   /// bit, whichever worker solves which; the rest stays on this thread.
-  void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
+  void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    detail::prepare_contacts(bodies, contacts);
+    stages_.prepare(bodies, contacts);
   }
 
   /// Steps 1–5 above, and the bodies moved: once, or in `substeps` equal
@@ -119,22 +120,43 @@ class basic_sequential_impulse {
   /// the contacts of each, from where the bodies are at each part; one
   /// pass of project_joints removes their drift between parts, and
   /// project_joints once the step is done.
+  ///
+  /// With a task hook the whole solve is one call of it: its loops are the
+  /// stages of a stage_runner (core/detail/stage_runner.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+    stages_.run(program);
+  }
+
+  /// Non-linear Gauss–Seidel on the joints, position_iterations passes
+  /// over the bodies' poses after they have moved (joint.hpp,
+  /// project_joint), each with a Newton step on the joint trees
+  /// (joint_tree.hpp).
+  void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
+                      const settings_type& settings) {
+    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
+  }
+
+ private:
+  void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int parts = settings.substeps;
     const T h = dt / T(parts), share = T(1) / T(parts);
     const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
                                           settings.max_correction_speed, T(1) / h};
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
-    auto start_bodies = [&](std::size_t i) {
-      solver_body<T>& b = bodies[i];
-      if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
-      synced_[i] = b.angular_velocity;
-      b.linear_velocity += b.force_linear * share;
-      b.angular_velocity += b.force_angular * share;
+    auto start_bodies = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        solver_body<T>& b = bodies[i];
+        if (!moved_.empty()) moved_[i].spin = b.angular_velocity;
+        synced_[i] = b.angular_velocity;
+        b.linear_velocity += b.force_linear * share;
+        b.angular_velocity += b.force_angular * share;
+      }
     };
-    for_each_body(bodies.size(), start_bodies);
+    stages_.each_index(bodies.size(), min_bodies, start_bodies);
     // Restitution sees the velocities with one part's forces added: ½ +
     // 1/(2·parts) of the step's change, measured from its start
     // (contact_rows.hpp, restitution_pass).
@@ -150,29 +172,34 @@ class basic_sequential_impulse {
     if (parts > 1)
       for (const std::uint32_t i : graph_.leftover())
         leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+    // Each batch's rows placed first, then the batches loaded side by side.
     batches_.resize(graph_.batch_count());
-    rows_.clear();
-    for (std::size_t k = 0; k < batches_.size(); ++k)
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                         rows_);
+    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    auto load = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                           std::span<row_type>(rows_), first_rows_[k]);
+    };
+    stages_.each_index(batches_.size(), min_batches, load);
     if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
-        auto next_part = [&](std::size_t i) {
-          solver_body<T>& b = bodies[i];
-          b.linear_velocity += b.force_linear * share;
-          b.angular_velocity += b.force_angular * share;
-          b.bias_linear = {};
-          b.bias_angular = {};
+        auto next_part = [&](std::size_t begin, std::size_t end) {
+          for (solver_body<T>& b : bodies.subspan(begin, end - begin)) {
+            b.linear_velocity += b.force_linear * share;
+            b.angular_velocity += b.force_angular * share;
+            b.bias_linear = {};
+            b.bias_angular = {};
+          }
         };
-        for_each_body(bodies.size(), next_part);
-        auto retarget = [&](batch_type& b) {
-          detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+        stages_.each_index(bodies.size(), min_bodies, next_part);
+        auto retarget = [&](std::span<batch_type> range) {
+          for (batch_type& b : range) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
         };
-        for_each_batch(retarget);
+        stages_.each_batch(std::span<batch_type>(batches_), retarget);
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
           detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
@@ -181,12 +208,14 @@ class basic_sequential_impulse {
         for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
       const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
-      auto warm_start = [&](batch_type& b) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-        detail::warm_start_batch(v, b, rows_of(b));
-        detail::scatter(bodies, b, v, real);
+      auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
+        for (batch_type& b : range) {
+          detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+          detail::warm_start_batch(v, b, rows_of(b));
+          detail::scatter(bodies, b, v, real, written);
+        }
       };
-      for_each_batch_by_color(false, warm_start);
+      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
       for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
@@ -197,16 +226,19 @@ class basic_sequential_impulse {
         // The alternation runs on across parts: started forward in every
         // part, an odd number of sweeps a part (4 × 5, 8 × 3) let the
         // pyramid's top wander 15 to 22 cm.
-        auto sweep = [&](batch_type& b) {
-          detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-          // Friction first: it is bounded by the normal impulses, and the
-          // normal rows, solved last, are the ones that must hold (no
-          // sinking).
-          detail::solve_batch_friction(v, b, rows_of(b));
-          detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
-          detail::scatter(bodies, b, v, real);
+        auto sweep = [&](auto written, std::span<batch_type> range, bool backward) {
+          for (std::size_t k = 0; k < range.size(); ++k) {
+            batch_type& b = range[backward ? range.size() - 1 - k : k];
+            detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+            // Friction first: it is bounded by the normal impulses, and the
+            // normal rows, solved last, are the ones that must hold (no
+            // sinking).
+            detail::solve_batch_friction(v, b, rows_of(b));
+            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
+            detail::scatter(bodies, b, v, real, written);
+          }
         };
-        for_each_batch_by_color((sweeps + iteration) % 2 != 0, sweep);
+        stages_.by_color(graph_, std::span<batch_type>(batches_), (sweeps + iteration) % 2 != 0, sweep);
         for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
@@ -219,13 +251,15 @@ class basic_sequential_impulse {
       // Shared among the parts, one sweep each, it stalled a heap of 30
       // boxes pushed apart without gravity; four sweeps in each part cost
       // pile 14 % more and held no taller a tower.
-      auto push = [&](batch_type& b) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-        detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
-        detail::scatter(bodies, b, v, pseudo);
+      auto push = [&](auto written, std::span<batch_type> range, bool) {
+        for (batch_type& b : range) {
+          detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
+          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+          detail::scatter(bodies, b, v, pseudo, written);
+        }
       };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        for_each_batch_by_color(false, push);
+        stages_.by_color(graph_, std::span<batch_type>(batches_), false, push);
         for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
@@ -234,33 +268,29 @@ class basic_sequential_impulse {
                                                                 settings.manifold_sweeps);
       // The bodies moved with the solved velocities plus the position
       // pass's pseudo-velocities, each turned with its L held.
-      auto move = [&](std::size_t i) {
-        solver_body<T>& b = bodies[i];
-        if (!moved_.empty()) {
-          moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
-          moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+      auto move = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          solver_body<T>& b = bodies[i];
+          if (!moved_.empty()) {
+            moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
+            moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+          }
+          detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
         }
-        detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
       };
-      for_each_body(bodies.size(), move);
+      stages_.each_index(bodies.size(), min_bodies, move);
       if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
     }
-    auto store = [&](batch_type& b) { detail::store_batch(b, rows_of(b), contacts); };
-    for_each_batch(store);
-    auto sync = [&](std::size_t i) { detail::sync_momentum(bodies[i], synced_[i]); };
-    for_each_body(bodies.size(), sync);
+    auto store = [&](std::span<batch_type> range) {
+      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), store);
+    auto sync = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    };
+    stages_.each_index(bodies.size(), min_bodies, sync);
   }
 
-  /// Non-linear Gauss–Seidel on the joints, position_iterations passes
-  /// over the bodies' poses after they have moved (joint.hpp,
-  /// project_joint), each with a Newton step on the joint trees
-  /// (joint_tree.hpp).
-  void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
-  }
-
- private:
   static constexpr int width = detail::contact_lanes<T>;
   using batch_type = detail::contact_batch<T, width>;
   using row_type = detail::batch_row<T, width>;
@@ -271,11 +301,11 @@ class basic_sequential_impulse {
     quat<T> orientation;
   };
 
-  /// Batches and bodies a worker takes at a time: a batch's sweep costs
-  /// about as much as a few dozen bodies' moves.
-  static constexpr std::uint32_t min_batches = 8, min_bodies = 256;
+  static constexpr std::uint32_t min_batches = detail::solver_stages::min_batches;
+  static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
 
-  task_system tasks_{};
+  detail::solver_stages stages_;
+  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   detail::support_order support_;
@@ -310,37 +340,6 @@ class basic_sequential_impulse {
       // Turned, an anisotropic body keeps L and takes the ω of its new pose.
       if (b.inverse_mass > T(0) && !b.principal.isotropic()) detail::reorient_inertia(b, synced_[i]);
     }
-  }
-
-  /// f(b) for every batch b, color after color (the last first when
-  /// `backward`), each color's batches across the workers.
-  template <class F>
-  void for_each_batch_by_color(bool backward, F& f) {
-    const std::size_t colors = graph_.color_count();
-    for (std::size_t i = 0; i < colors; ++i) {
-      const std::size_t q = backward ? colors - 1 - i : i;
-      const std::uint32_t first = graph_.first_batch(q), count = graph_.first_batch(q + 1) - first;
-      auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-        for (std::uint32_t k = begin; k < end; ++k) f(batches_[first + k]);
-      };
-      detail::parallel_for(tasks_, count, min_batches, range);
-    }
-  }
-  /// f(b) for every batch b, in any order: f reads and writes only b's own.
-  template <class F>
-  void for_each_batch(F& f) {
-    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t k = begin; k < end; ++k) f(batches_[k]);
-    };
-    detail::parallel_for(tasks_, std::uint32_t(batches_.size()), min_batches, range);
-  }
-  /// f(i) for every body i, in any order: f touches only body i's own.
-  template <class F>
-  void for_each_body(std::size_t count, F& f) {
-    auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t i = begin; i < end; ++i) f(std::size_t(i));
-    };
-    detail::parallel_for(tasks_, std::uint32_t(count), min_bodies, range);
   }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "../core/policy.hpp"
+#include "../core/task_system.hpp"
 #include "contact_constraint.hpp"
 #include "detail/constraint_graph.hpp"
 #include "detail/contact_batch.hpp"
@@ -44,6 +45,7 @@
 #include "joint.hpp"
 #include "detail/joint_tree.hpp"
 #include "detail/solver_parts.hpp"
+#include "detail/solver_stages.hpp"
 #include "softness.hpp"
 #include "solver_settings.hpp"
 
@@ -63,8 +65,13 @@ class basic_soft_step {
   /// fourth-order integrator policy; contact_solver.hpp).
   void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
+  /// Spreads the solve's loops across the hook's workers, as
+  /// sequential_impulse does (solver_stages.hpp): the bodies come out the
+  /// same, bit for bit, for any worker count.
+  void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    detail::prepare_contacts(bodies, contacts);
+    stages_.prepare(bodies, contacts);
   }
 
   /// The whole step: velocities solved and bodies moved.
@@ -85,70 +92,8 @@ class basic_soft_step {
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    const int n = settings.substeps;
-    const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
-    const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
-    moving_ = soften(hertz, settings.contact_damping_ratio, h);
-    fixed_ = soften(T(2) * hertz, settings.contact_damping_ratio, h);
-    const joint_pass<T> joint_solve{soften(std::min(settings.joint_hertz, T(0.25) * inverse_h),
-                                           settings.joint_damping_ratio, h),
-                                    h};
-    const joint_pass<T> joint_relax{softness<T>::rigid(), h};
-    synced_.resize(bodies.size());
-    moved_.assign(bodies.size(), {});
-    for (std::size_t i = 0; i < bodies.size(); ++i) synced_[i] = moved_[i].spin = bodies[i].angular_velocity;
-
-    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
-                             T(0.5) - T(0.5) * share, dt);
-    if (!settings.warm_starting)
-      for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
-    const std::span<const solver_body<T>> read = bodies;
-    tree_.build(read, joints, settings.exact_joint_trees);
-    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
-    leftover_slips_.clear();
-    for (const std::uint32_t i : graph_.leftover())
-      leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
-    batches_.resize(graph_.batch_count());
-    rows_.clear();
-    for (std::size_t k = 0; k < batches_.size(); ++k) {
-      detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                         rows_);
-      detail::soften_batch(batches_[k], moving_, fixed_);
-    }
-    retarget(read, contacts, settings, inverse_h);
-    constexpr auto real = detail::velocity_kind::real;
-    for (int substep = 0; substep < n; ++substep) {
-      for (solver_body<T>& b : bodies) {
-        b.linear_velocity += b.force_linear * share;
-        b.angular_velocity += b.force_angular * share;
-      }
-      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
-      for (batch_type& b : batches_) {
-        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-        detail::warm_start_batch(v, b, rows_of(b));
-        detail::scatter(bodies, b, v, real);
-      }
-      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
-      for (int i = 0; i < settings.substep_iterations; ++i) {
-        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
-        if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
-        sweep<detail::normal_pass::soft>(bodies, contacts, settings);
-      }
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        solver_body<T>& b = bodies[i];
-        moved_[i].linear += b.linear_velocity * h;
-        moved_[i].angular += b.angular_velocity * h;
-        detail::move_body(b, synced_[i], h, fourth_order_);
-      }
-      retarget(read, contacts, settings, inverse_h);
-      for (int i = 0; i < settings.relax_iterations; ++i) {
-        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
-        if (exact) tree_.solve_velocities(bodies, joints);
-        sweep<detail::normal_pass::relax>(bodies, contacts, settings);
-      }
-    }
-    for (const batch_type& b : batches_) detail::store_batch(b, rows_of(b), contacts);
-    for (std::size_t i = 0; i < bodies.size(); ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+    stages_.run(program);
   }
 
   /// The joints' drift removed once the step is done, as
@@ -167,6 +112,98 @@ class basic_soft_step {
   using batch_type = detail::contact_batch<T, width>;
   using row_type = detail::batch_row<T, width>;
   using displacement = detail::body_displacement<T>;
+  static constexpr std::uint32_t min_batches = detail::solver_stages::min_batches;
+  static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
+
+  void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    const int n = settings.substeps;
+    const T h = dt / T(n), inverse_h = T(1) / h, share = T(1) / T(n);
+    const T hertz = std::min(settings.contact_hertz, T(0.25) * inverse_h);
+    moving_ = soften(hertz, settings.contact_damping_ratio, h);
+    fixed_ = soften(T(2) * hertz, settings.contact_damping_ratio, h);
+    const joint_pass<T> joint_solve{soften(std::min(settings.joint_hertz, T(0.25) * inverse_h),
+                                           settings.joint_damping_ratio, h),
+                                    h};
+    const joint_pass<T> joint_relax{softness<T>::rigid(), h};
+    synced_.resize(bodies.size());
+    moved_.assign(bodies.size(), {});
+    auto start_bodies = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) synced_[i] = moved_[i].spin = bodies[i].angular_velocity;
+    };
+    stages_.each_index(bodies.size(), min_bodies, start_bodies);
+
+    detail::restitution_pass(bodies, contacts, settings.restitution_threshold, settings.velocity_iterations,
+                             T(0.5) - T(0.5) * share, dt);
+    if (!settings.warm_starting)
+      for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
+    const std::span<const solver_body<T>> read = bodies;
+    tree_.build(read, joints, settings.exact_joint_trees);
+    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    leftover_slips_.clear();
+    for (const std::uint32_t i : graph_.leftover())
+      leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+    // Each batch's rows placed first, then the batches loaded side by side.
+    batches_.resize(graph_.batch_count());
+    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    auto load = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
+                           std::span<row_type>(rows_), first_rows_[k]);
+        detail::soften_batch(batches_[k], moving_, fixed_);
+      }
+    };
+    stages_.each_index(batches_.size(), min_batches, load);
+    retarget(read, contacts, settings, inverse_h);
+    constexpr auto real = detail::velocity_kind::real;
+    auto forces = [&](std::size_t begin, std::size_t end) {
+      for (solver_body<T>& b : bodies.subspan(begin, end - begin)) {
+        b.linear_velocity += b.force_linear * share;
+        b.angular_velocity += b.force_angular * share;
+      }
+    };
+    auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
+      for (batch_type& b : range) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        detail::warm_start_batch(v, b, rows_of(b));
+        detail::scatter(bodies, b, v, real, written);
+      }
+    };
+    auto move = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        solver_body<T>& b = bodies[i];
+        moved_[i].linear += b.linear_velocity * h;
+        moved_[i].angular += b.angular_velocity * h;
+        detail::move_body(b, synced_[i], h, fourth_order_);
+      }
+    };
+    for (int substep = 0; substep < n; ++substep) {
+      stages_.each_index(bodies.size(), min_bodies, forces);
+      const bool exact = detail::start_joints(tree_, bodies, joints, h, substep == 0 && !settings.warm_starting);
+      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
+      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
+      for (int i = 0; i < settings.substep_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_solve);
+        if (exact) tree_.solve_velocities(bodies, joints, joint_solve.hold.bias_rate);
+        sweep<detail::normal_pass::soft>(bodies, contacts, settings);
+      }
+      stages_.each_index(bodies.size(), min_bodies, move);
+      retarget(read, contacts, settings, inverse_h);
+      for (int i = 0; i < settings.relax_iterations; ++i) {
+        for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, joint_relax);
+        if (exact) tree_.solve_velocities(bodies, joints);
+        sweep<detail::normal_pass::relax>(bodies, contacts, settings);
+      }
+    }
+    auto store = [&](std::span<batch_type> range) {
+      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), store);
+    auto sync = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) detail::sync_momentum(bodies[i], synced_[i]);
+    };
+    stages_.each_index(bodies.size(), min_bodies, sync);
+  }
 
   std::span<row_type> rows_of(const batch_type& b) noexcept {
     return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
@@ -179,7 +216,10 @@ class basic_soft_step {
                 const settings_type& settings, T inverse_h) {
     const std::span<const displacement> moved = moved_;
     const T slop = settings.linear_slop, fastest = settings.max_correction_speed;
-    for (batch_type& b : batches_) detail::soft_targets_batch(b, rows_of(b), moved, slop, fastest, inverse_h);
+    auto aim = [&](std::span<batch_type> range) {
+      for (batch_type& b : range) detail::soft_targets_batch(b, rows_of(b), moved, slop, fastest, inverse_h);
+    };
+    stages_.each_batch(std::span<batch_type>(batches_), aim);
     for (std::size_t k = 0; k < graph_.leftover().size(); ++k) {
       contact_constraint<T>& c = contacts[graph_.leftover()[k]];
       detail::turn_slip_targets(c, moved, leftover_slips_[k]);
@@ -205,12 +245,15 @@ class basic_soft_step {
              const settings_type& settings) {
     constexpr auto real = detail::velocity_kind::real;
     const std::span<const solver_body<T>> read = bodies;
-    for (batch_type& b : batches_) {
-      detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-      detail::solve_batch_normals<Pass>(v, b, rows_of(b), settings.manifold_sweeps);
-      detail::solve_batch_friction(v, b, rows_of(b));
-      detail::scatter(bodies, b, v, real);
-    }
+    auto pass = [&](auto written, std::span<batch_type> range, bool) {
+      for (batch_type& b : range) {
+        detail::batch_velocities<T, width> v = detail::gather(read, b, real);
+        detail::solve_batch_normals<Pass>(v, b, rows_of(b), settings.manifold_sweeps);
+        detail::solve_batch_friction(v, b, rows_of(b));
+        detail::scatter(bodies, b, v, real, written);
+      }
+    };
+    stages_.by_color(graph_, std::span<batch_type>(batches_), false, pass);
     for (const std::uint32_t i : graph_.leftover()) {
       contact_constraint<T>& c = contacts[i];
       solver_body<T>& a = bodies[c.body_a];
@@ -228,10 +271,12 @@ class basic_soft_step {
     }
   }
 
+  detail::solver_stages stages_;
   detail::constraint_graph graph_;
   detail::joint_tree<T> tree_;
   std::vector<batch_type> batches_;
   std::vector<row_type> rows_;
+  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
   std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start
   std::vector<displacement> moved_;  // each body's displacement since the start of the step
   std::vector<vec3<T>> synced_;      // each body's ω when its L was last brought in step (solver_parts.hpp)

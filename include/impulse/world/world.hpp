@@ -357,6 +357,8 @@ class world {
   [[nodiscard]] std::uint64_t step_count() const noexcept { return state_.step_count; }
   /// How much of the world the last step worked on (step_counts).
   [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
+  /// How long the last step took in each stage (step_profile).
+  [[nodiscard]] const step_profile& last_step_profile() const noexcept { return scratch_.profile; }
 
   // ---- events and contacts ----
 
@@ -529,18 +531,28 @@ world<Config>::~world() = default;
 
 template <class Config>
 void world<Config>::step(T dt) {
+  detail::stopwatch whole, lap;
+  step_profile& p = scratch_.profile;
+  p = step_profile{};
   begin_step(dt);
   if constexpr (collision) {
-    detail::contact_update<Config>{state_, scratch_}.run(dt);
+    detail::contact_update<Config>{state_, scratch_}.run(dt);  // broad and narrow
+    lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
-    detail::body_solve<Config>{state_, scratch_}.run(dt);
+    p.sleep = lap.lap_ms();
+    detail::body_solve<Config>{state_, scratch_}.run(dt);  // prepare, solve and integrate
+    lap.lap_ms();
     if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
+    p.continuous = lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
+    p.sleep += lap.lap_ms();
   } else {
     detail::no_force_field none;
     detail::force_motion<Config>{state_, scratch_}.run(dt, none);
+    p.integrate = lap.lap_ms();
   }
   finish_step(dt);
+  p.total = whole.lap_ms();
 }
 
 template <class Config>

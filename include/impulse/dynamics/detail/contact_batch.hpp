@@ -105,18 +105,30 @@ struct batch_velocities {
 template <scalar_type T, int W>
 using batch_row = typename contact_batch<T, W>::row;
 
+/// The rows a batch of the contacts `members` takes: one per point of its
+/// widest contact.
+template <scalar_type T>
+[[nodiscard]] int rows_needed(std::span<const contact_constraint<T>> contacts,
+                              std::span<const std::uint32_t> members) noexcept {
+  int rows = 0;
+  for (const std::uint32_t m : members) rows = std::max(rows, contacts[m].count);
+  return rows;
+}
+
 /// Fills `out` with the contacts `members` (prepared by prepare_contacts,
-/// with their row targets), and appends its rows to `rows`.
+/// with their row targets), its rows being rows[first_row, first_row +
+/// rows_needed): those it zeroes and fills, and touches nothing else, so
+/// that batches load side by side.
 template <scalar_type T, int W>
 void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
                 std::span<const std::uint32_t> members, contact_batch<T, W>& out,
-                std::vector<batch_row<T, W>>& rows) {
+                std::span<batch_row<T, W>> rows, std::uint32_t first_row) {
   out = contact_batch<T, W>{};
   out.size = int(members.size());
-  for (const std::uint32_t m : members) out.rows_used = std::max(out.rows_used, contacts[m].count);
-  out.first_row = std::uint32_t(rows.size());
-  rows.resize(rows.size() + std::size_t(out.rows_used));
-  const std::span<batch_row<T, W>> own = std::span<batch_row<T, W>>(rows).subspan(out.first_row);
+  out.rows_used = rows_needed(contacts, members);
+  out.first_row = first_row;
+  const std::span<batch_row<T, W>> own = rows.subspan(first_row, std::size_t(out.rows_used));
+  for (batch_row<T, W>& r : own) r = batch_row<T, W>{};
   for (int l = 0; l < out.size; ++l) {
     const contact_constraint<T>& c = contacts[members[std::size_t(l)]];
     const solver_body<T>& a = bodies[c.body_a];
@@ -178,6 +190,16 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.twist_radius.set(l, c.twist_radius);
     out.twist_impulse.set(l, c.twist_impulse);
   }
+}
+
+/// The same, its rows appended to `rows`.
+template <scalar_type T, int W>
+void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+                std::span<const std::uint32_t> members, contact_batch<T, W>& out,
+                std::vector<batch_row<T, W>>& rows) {
+  const std::uint32_t first_row = std::uint32_t(rows.size());
+  rows.resize(rows.size() + std::size_t(rows_needed(contacts, members)));
+  load_batch(bodies, contacts, members, out, std::span<batch_row<T, W>>(rows), first_row);
 }
 
 /// Writes a batch's accumulated impulses back to its contacts.
@@ -426,7 +448,7 @@ template <class Body>
 /// columns and a column at a time into lanes (writing single lanes of a
 /// vector register goes through memory once per lane).
 template <scalar_type T, int W>
-[[nodiscard]] batch_velocities<T, W> gather(std::span<const solver_body<T>> bodies, const contact_batch<T, W>& in,
+[[nodiscard, gnu::always_inline]] inline batch_velocities<T, W> gather(std::span<const solver_body<T>> bodies, const contact_batch<T, W>& in,
                                             velocity_kind kind) noexcept {
   batch_velocities<T, W> v;
 #if defined(__GNUC__)
@@ -470,12 +492,19 @@ template <scalar_type T, int W>
   return v;
 }
 
-/// Writes the lanes back. Lanes may share a static or kinematic body: each
-/// writes back the velocity it read, unchanged (its inverse mass and
-/// inertia are zero).
+/// Which lanes scatter writes back. A lane whose body does not move (a
+/// static or kinematic body, inverse mass and inertia zero) holds the
+/// velocity it read, bit for bit: v + 0·p is v, and a solver body that
+/// does not move never has a −0 component (solve.hpp). On one thread
+/// every lane writes back, which costs less than a test per lane; the
+/// batches of one color may share such a body, so across workers only
+/// the moving lanes write.
+enum class lanes_written { every, moving };
+
+/// Writes the lanes back.
 template <scalar_type T, int W>
-void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, const batch_velocities<T, W>& v,
-             velocity_kind kind) noexcept {
+[[gnu::always_inline]] inline void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, const batch_velocities<T, W>& v,
+             velocity_kind kind, lanes_written which = lanes_written::every) noexcept {
 #if defined(__GNUC__)
   if constexpr (W == 8) {
     using row = detail::lanes<T, 8>;
@@ -484,11 +513,16 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     row rb[8] = {v.vb.x.v, v.vb.y.v, v.vb.z.v, v.wb.x.v, v.wb.y.v, v.wb.z.v, v.after_b[0].v, v.after_b[1].v};
     transpose8(ra);
     transpose8(rb);
+    const auto write = [&](std::uint32_t body, const row& r) {
+      __builtin_memcpy(reinterpret_cast<char*>(&bodies[body]) + start, &r, sizeof(row));
+    };
+    if (which == lanes_written::every) {
+      for (int l = 0; l < in.size; ++l) write(in.body_a[l], ra[l]), write(in.body_b[l], rb[l]);
+      return;
+    }
     for (int l = 0; l < in.size; ++l) {
-      if (in.moving_a >> l & 1u)
-        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_a[l]]) + start, &ra[l], sizeof(row));
-      if (in.moving_b >> l & 1u)
-        __builtin_memcpy(reinterpret_cast<char*>(&bodies[in.body_b[l]]) + start, &rb[l], sizeof(row));
+      if (in.moving_a >> l & 1u) write(in.body_a[l], ra[l]);
+      if (in.moving_b >> l & 1u) write(in.body_b[l], rb[l]);
     }
     return;
   }
@@ -500,7 +534,8 @@ void scatter(std::span<solver_body<T>> bodies, const contact_batch<T, W>& in, co
     solver_body<T>& a = bodies[in.body_a[l]];
     solver_body<T>& b = bodies[in.body_b[l]];
     vec3<T>* targets[4] = {&linear_of(a, kind), &angular_of(a, kind), &linear_of(b, kind), &angular_of(b, kind)};
-    const bool moving[2] = {(in.moving_a >> l & 1u) != 0, (in.moving_b >> l & 1u) != 0};
+    const bool every = which == lanes_written::every;
+    const bool moving[2] = {every || (in.moving_a >> l & 1u) != 0, every || (in.moving_b >> l & 1u) != 0};
     for (int k = 0; k < 4; ++k)
       if (moving[k / 2]) *targets[k] = {columns[3 * k][l], columns[3 * k + 1][l], columns[3 * k + 2][l]};
   }
@@ -576,7 +611,7 @@ void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& i
 
 /// Friction at the patch, as solve_friction in contact_rows.hpp.
 template <scalar_type T, int W>
-void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
+[[gnu::always_inline]] inline void solve_batch_friction(batch_velocities<T, W>& v, contact_batch<T, W>& in,
                           std::span<const batch_row<T, W>> rows) noexcept {
   using lanes = batch<T, W>;
   lanes pressed = lanes::broadcast(T(0));

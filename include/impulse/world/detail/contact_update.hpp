@@ -41,6 +41,8 @@ struct contact_update {
   using touch_event = typename pair_work::touch_event;
   /// Records a worker tests at a time: a pair test takes 0.1 to a few µs.
   static constexpr std::uint32_t min_pairs_per_range = 64;
+  /// Bodies whose boxes a worker works out at a time: about 100 ns each.
+  static constexpr std::uint32_t min_bodies_per_range = 512;
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -51,17 +53,35 @@ struct contact_update {
     step = h;
     state.counts = step_counts{};
     state.refresh_awake();
+    stopwatch lap;
     update_broad_phase(h);
+    scratch.profile.broad = lap.lap_ms();
     update_contacts();
+    scratch.profile.narrow = lap.lap_ms();
   }
 
  private:
+  /// The moving bodies' boxes, worked out across the workers (each its own
+  /// body's reach and box), then moved into the broad phase in order.
   void update_broad_phase(T h) {
-    for (const std::uint32_t i : state.awake_bodies) {
-      body_record<T>& r = state.bodies.values()[i];
-      if (is_moving(r)) state.broad.move(r.proxy, state.proxy_box(r, state.set_reach(r, h)));
+    const std::span<const std::uint32_t> awake = state.awake_bodies;
+    std::vector<aabb<T>>& boxes = scratch.proxy_boxes;
+    boxes.resize(awake.size());
+    auto reach = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        body_record<T>& r = state.bodies.values()[awake[k]];
+        if (is_moving(r)) boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+      }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies_per_range, reach);
+    for (std::size_t k = 0; k < awake.size(); ++k) {
+      const body_record<T>& r = state.bodies.values()[awake[k]];
+      if (is_moving(r)) state.broad.move(r.proxy, boxes[k]);
     }
-    state.broad.update();
+    if constexpr (requires { state.broad.update(scratch.tasks); })
+      state.broad.update(scratch.tasks);
+    else
+      state.broad.update();
   }
 
 

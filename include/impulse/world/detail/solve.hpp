@@ -48,11 +48,17 @@ struct body_solve {
   using integrator = typename Config::integrator;
   using support = typename step_scratch<Config>::support;
 
+  /// Constraints a worker builds or keeps at a time: a few hundred ns each.
+  static constexpr std::uint32_t min_constraints = 128;
+  /// Bodies a worker gathers or moves at a time.
+  static constexpr std::uint32_t min_bodies = 256;
+
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
   /// Solves and moves the bodies over dt (above).
   void run(T dt) {
+    stopwatch lap;
     std::vector<body_record<T>>& bodies = state.bodies.values();
     state.refresh_awake();
     settle_sleepers();
@@ -64,54 +70,45 @@ struct body_solve {
     scratch.solver_bodies.resize(count + (scratch.anchored ? 1 : 0));
     scratch.held.assign(scratch.solver_bodies.size(), 0);
     if (scratch.anchored) scratch.solver_bodies[count] = solver_body<T>{};
-    for (std::size_t i = 0; i < count; ++i) {
-      const body_record<T>& r = bodies[scratch.solver_dense[i]];
-      const rigid_body<T>& b = r.body;
-      solver_body<T>& s = scratch.solver_bodies[i];
-      s = solver_body<T>{};
-      s.position = b.position;
-      s.orientation = b.orientation;
-      if (is_solved(r)) {
-        s.inverse_mass = b.inverse_mass;
-        s.inverse_inertia = b.inverse_inertia_world();
-        s.angular_momentum = b.angular_momentum;
-        s.principal = b.principal;
-        s.linear_velocity = b.linear_momentum * b.inverse_mass;
-        s.angular_velocity = s.inverse_inertia * b.angular_momentum;
-        s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
-        s.force_angular = s.inverse_inertia * (b.torque * dt);
-        // A body its loads would take out of finite numbers, or past the
-        // speed limits, is held before anything couples it to another: a
-        // joint solved with it would carry the overflow into its partner.
-        if (!state.within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) scratch.hold(state, i);
-      } else if (b.type == body_type::kinematic) {
-        s.linear_velocity = b.kinematic_velocity;
-        s.angular_velocity = b.kinematic_angular_velocity;
-      }
-    }
+    auto gather = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::size_t i = begin; i < end; ++i) gather_body(bodies[scratch.solver_dense[i]], i, gravity_step, dt);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, gather);
+    scratch.report_holds(state);
     // How long the bodies move in a straight line at a time: the solver's
     // impulse step (a part's or substep's length).
     const T move_dt = solver_type::impulse_step(state.settings.solver, dt);
-    scratch.constraints.clear();
-    scratch.sources.clear();
+    // The solved manifolds first, in the records' order; then their
+    // constraints, built across the workers: each writes only its own.
     // Reserved exactly: grown by doubling, the largest per-step array
     // would hold up to twice what it needs, and three times while it moves.
     std::size_t manifold_count = 0;
     for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
-    scratch.constraints.reserve(manifold_count);
+    scratch.sources.clear();
     scratch.sources.reserve(manifold_count);
     for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
-      const body_record<T>& ra = state.bodies[c.a];
-      const body_record<T>& rb = state.bodies[c.b];
-      if (!is_solved(ra) && !is_solved(rb)) continue;
+      if (!is_solved(state.bodies[c.a]) && !is_solved(state.bodies[c.b])) continue;
       const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
       if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
-      for (int m = 0; m < c.manifold_count; ++m) {
+      for (int m = 0; m < c.manifold_count; ++m) scratch.sources.push_back({k, std::uint32_t(m)});
+    }
+    // Not cleared: every constraint is written whole below, and a vector
+    // that keeps its size between steps is not zeroed twice.
+    scratch.constraints.reserve(scratch.sources.size());
+    scratch.constraints.resize(scratch.sources.size());
+    auto build = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t j = begin; j < end; ++j) {
+        const std::uint32_t k = scratch.sources[j].record;
+        const int m = int(scratch.sources[j].manifold);
+        const contact_record<T>& c = state.contacts[k];
+        const body_record<T>& ra = state.bodies[c.a];
+        const body_record<T>& rb = state.bodies[c.b];
+        const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
         const contact_manifold<T>& manifold = state.slot_of(c, m).manifold;
-        // Built in place: a manifold's rows are 520 bytes in float.
-        contact_constraint<T>& cc = scratch.constraints.emplace_back();
+        contact_constraint<T>& cc = scratch.constraints[j];
+        cc = contact_constraint<T>{};
         cc.body_a = ia, cc.body_b = ib;
         cc.normal = manifold.normal;
         cc.friction = c.friction;
@@ -164,9 +161,9 @@ struct body_solve {
           cp.depth = point.depth;
           cp.normal_impulse = carried.normal[std::size_t(p)];
         }
-        scratch.sources.push_back({k, std::uint32_t(m)});
       }
-    }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(scratch.sources.size()), min_constraints, build);
     if (state.settings.solver.warm_starting) {
       estimate_cold_loads(solver_type::impulse_step(state.settings.solver, dt));
     }
@@ -193,68 +190,111 @@ struct body_solve {
     if constexpr (requires { scratch.solver.set_task_system(scratch.tasks); })
       scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
+    scratch.profile.prepare = lap.lap_ms();
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    scratch.profile.solve = lap.lap_ms();
     keep_joint_impulses(dt);
-    for (std::size_t j = 0; j < scratch.constraints.size(); ++j) {
-      contact_record<T>& c = state.contacts[scratch.sources[j].record];
-      const contact_constraint<T>& cc = scratch.constraints[j];
-      manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
-      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
-      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
-      kept.twist = cc.twist_impulse;
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      body_record<T>& r = bodies[scratch.solver_dense[i]];
-      rigid_body<T>& b = r.body;
-      r.previous = b.pose();
-      if (scratch.is_held(std::uint32_t(i))) {
-        b.linear_momentum = {};
-        b.angular_momentum = {};
-      } else if (is_solved(r)) {
-        const solver_body<T>& s = scratch.solver_bodies[i];
-        body_pose<T> x{b.position, b.orientation};
-        // L changes by the torque's impulse and by what the contacts did to
-        // ω; written as that change rather than as I_w·ω, it stays constant
-        // to the bit when nothing acts on the body.
-        const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
-        body_momentum<T> momentum{s.linear_velocity * b.mass,
-                                  b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
-        if constexpr (!solver_type::moves_bodies) {
-          // Free motion under the solved momenta: a straight line, and the
-          // torque-free turn with L held (free_rotation.hpp), to fourth
-          // order under a fourth-order policy; the position pass's
-          // pseudo-velocities with them.
-          x.position += (s.linear_velocity + s.bias_linear) * dt;
-          x.orientation = free_turn(x.orientation, b.principal, momentum.angular, dt, integrator::order >= 4, s.bias_angular);
-        } else {
-          // The solver turned the body substep by substep, with its L.
-          x = {s.position, s.orientation};
-          momentum.angular = s.angular_momentum;
-        }
-        // What the solve gave it can still overflow (or pass the limits):
-        // the body is then held after all, where it started the step.
-        const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
-                            is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
-                            state.within_speed_limits(s.linear_velocity, s.angular_velocity) && state.within_bounds(x.position);
-        if (finite) {
-          b.linear_momentum = momentum.linear;
-          b.angular_momentum = momentum.angular;
-          b.position = x.position;
-          b.orientation = normalize(x.orientation);
-        } else {
-          b.linear_momentum = {};
-          b.angular_momentum = {};
-          scratch.hold(state, i);
-        }
-      } else if (b.type == body_type::kinematic) {
-        if (!state.move_kinematic(r, dt)) scratch.hold(state, i);
+    auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t j = begin; j < end; ++j) {
+        contact_record<T>& c = state.contacts[scratch.sources[j].record];
+        const contact_constraint<T>& cc = scratch.constraints[j];
+        manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
+        for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+        kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+        kept.twist = cc.twist_impulse;
       }
-      b.clear_loads();
-    }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
+    auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::size_t i = begin; i < end; ++i) finish_body(bodies[scratch.solver_dense[i]], i, dt);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
+    scratch.profile.integrate = lap.lap_ms();
   }
 
  private:
+  /// Solver body i from the body record r (held, quietly, if its loads
+  /// would take it out of finite numbers or past the speed limits).
+  void gather_body(const body_record<T>& r, std::size_t i, const vec3<T>& gravity_step, T dt) {
+    const rigid_body<T>& b = r.body;
+    solver_body<T>& s = scratch.solver_bodies[i];
+    s = solver_body<T>{};
+    s.position = b.position;
+    s.orientation = b.orientation;
+    if (is_solved(r)) {
+      s.inverse_mass = b.inverse_mass;
+      s.inverse_inertia = b.inverse_inertia_world();
+      s.angular_momentum = b.angular_momentum;
+      s.principal = b.principal;
+      s.linear_velocity = b.linear_momentum * b.inverse_mass;
+      s.angular_velocity = s.inverse_inertia * b.angular_momentum;
+      s.force_linear = gravity_step + b.force * (b.inverse_mass * dt);
+      s.force_angular = s.inverse_inertia * (b.torque * dt);
+      // A body its loads would take out of finite numbers, or past the
+      // speed limits, is held before anything couples it to another: a
+      // joint solved with it would carry the overflow into its partner.
+      if (!state.within_speed_limits(s.linear_velocity + s.force_linear, s.angular_velocity + s.force_angular)) scratch.hold_quietly(i);
+    } else if (b.type == body_type::kinematic) {
+      // + 0 turns a −0 into +0: the contact solver's lanes write a body
+      // that does not move back as v + 0·p, which must be v to the bit
+      // (contact_batch.hpp, lanes_written).
+      s.linear_velocity = b.kinematic_velocity + vec3<T>{};
+      s.angular_velocity = b.kinematic_angular_velocity + vec3<T>{};
+    }
+  }
+
+  /// Moves the body of record r, solver body i, by what the solve gave it
+  /// (held, quietly, if that overflows), and clears its loads.
+  void finish_body(body_record<T>& r, std::size_t i, T dt) {
+    rigid_body<T>& b = r.body;
+    r.previous = b.pose();
+    if (scratch.is_held(std::uint32_t(i))) {
+      b.linear_momentum = {};
+      b.angular_momentum = {};
+    } else if (is_solved(r)) {
+      const solver_body<T>& s = scratch.solver_bodies[i];
+      body_pose<T> x{b.position, b.orientation};
+      // L changes by the torque's impulse and by what the contacts did to
+      // ω; written as that change rather than as I_w·ω, it stays constant
+      // to the bit when nothing acts on the body.
+      const vec3<T> free_spin = s.inverse_inertia * b.angular_momentum + s.force_angular;
+      body_momentum<T> momentum{s.linear_velocity * b.mass,
+                                b.angular_momentum + b.torque * dt + b.inertia_world() * (s.angular_velocity - free_spin)};
+      if constexpr (!solver_type::moves_bodies) {
+        // Free motion under the solved momenta: a straight line, and the
+        // torque-free turn with L held (free_rotation.hpp), to fourth
+        // order under a fourth-order policy; the position pass's
+        // pseudo-velocities with them.
+        x.position += (s.linear_velocity + s.bias_linear) * dt;
+        x.orientation = free_turn(x.orientation, b.principal, momentum.angular, dt, integrator::order >= 4, s.bias_angular);
+      } else {
+        // The solver turned the body substep by substep, with its L.
+        x = {s.position, s.orientation};
+        momentum.angular = s.angular_momentum;
+      }
+      // What the solve gave it can still overflow (or pass the limits):
+      // the body is then held after all, where it started the step.
+      const bool finite = is_finite(x.position) && is_finite(x.orientation) && is_finite(momentum.linear) &&
+                          is_finite(momentum.angular) && length_squared(x.orientation) > T(0) &&
+                          state.within_speed_limits(s.linear_velocity, s.angular_velocity) && state.within_bounds(x.position);
+      if (finite) {
+        b.linear_momentum = momentum.linear;
+        b.angular_momentum = momentum.angular;
+        b.position = x.position;
+        b.orientation = normalize(x.orientation);
+      } else {
+        b.linear_momentum = {};
+        b.angular_momentum = {};
+        scratch.hold_quietly(i);
+      }
+    } else if (b.type == body_type::kinematic) {
+      if (!state.move_kinematic(r, dt)) scratch.hold_quietly(i);
+    }
+    b.clear_loads();
+  }
+
   /// The springs with a solved body, after the joints: each a distance row
   /// of its stiffness and damping (joint.hpp, soften_absolute), from its
   /// point on A to its point on B or, anchored, to the anchor on the

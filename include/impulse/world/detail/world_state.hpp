@@ -25,6 +25,7 @@
 #include "../../config.hpp"
 #include "../../core/error.hpp"
 #include "../../core/detail/pooled_state.hpp"
+#include "../../core/detail/stopwatch.hpp"
 #include "../../core/slot_map.hpp"
 #include "../../dynamics/contact_constraint.hpp"
 #include "../../dynamics/detail/island.hpp"
@@ -547,8 +548,10 @@ struct step_scratch {
   solver_type solver{};
   /// The workers a step may spread over (world::set_task_system).
   task_system tasks{};
+  step_profile profile;  ///< the last step's (world::last_step_profile)
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
+  std::vector<aabb<T>> proxy_boxes;        ///< each awake body's, when it moves (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;
@@ -599,12 +602,24 @@ struct step_scratch {
   /// Holds solver body i for this step: it keeps its pose, loses its
   /// velocity, and its contacts and joints are left out (world::step).
   void hold(world_state<Config>& state, std::size_t i) {
+    hold_quietly(i);
     held[i] = 1;
+    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
+  }
+  /// Holds solver body i as hold() does, touching nothing but its own,
+  /// so that bodies are held side by side; report_holds lists them.
+  void hold_quietly(std::size_t i) {
+    held[i] = 2;
     solver_body<T>& s = solver_bodies[i];
     s.inverse_mass = T(0);
     s.inverse_inertia = mat3<T>{};
     s.linear_velocity = s.angular_velocity = s.force_linear = s.force_angular = vec3<T>{};
-    state.held.push_back(state.bodies.ids()[solver_dense[i]]);
+  }
+  /// Adds the bodies held quietly since the last call to the world's
+  /// held list, in solver order.
+  void report_holds(world_state<Config>& state) {
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (held[i] == 2) held[i] = 1, state.held.push_back(state.bodies.ids()[solver_dense[i]]);
   }
   [[nodiscard]] bool is_held(std::uint32_t i) const noexcept { return held[i] != 0; }
 };
