@@ -9603,12 +9603,21 @@ class stage_runner {
       static_cast<stage_runner*>(self)->help();
     };
     void* const handle = tasks.enqueue(helper, tasks.workers - 1, 1, this, tasks.user_context);
+    // However the program ends, by returning or by an exception (an
+    // allocation that failed), the helpers are let go and waited for.
+    struct release {
+      stage_runner& runner;
+      const task_system& tasks;
+      void* handle;
+      ~release() {
+        runner.shared_ = false;
+        runner.claim_.store(finished);
+        tasks.finish(handle, tasks.user_context);
+      }
+    } const done{*this, tasks, handle};
     started_.store(true);
     shared_ = true;
     program();
-    shared_ = false;
-    claim_.store(finished);
-    tasks.finish(handle, tasks.user_context);
   }
 
   /// Whether loop() may hand blocks to other threads: inside run(), with workers.

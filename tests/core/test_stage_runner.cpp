@@ -3,14 +3,15 @@
 // every item of every loop runs exactly once, each loop sees everything
 // the loops before it wrote, and the program completes on any scheduler,
 // including those that run the helpers on the leader's own thread,
-// after the program, or hold the leader until the helpers return.
+// after the program, or hold the leader until the helpers return; and a
+// program that throws lets its helpers go.
 #include <cstdint>
 #include <thread>
 #include <vector>
 
 #include <doctest/doctest.h>
 
-#include "core/schedulers.hpp"
+#include "schedulers.hpp"
 #include "impulse/core/detail/stage_runner.hpp"
 #include "impulse/thread_pool.hpp"
 
@@ -140,6 +141,29 @@ TEST_CASE("a stage runner runs one program after another with the same pool") {
     CHECK(p.missed == 0);
     CHECK(p.a == expected);
   }
+}
+
+TEST_CASE("a program that throws lets its helpers go, and the runner and the pool run the next one") {
+  impulse::thread_pool pool{2};
+  impulse::detail::stage_runner runner;
+  struct failure {};
+  std::vector<int> seen(1000);
+  auto failing = [&] {
+    auto body = [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t i = begin; i < end; ++i) ++seen[i];
+    };
+    runner.loop(1000, 4, body);
+    throw failure{};
+  };
+  CHECK_THROWS_AS(runner.run(pool.tasks(), failing), failure);
+  CHECK_FALSE(runner.shared());
+  int once = 0;
+  for (const int n : seen) once += n == 1;
+  CHECK(once == 1000);  // the loop before the throw ran whole
+  chain_program p{runner, 257};
+  runner.run(pool.tasks(), p);
+  CHECK(p.missed == 0);
+  CHECK(p.a == serial_result(257));
 }
 
 }  // namespace core_stage_runner_tests
