@@ -9625,7 +9625,9 @@ class stage_runner {
 
   /// f(begin, end) over [0, count): when shared(), in one block per worker
   /// (of at least min_block items) that any thread may claim; else in one
-  /// call. Returns when every block has run. Only the leader calls it.
+  /// call. Returns when every block has run. Only the leader calls it,
+  /// and f must not throw: other threads may be running its other blocks.
+  /// (The program may throw between loops, run() lets the helpers go.)
   ///
   /// One block per worker: in the solver's sweeps (10 µs a color in
   /// `pile`), four per worker spent more on the claims, each a cache line
