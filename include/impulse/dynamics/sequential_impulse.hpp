@@ -154,6 +154,8 @@ class basic_sequential_impulse {
         synced_[i] = b.angular_velocity;
         b.linear_velocity += b.force_linear * share;
         b.angular_velocity += b.force_angular * share;
+        b.bias_linear = {};
+        b.bias_angular = {};
       }
     };
     stages_.each_index(bodies.size(), min_bodies, start_bodies);
@@ -166,50 +168,58 @@ class basic_sequential_impulse {
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
-    for (contact_constraint<T>& c : contacts) row_targets(c, rule, {});
     graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
+    for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, {});
     leftover_slips_.clear();
     if (parts > 1)
       for (const std::uint32_t i : graph_.leftover())
         leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
-    // Each batch's rows placed first, then the batches loaded side by side.
+    // Each batch's rows placed first, then the batches loaded side by
+    // side, each with its contacts' row targets.
     batches_.resize(graph_.batch_count());
     rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
     auto load = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k)
+      for (std::size_t k = begin; k < end; ++k) {
+        for (const std::uint32_t i : graph_.batch(k)) row_targets(contacts[i], rule, {});
         detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
                            std::span<row_type>(rows_), first_rows_[k]);
+      }
     };
     stages_.each_index(batches_.size(), min_batches, load);
     if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
+    // A part's share of the forces, and its bias reset, per body: done by
+    // the move that ends the part before, when no projection of the joints
+    // comes between them (one loop over the bodies, not two; each loop
+    // across workers costs a wait for the slowest).
+    auto next_part = [&](solver_body<T>& b) {
+      b.linear_velocity += b.force_linear * share;
+      b.angular_velocity += b.force_angular * share;
+      b.bias_linear = {};
+      b.bias_angular = {};
+    };
+    const bool projected = !joints.empty();  // project_between_parts
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
-        auto next_part = [&](std::size_t begin, std::size_t end) {
-          for (solver_body<T>& b : bodies.subspan(begin, end - begin)) {
-            b.linear_velocity += b.force_linear * share;
-            b.angular_velocity += b.force_angular * share;
-            b.bias_linear = {};
-            b.bias_angular = {};
-          }
-        };
-        stages_.each_index(bodies.size(), min_bodies, next_part);
-        auto retarget = [&](std::span<batch_type> range) {
-          for (batch_type& b : range) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
-        };
-        stages_.each_batch(std::span<batch_type>(batches_), retarget);
+        if (projected) {
+          auto next_parts = [&](std::size_t begin, std::size_t end) {
+            for (solver_body<T>& b : bodies.subspan(begin, end - begin)) next_part(b);
+          };
+          stages_.each_index(bodies.size(), min_bodies, next_parts);
+        }
         for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
         for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
           detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
                                     leftover_slips_[k]);
-      } else {
-        for (solver_body<T>& b : bodies) b.bias_linear = {}, b.bias_angular = {};
       }
       const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
+      // After the first part, each batch's targets turned with the moves
+      // so far, then its warm start: one loop over the batches, not two.
       auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
         for (batch_type& b : range) {
+          if (part > 0) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
           detail::batch_velocities<T, width> v = detail::gather(read, b, real);
           detail::warm_start_batch(v, b, rows_of(b));
           detail::scatter(bodies, b, v, real, written);
@@ -276,6 +286,10 @@ class basic_sequential_impulse {
             moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
           }
           detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
+          if (part + 1 == parts)
+            detail::sync_momentum(b, synced_[i]);
+          else if (!projected)
+            next_part(b);
         }
       };
       stages_.each_index(bodies.size(), min_bodies, move);
@@ -285,10 +299,6 @@ class basic_sequential_impulse {
       for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
     };
     stages_.each_batch(std::span<batch_type>(batches_), store);
-    auto sync = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) detail::sync_momentum(bodies[i], synced_[i]);
-    };
-    stages_.each_index(bodies.size(), min_bodies, sync);
   }
 
   static constexpr int width = detail::contact_lanes<T>;

@@ -17,9 +17,11 @@
 // own order; a tower's contacts alternate between two colors, so the
 // sweep goes over every other contact and then over the rest. Coloring
 // is a function of the contact order alone: the same contacts give the
-// same batches, and a run stays deterministic.
+// same batches, and a run stays deterministic. Within a color the
+// contacts go by their first moving body, for the workers (below).
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <span>
@@ -56,13 +58,35 @@ class constraint_graph {
       color_of_[i] = std::uint8_t(color);
       ++counts[color];
     }
-    // Counting sort by color: within a color the contacts keep their order.
+    // Within a color, the contacts by their first moving body (a counting
+    // sort), then by color (another, which keeps that order). A color's
+    // batches are solved as if at once, so their order within it changes
+    // nothing they compute; but a body's contacts in every color then fall
+    // at about the same place in each, and when workers split each color
+    // in ranges, a body stays with one worker from color to color (`pile`:
+    // 14 % of its bodies changed worker between its two colors in the
+    // contacts' own order). The contacts left over, solved one by one,
+    // keep the contacts' own order.
+    by_body_.assign(bodies.size() + 1, 0);
+    first_body_.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
+      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
+      first_body_[i] = moves_a && moves_b ? std::min(a, b) : moves_a ? a : b;
+      ++by_body_[first_body_[i] + 1];
+    }
+    for (std::size_t k = 1; k < by_body_.size(); ++k) by_body_[k] += by_body_[k - 1];
+    by_body_order_.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) by_body_order_[by_body_[first_body_[i]]++] = std::uint32_t(i);
     std::uint32_t start[max_colors + 2] = {};
     for (int c = 0; c <= max_colors; ++c) start[c + 1] = start[c] + counts[c];
     order_.resize(contacts.size());
     std::uint32_t next[max_colors + 1];
     for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
-    for (std::size_t i = 0; i < contacts.size(); ++i) order_[next[color_of_[i]]++] = std::uint32_t(i);
+    for (const std::uint32_t i : by_body_order_)
+      if (color_of_[i] < max_colors) order_[next[color_of_[i]]++] = i;
+    for (std::size_t i = 0; i < contacts.size(); ++i)
+      if (color_of_[i] == max_colors) order_[next[max_colors]++] = std::uint32_t(i);
     batch_starts_.clear();
     color_starts_.clear();
     for (int c = 0; c < max_colors; ++c) {
@@ -92,7 +116,10 @@ class constraint_graph {
  private:
   std::vector<std::uint64_t> used_;      // per body: the colors its contacts have
   std::vector<std::uint8_t> color_of_;  // per contact
-  std::vector<std::uint32_t> order_;     // contacts by color
+  std::vector<std::uint32_t> first_body_;     // per contact: its first moving body
+  std::vector<std::uint32_t> by_body_;        // per body: where its contacts start in by_body_order_
+  std::vector<std::uint32_t> by_body_order_;  // contacts by first moving body
+  std::vector<std::uint32_t> order_;          // contacts by color, then first moving body
   std::vector<std::uint32_t> batch_starts_;
   std::vector<std::uint32_t> color_starts_{0};  // each color's first batch, then the batch count
   std::uint32_t leftover_start_ = 0;
