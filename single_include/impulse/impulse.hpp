@@ -5478,11 +5478,12 @@ constexpr bool has_rsqrt_estimate() noexcept {
 
 /// 1/√a for positive, finite, normal a. Float lanes take the hardware
 /// estimate and one Newton–Raphson step, y ← y·(3 − a·y²)/2, which squares
-/// its relative error: 3.7e-4 becomes 2e-7 with the step's own rounding
-/// (1.65e-7, 2.8 ulp, is the worst found over 2^-100 … 2^100; a test holds
-/// it under 2e-7). That is
-/// the accuracy of the particle forces that use it, at a fraction of a
-/// square root and a division. Double lanes (x86 has no estimate below
+/// its relative error: an estimate within e = 1.5·2⁻¹² (rsqrtps; 2⁻¹⁴ for
+/// AVX-512's rsqrt14ps) leaves (3/2)e² + e³/2, 2e-7, and the step's own
+/// roundings add at most 3·2⁻²⁴, 3.8e-7 in all, the bound a test holds
+/// (the worst found over 2^-100 … 2^100: 1.65e-7 on a Zen 4, 2.41e-7 on an
+/// Ice Lake, whose estimates differ). That is the accuracy of the particle
+/// forces that use it, at a fraction of a square root and a division. Double lanes (x86 has no estimate below
 /// AVX-512) and W = 1 compute 1/sqrt(a), correctly rounded twice.
 template <scalar_type T, int W>
 batch<T, W> rsqrt(batch<T, W> a) noexcept {
@@ -7963,61 +7964,16 @@ class constraint_graph {
   /// when its inverse mass is not zero.
   template <scalar_type T>
   void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts, int width) {
-    used_.assign(bodies.size(), 0);
-    color_of_.resize(contacts.size());
-    std::uint32_t counts[max_colors + 1] = {};
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
-      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
-      const std::uint64_t taken = (moves_a ? used_[a] : 0) | (moves_b ? used_[b] : 0);
-      const int color = taken == ~std::uint64_t(0) ? max_colors : std::countr_zero(~taken);
-      if (color < max_colors) {
-        const std::uint64_t bit = std::uint64_t(1) << color;
-        if (moves_a) used_[a] |= bit;
-        if (moves_b) used_[b] |= bit;
-      }
-      color_of_[i] = std::uint8_t(color);
-      ++counts[color];
-    }
-    // Within a color, the contacts by their first moving body (a counting
-    // sort), then by color (another, which keeps that order). A color's
-    // batches are solved as if at once, so their order within it changes
-    // nothing they compute; but a body's contacts in every color then fall
-    // at about the same place in each, and when workers split each color
-    // in ranges, a body stays with one worker from color to color (`pile`:
-    // 14 % of its bodies changed worker between its two colors in the
-    // contacts' own order). The contacts left over, solved one by one,
-    // keep the contacts' own order.
-    by_body_.assign(bodies.size() + 1, 0);
-    first_body_.resize(contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const std::uint32_t a = contacts[i].body_a, b = contacts[i].body_b;
-      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
-      first_body_[i] = moves_a && moves_b ? std::min(a, b) : moves_a ? a : b;
-      ++by_body_[first_body_[i] + 1];
-    }
-    for (std::size_t k = 1; k < by_body_.size(); ++k) by_body_[k] += by_body_[k - 1];
-    by_body_order_.resize(contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) by_body_order_[by_body_[first_body_[i]]++] = std::uint32_t(i);
-    std::uint32_t start[max_colors + 2] = {};
-    for (int c = 0; c <= max_colors; ++c) start[c + 1] = start[c] + counts[c];
-    order_.resize(contacts.size());
-    std::uint32_t next[max_colors + 1];
-    for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
-    for (const std::uint32_t i : by_body_order_)
-      if (color_of_[i] < max_colors) order_[next[color_of_[i]]++] = i;
-    for (std::size_t i = 0; i < contacts.size(); ++i)
-      if (color_of_[i] == max_colors) order_[next[max_colors]++] = std::uint32_t(i);
-    batch_starts_.clear();
-    color_starts_.clear();
-    for (int c = 0; c < max_colors; ++c) {
-      if (start[c] == start[c + 1]) continue;
-      color_starts_.push_back(std::uint32_t(batch_starts_.size()));
-      for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
-    }
-    color_starts_.push_back(std::uint32_t(batch_starts_.size()));
-    batch_starts_.push_back(start[max_colors]);
-    leftover_start_ = start[max_colors];
+    build(bodies, contacts, contacts.size(), [](std::size_t k) { return std::uint32_t(k); }, width);
+  }
+
+  /// The same for the contacts `members` names, in that order: for
+  /// members that share no moving body with the other contacts, their
+  /// colors are those the whole set gives them.
+  template <scalar_type T>
+  void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+             std::span<const std::uint32_t> members, int width) {
+    build(bodies, contacts, members.size(), [members](std::size_t k) { return members[k]; }, width);
   }
 
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
@@ -8035,11 +7991,72 @@ class constraint_graph {
   }
 
  private:
+  /// The k-th of `count` contacts is contacts[id(k)].
+  template <scalar_type T, class Id>
+  void build(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+             std::size_t count, Id id, int width) {
+    used_.assign(bodies.size(), 0);
+    color_of_.resize(count);
+    std::uint32_t counts[max_colors + 1] = {};
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t a = contacts[id(k)].body_a, b = contacts[id(k)].body_b;
+      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
+      const std::uint64_t taken = (moves_a ? used_[a] : 0) | (moves_b ? used_[b] : 0);
+      const int color = taken == ~std::uint64_t(0) ? max_colors : std::countr_zero(~taken);
+      if (color < max_colors) {
+        const std::uint64_t bit = std::uint64_t(1) << color;
+        if (moves_a) used_[a] |= bit;
+        if (moves_b) used_[b] |= bit;
+      }
+      color_of_[k] = std::uint8_t(color);
+      ++counts[color];
+    }
+    // Within a color, the contacts by their first moving body (a counting
+    // sort), then by color (another, which keeps that order). A color's
+    // batches are solved as if at once, so their order within it changes
+    // nothing they compute; but a body's contacts in every color then fall
+    // at about the same place in each, and when workers split each color
+    // in ranges, a body stays with one worker from color to color (`pile`:
+    // 14 % of its bodies changed worker between its two colors in the
+    // contacts' own order). The contacts left over, solved one by one,
+    // keep the contacts' own order.
+    by_body_.assign(bodies.size() + 1, 0);
+    first_body_.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t a = contacts[id(k)].body_a, b = contacts[id(k)].body_b;
+      const bool moves_a = bodies[a].inverse_mass > T(0), moves_b = bodies[b].inverse_mass > T(0);
+      first_body_[k] = moves_a && moves_b ? std::min(a, b) : moves_a ? a : b;
+      ++by_body_[first_body_[k] + 1];
+    }
+    for (std::size_t i = 1; i < by_body_.size(); ++i) by_body_[i] += by_body_[i - 1];
+    by_body_order_.resize(count);
+    for (std::size_t k = 0; k < count; ++k) by_body_order_[by_body_[first_body_[k]]++] = std::uint32_t(k);
+    std::uint32_t start[max_colors + 2] = {};
+    for (int c = 0; c <= max_colors; ++c) start[c + 1] = start[c] + counts[c];
+    order_.resize(count);
+    std::uint32_t next[max_colors + 1];
+    for (int c = 0; c <= max_colors; ++c) next[c] = start[c];
+    for (const std::uint32_t k : by_body_order_)
+      if (color_of_[k] < max_colors) order_[next[color_of_[k]]++] = id(k);
+    for (std::size_t k = 0; k < count; ++k)
+      if (color_of_[k] == max_colors) order_[next[max_colors]++] = id(k);
+    batch_starts_.clear();
+    color_starts_.clear();
+    for (int c = 0; c < max_colors; ++c) {
+      if (start[c] == start[c + 1]) continue;
+      color_starts_.push_back(std::uint32_t(batch_starts_.size()));
+      for (std::uint32_t s = start[c]; s < start[c + 1]; s += std::uint32_t(width)) batch_starts_.push_back(s);
+    }
+    color_starts_.push_back(std::uint32_t(batch_starts_.size()));
+    batch_starts_.push_back(start[max_colors]);
+    leftover_start_ = start[max_colors];
+  }
+
   std::vector<std::uint64_t> used_;      // per body: the colors its contacts have
-  std::vector<std::uint8_t> color_of_;  // per contact
-  std::vector<std::uint32_t> first_body_;     // per contact: its first moving body
+  std::vector<std::uint8_t> color_of_;  // per member
+  std::vector<std::uint32_t> first_body_;     // per member: its first moving body
   std::vector<std::uint32_t> by_body_;        // per body: where its contacts start in by_body_order_
-  std::vector<std::uint32_t> by_body_order_;  // contacts by first moving body
+  std::vector<std::uint32_t> by_body_order_;  // members by first moving body
   std::vector<std::uint32_t> order_;          // contacts by color, then first moving body
   std::vector<std::uint32_t> batch_starts_;
   std::vector<std::uint32_t> color_starts_{0};  // each color's first batch, then the batch count
@@ -8048,6 +8065,188 @@ class constraint_graph {
 
 }  // namespace impulse::detail
 // ---- end impulse/dynamics/detail/constraint_graph.hpp ----
+// ---- begin impulse/dynamics/detail/contact_groups.hpp ----
+// impulse/dynamics/detail/contact_groups.hpp — a step's contacts split into
+// groups that share no body the solve changes, one per worker.
+//
+// Across workers, the solver sweeps each color's batches in ranges, and
+// every color of every sweep ends with a wait for the slowest worker:
+// `pile` (100 columns of 10 boxes) waits about 84 times a step, for a few
+// microseconds of work each. Contacts that share no body through any chain
+// of contacts, islands, do not read each other's writes at all. When the
+// contacts fall apart into islands small enough to share out evenly, each
+// worker solves its own group of islands from the first sweep to the last
+// and waits once (Jolt solves its islands apart the same way).
+//
+// What is shared: bodies that no impulse moves and that are at rest
+// (static ground, a kinematic body standing still). The solve reads their
+// velocities, zero, and writes nothing to them; they join no island and
+// belong to no group, and the solver moves them once the groups are done.
+// A kinematic body that moves joins the islands it touches, like a body
+// that impulses move.
+//
+// The groups change which contacts share a batch, not what any contact
+// computes: each lane of a batch computes what it would alone, and each
+// island's contacts keep their colors and their order (a contact's color
+// depends only on the contacts before it that share its bodies, all in its
+// island). So the bodies come out the same, bit for bit, for any number of
+// groups.
+
+
+
+namespace impulse::detail {
+
+class contact_groups {
+ public:
+  /// The heaviest group may hold this many times its even share of the
+  /// contacts, at most; past it the islands are too few or too large to
+  /// share out, and the solver sweeps the colors across the workers.
+  static constexpr double most_uneven = 1.15;
+
+  /// Whether body i is read and never written by the solve: no impulse
+  /// moves it and it is at rest, with no load.
+  template <scalar_type T>
+  [[nodiscard]] static bool fixed(const solver_body<T>& b) noexcept {
+    const vec3<T> zero{};
+    return b.inverse_mass == T(0) && b.linear_velocity == zero && b.angular_velocity == zero &&
+           b.force_linear == zero && b.force_angular == zero;
+  }
+
+  /// Splits the contacts into `count` groups of whole islands, each island
+  /// to one group in the order of its first contact, cut where the running
+  /// count of contacts passes each group's share; and the bodies with
+  /// them. False, and no groups, when the heaviest group would hold more
+  /// than most_uneven times its share.
+  template <scalar_type T>
+  bool split(std::span<const solver_body<T>> bodies, std::span<const contact_constraint<T>> contacts,
+             std::uint32_t count) {
+    count_ = 0;
+    const std::size_t n = bodies.size();
+    if (count < 2 || contacts.empty()) return false;
+    // Every contact takes a color when its bodies have 65 contacts or
+    // fewer between them (constraint_graph.hpp, max_colors): one left
+    // over is solved alone, and writes the bodies at rest that groups share.
+    degree_.assign(n, 0);
+    for (const contact_constraint<T>& c : contacts) {
+      if (bodies[c.body_a].inverse_mass > T(0)) ++degree_[c.body_a];
+      if (bodies[c.body_b].inverse_mass > T(0)) ++degree_[c.body_b];
+    }
+    for (const contact_constraint<T>& c : contacts)
+      if (std::uint64_t(degree_[c.body_a]) + degree_[c.body_b] > constraint_graph::max_colors + 1) return false;
+    parent_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) parent_[i] = fixed(bodies[i]) ? fixed_body : std::uint32_t(i);
+    for (const contact_constraint<T>& c : contacts)
+      if (parent_[c.body_a] != fixed_body && parent_[c.body_b] != fixed_body) unite(c.body_a, c.body_b);
+    // Each island by its first contact: its place in that order, and how
+    // many contacts it has.
+    island_of_.assign(n, none);
+    weights_.clear();
+    contact_island_.resize(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const std::uint32_t a = contacts[k].body_a, b = contacts[k].body_b;
+      const std::uint32_t root = find(parent_[a] != fixed_body ? a : b);
+      if (root == fixed_body) {  // two bodies at rest: nothing to solve, any group reads it
+        contact_island_[k] = 0;
+        if (weights_.empty()) weights_.push_back(0);
+        ++weights_[0];
+        continue;
+      }
+      if (island_of_[root] == none) {
+        island_of_[root] = std::uint32_t(weights_.size());
+        weights_.push_back(0);
+      }
+      contact_island_[k] = island_of_[root];
+      ++weights_[island_of_[root]];
+    }
+    // Island s to group ⌊(contacts before it + half its own)·count/total⌋.
+    const std::uint64_t total = contacts.size();
+    group_of_island_.resize(weights_.size());
+    std::vector<std::uint64_t>& load = loads_;
+    load.assign(count, 0);
+    std::uint64_t before = 0;
+    for (std::size_t s = 0; s < weights_.size(); ++s) {
+      const std::uint32_t g =
+          std::min(count - 1, std::uint32_t((2 * before + weights_[s]) * count / (2 * total)));
+      group_of_island_[s] = g;
+      load[g] += weights_[s];
+      before += weights_[s];
+    }
+    if (double(*std::max_element(load.begin(), load.end())) * count > most_uneven * double(total)) return false;
+    // The contacts and bodies of each group, in their own order (two
+    // counting sorts); bodies on no contact go to groups by index.
+    contact_starts_.assign(count + 1, 0);
+    for (std::size_t k = 0; k < contacts.size(); ++k) ++contact_starts_[group_of_island_[contact_island_[k]] + 1];
+    body_group_.resize(n);
+    body_starts_.assign(count + 1, 0);
+    fixed_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (parent_[i] == fixed_body) {
+        body_group_[i] = fixed_body;
+        fixed_.push_back(std::uint32_t(i));
+        continue;
+      }
+      const std::uint32_t island = island_of_[find(std::uint32_t(i))];
+      body_group_[i] = island != none ? group_of_island_[island] : std::uint32_t(i * count / n);
+      ++body_starts_[body_group_[i] + 1];
+    }
+    for (std::uint32_t g = 0; g < count; ++g) {
+      contact_starts_[g + 1] += contact_starts_[g];
+      body_starts_[g + 1] += body_starts_[g];
+    }
+    contacts_.resize(contacts.size());
+    next_.assign(contact_starts_.begin(), contact_starts_.end() - 1);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      contacts_[next_[group_of_island_[contact_island_[k]]]++] = std::uint32_t(k);
+    bodies_.resize(body_starts_[count]);
+    next_.assign(body_starts_.begin(), body_starts_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (body_group_[i] != fixed_body) bodies_[next_[body_group_[i]]++] = std::uint32_t(i);
+    count_ = count;
+    return true;
+  }
+
+  /// Groups after a successful split; 0 otherwise.
+  [[nodiscard]] std::uint32_t size() const noexcept { return count_; }
+  /// Group g's contacts, in the contacts' order.
+  [[nodiscard]] std::span<const std::uint32_t> contacts(std::uint32_t g) const noexcept {
+    return std::span<const std::uint32_t>(contacts_).subspan(contact_starts_[g], contact_starts_[g + 1] - contact_starts_[g]);
+  }
+  /// Group g's bodies, in their order: each body the solve may change is
+  /// in exactly one group.
+  [[nodiscard]] std::span<const std::uint32_t> bodies(std::uint32_t g) const noexcept {
+    return std::span<const std::uint32_t>(bodies_).subspan(body_starts_[g], body_starts_[g + 1] - body_starts_[g]);
+  }
+  /// The bodies in no group: read by every group, written by none.
+  [[nodiscard]] std::span<const std::uint32_t> fixed_bodies() const noexcept { return fixed_; }
+
+ private:
+  static constexpr std::uint32_t fixed_body = ~std::uint32_t(0), none = ~std::uint32_t(0);
+
+  std::uint32_t find(std::uint32_t i) noexcept {
+    if (i == fixed_body) return fixed_body;
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) noexcept {
+    a = find(a), b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+  std::uint32_t count_ = 0;
+  std::vector<std::uint32_t> degree_;          // per body: its contacts, when impulses move it
+  std::vector<std::uint32_t> parent_;          // per body: union-find, or fixed_body
+  std::vector<std::uint32_t> island_of_;       // per root body: its island's place, by first contact
+  std::vector<std::uint32_t> weights_;         // per island: its contacts
+  std::vector<std::uint32_t> contact_island_;  // per contact
+  std::vector<std::uint32_t> group_of_island_;
+  std::vector<std::uint64_t> loads_;           // per group: its contacts
+  std::vector<std::uint32_t> body_group_;      // per body: its group, or fixed_body
+  std::vector<std::uint32_t> contact_starts_, body_starts_, next_;
+  std::vector<std::uint32_t> contacts_, bodies_, fixed_;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/dynamics/detail/contact_groups.hpp ----
 // ---- begin impulse/dynamics/detail/contact_batch.hpp ----
 // impulse/dynamics/detail/contact_batch.hpp — W contacts that share no moving body,
 // solved together as the W lanes of SIMD batches.
@@ -9809,6 +10008,10 @@ class solver_stages {
   void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
   [[nodiscard]] const task_system& tasks() const noexcept { return tasks_; }
 
+  /// Whether the loops are shared with other workers: inside run(), with
+  /// a hook that has them.
+  [[nodiscard]] bool shared() const noexcept { return runner_.shared(); }
+
   /// Runs program() on this thread, its loops shared with the workers.
   template <class Program>
   void run(Program& program) {
@@ -10393,6 +10596,11 @@ class basic_sequential_impulse {
   /// bit, whichever worker solves which; the rest stays on this thread.
   void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
+  /// How many groups of islands the last solve shared among the workers,
+  /// each solved whole on one (detail/contact_groups.hpp); 0 when its
+  /// colors were shared instead, or it ran on one thread.
+  [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
+
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     stages_.prepare(bodies, contacts);
   }
@@ -10431,12 +10639,35 @@ class basic_sequential_impulse {
   }
 
  private:
+  static constexpr int width = detail::contact_lanes<T>;
+  using batch_type = detail::contact_batch<T, width>;
+  using row_type = detail::batch_row<T, width>;
+
+  using displacement = detail::body_displacement<T>;
+  /// Contacts that one program solves: their colors and SIMD batches, the
+  /// batches' rows, and their order of support. The step's, or one group
+  /// of islands' (contact_groups.hpp).
+  struct contact_set {
+    detail::constraint_graph graph;
+    detail::support_order support;
+    std::vector<batch_type> batches;
+    std::vector<row_type> rows;
+    std::vector<std::uint32_t> first_rows;        // each batch's first row in rows
+    std::vector<std::pair<T, T>> leftover_slips;  // the leftover manifolds' slip targets at the start, in parts
+  };
+
+  /// What one program solves: a contact set, and which contacts and bodies
+  /// are its own (a group's), or all of them, across the workers (`whole`).
+  struct scope {
+    contact_set& set;
+    std::span<const std::uint32_t> contacts, bodies;
+    bool whole;
+  };
+
   void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
                     std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int parts = settings.substeps;
-    const T h = dt / T(parts), share = T(1) / T(parts);
-    const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
-                                          settings.max_correction_speed, T(1) / h};
+    const T share = T(1) / T(parts);
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
     auto start_bodies = [&](std::size_t begin, std::size_t end) {
@@ -10460,65 +10691,155 @@ class basic_sequential_impulse {
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
-    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
-    for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, {});
-    leftover_slips_.clear();
+    // Islands shared out among the workers, each group solved whole on
+    // one (contact_groups.hpp); else each color's batches split among
+    // them. Joints, solved one by one across the islands, keep the colors.
+    const std::uint32_t workers = stages_.tasks().workers;
+    solved_groups_ = 0;
+    if (stages_.shared() && joints.empty() &&
+        groups_.split(read, std::span<const contact_constraint<T>>(contacts), workers)) {
+      sets_.resize(std::max<std::size_t>(sets_.size(), groups_.size()));
+      auto solve_groups = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t g = begin; g < end; ++g)
+          solve_set({sets_[g], groups_.contacts(std::uint32_t(g)), groups_.bodies(std::uint32_t(g)), false}, bodies,
+                    contacts, joints, settings, dt);
+      };
+      stages_.each_index(groups_.size(), 1, solve_groups);
+      solved_groups_ = groups_.size();
+      // The bodies at rest that nothing moves, moved as the parts would
+      // have: no group read anything their moves change.
+      for (int part = 0; part < parts; ++part)
+        for (const std::uint32_t i : groups_.fixed_bodies()) move_part(bodies, i, part, parts, true, dt);
+      return;
+    }
+    solve_set({sets_.empty() ? sets_.emplace_back() : sets_[0], {}, {}, true}, bodies, contacts, joints, settings,
+              dt);
+  }
+
+  /// f(i) for each of the scope's bodies.
+  template <class F>
+  void each_body(const scope& s, std::size_t count, F& f) {
+    if (!s.whole) {
+      for (const std::uint32_t i : s.bodies) f(i);
+      return;
+    }
+    auto range = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) f(i);
+    };
+    stages_.each_index(count, min_bodies, range);
+  }
+
+  /// f(written, batches, backward) over the scope's batches color by
+  /// color (solver_stages.hpp, by_color); a group's, on this thread,
+  /// writes only the bodies that move (the others are read by every group).
+  template <class F>
+  void by_color(const scope& s, bool backward, F& f) {
+    if (s.whole)
+      stages_.by_color(s.set.graph, std::span<batch_type>(s.set.batches), backward, f);
+    else
+      f(std::integral_constant<detail::lanes_written, detail::lanes_written::moving>{},
+        std::span<batch_type>(s.set.batches), backward);
+  }
+
+  /// f(begin, end) over the scope's batches.
+  template <class F>
+  void each_batch(const scope& s, F& f) {
+    if (s.whole)
+      stages_.each_index(s.set.batches.size(), min_batches, f);
+    else
+      f(std::size_t(0), s.set.batches.size());
+  }
+
+  /// Body i moved through part `part` of `parts` with the solved velocities
+  /// plus the position pass's pseudo-velocities, turned with its L held;
+  /// then, unless it was the last, the next part's share of the forces
+  /// added when `next` (the move before stands in for a loop of its own
+  /// when no projection of the joints comes between the parts), or its L
+  /// brought in step after the last.
+  void move_part(std::span<solver_body<T>> bodies, std::size_t i, int part, int parts, bool next, T dt) {
+    const T h = dt / T(parts);
+    solver_body<T>& b = bodies[i];
+    if (!moved_.empty()) {
+      moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
+      moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+    }
+    detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
+    if (part + 1 == parts)
+      detail::sync_momentum(b, synced_[i]);
+    else if (next)
+      next_part(b, T(1) / T(parts));
+  }
+
+  /// A part's share of the forces, and its bias reset.
+  static void next_part(solver_body<T>& b, T share) noexcept {
+    b.linear_velocity += b.force_linear * share;
+    b.angular_velocity += b.force_angular * share;
+    b.bias_linear = {};
+    b.bias_angular = {};
+  }
+
+  /// Steps 3 to 6 for the scope's contacts and bodies, from their colors
+  /// and batches to the impulses stored back.
+  void solve_set(const scope& s, std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                 std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    contact_set& set = s.set;
+    const int parts = settings.substeps;
+    const T h = dt / T(parts), share = T(1) / T(parts);
+    const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
+                                          settings.max_correction_speed, T(1) / h};
+    const std::span<const solver_body<T>> read = bodies;
+    const std::span<const contact_constraint<T>> all = contacts;
+    if (s.whole)
+      set.graph.build(read, all, width);
+    else
+      set.graph.build(read, all, s.contacts, width);
+    for (const std::uint32_t i : set.graph.leftover()) row_targets(contacts[i], rule, {});
+    set.leftover_slips.clear();
     if (parts > 1)
-      for (const std::uint32_t i : graph_.leftover())
-        leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+      for (const std::uint32_t i : set.graph.leftover())
+        set.leftover_slips.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
     // Each batch's rows placed first, then the batches loaded side by
     // side, each with its contacts' row targets.
-    batches_.resize(graph_.batch_count());
-    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    set.batches.resize(set.graph.batch_count());
+    set.rows.resize(detail::place_batch_rows(set.graph, all, set.first_rows));
     auto load = [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        for (const std::uint32_t i : graph_.batch(k)) row_targets(contacts[i], rule, {});
-        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                           std::span<row_type>(rows_), first_rows_[k]);
+        for (const std::uint32_t i : set.graph.batch(k)) row_targets(contacts[i], rule, {});
+        detail::load_batch(read, all, set.graph.batch(k), set.batches[k], std::span<row_type>(set.rows),
+                           set.first_rows[k]);
       }
     };
-    stages_.each_index(batches_.size(), min_batches, load);
-    if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
+    each_batch(s, load);
+    const std::span<const batch_type> batches = set.batches;
+    if (settings.support_sweep) set.support.build(read, batches);
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
-    // A part's share of the forces, and its bias reset, per body: done by
-    // the move that ends the part before, when no projection of the joints
-    // comes between them (one loop over the bodies, not two; each loop
-    // across workers costs a wait for the slowest).
-    auto next_part = [&](solver_body<T>& b) {
-      b.linear_velocity += b.force_linear * share;
-      b.angular_velocity += b.force_angular * share;
-      b.bias_linear = {};
-      b.bias_angular = {};
-    };
     const bool projected = !joints.empty();  // project_between_parts
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
         if (projected) {
-          auto next_parts = [&](std::size_t begin, std::size_t end) {
-            for (solver_body<T>& b : bodies.subspan(begin, end - begin)) next_part(b);
-          };
-          stages_.each_index(bodies.size(), min_bodies, next_parts);
+          auto next_parts = [&](std::size_t i) { next_part(bodies[i], share); };
+          each_body(s, bodies.size(), next_parts);
         }
-        for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
-        for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
-          detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
-                                    leftover_slips_[k]);
+        for (const std::uint32_t i : set.graph.leftover()) row_targets(contacts[i], rule, moved_);
+        for (std::size_t k = 0; k < set.graph.leftover().size(); ++k)
+          detail::turn_slip_targets(contacts[set.graph.leftover()[k]], std::span<const displacement>(moved_),
+                                    set.leftover_slips[k]);
       }
-      const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
+      const bool exact = projected && detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
       // After the first part, each batch's targets turned with the moves
       // so far, then its warm start: one loop over the batches, not two.
       auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
         for (batch_type& b : range) {
-          if (part > 0) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+          if (part > 0) detail::retarget_batch(b, rows_of(set, b), std::span<const displacement>(moved_), rule);
           detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-          detail::warm_start_batch(v, b, rows_of(b));
+          detail::warm_start_batch(v, b, rows_of(set, b));
           detail::scatter(bodies, b, v, real, written);
         }
       };
-      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
-      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
+      by_color(s, false, warm_start);
+      for (const std::uint32_t i : set.graph.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
         if (exact) tree_.solve_velocities(bodies, joints);
@@ -10535,18 +10856,18 @@ class basic_sequential_impulse {
             // Friction first: it is bounded by the normal impulses, and the
             // normal rows, solved last, are the ones that must hold (no
             // sinking).
-            detail::solve_batch_friction(v, b, rows_of(b));
-            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
+            detail::solve_batch_friction(v, b, rows_of(set, b));
+            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(set, b),
+                                                                       settings.manifold_sweeps);
             detail::scatter(bodies, b, v, real, written);
           }
         };
-        stages_.by_color(graph_, std::span<batch_type>(batches_), (sweeps + iteration) % 2 != 0, sweep);
-        for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
+        by_color(s, (sweeps + iteration) % 2 != 0, sweep);
+        for (const std::uint32_t i : set.graph.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
-        support_.template sweep<detail::support_kind::velocity>(bodies, std::span<const batch_type>(batches_),
-                                                                std::span<const row_type>(rows_),
-                                                                settings.manifold_sweeps);
+        set.support.template sweep<detail::support_kind::velocity>(bodies, batches, std::span<const row_type>(set.rows),
+                                                                   settings.manifold_sweeps);
       sweeps += settings.velocity_iterations;
       // The position pass, in the last part: it pushes the step's fraction
       // of each penetration out within it, for the cost of one part's.
@@ -10556,48 +10877,27 @@ class basic_sequential_impulse {
       auto push = [&](auto written, std::span<batch_type> range, bool) {
         for (batch_type& b : range) {
           detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(set, b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, pseudo, written);
         }
       };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        stages_.by_color(graph_, std::span<batch_type>(batches_), false, push);
-        for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+        by_color(s, false, push);
+        for (const std::uint32_t i : set.graph.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
-        support_.template sweep<detail::support_kind::position>(bodies, std::span<const batch_type>(batches_),
-                                                                std::span<const row_type>(rows_),
-                                                                settings.manifold_sweeps);
-      // The bodies moved with the solved velocities plus the position
-      // pass's pseudo-velocities, each turned with its L held.
-      auto move = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          solver_body<T>& b = bodies[i];
-          if (!moved_.empty()) {
-            moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
-            moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
-          }
-          detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
-          if (part + 1 == parts)
-            detail::sync_momentum(b, synced_[i]);
-          else if (!projected)
-            next_part(b);
-        }
-      };
-      stages_.each_index(bodies.size(), min_bodies, move);
-      if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
+        set.support.template sweep<detail::support_kind::position>(bodies, batches, std::span<const row_type>(set.rows),
+                                                                   settings.manifold_sweeps);
+      auto move = [&](std::size_t i) { move_part(bodies, i, part, parts, !projected, dt); };
+      each_body(s, bodies.size(), move);
+      if (part + 1 < parts && projected) project_between_parts(bodies, joints, settings);
     }
-    auto store = [&](std::span<batch_type> range) {
-      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    auto store = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) detail::store_batch(set.batches[k], rows_of(set, set.batches[k]), contacts);
     };
-    stages_.each_batch(std::span<batch_type>(batches_), store);
+    each_batch(s, store);
   }
 
-  static constexpr int width = detail::contact_lanes<T>;
-  using batch_type = detail::contact_batch<T, width>;
-  using row_type = detail::batch_row<T, width>;
-
-  using displacement = detail::body_displacement<T>;
   struct pose {
     vec3<T> position;
     quat<T> orientation;
@@ -10607,17 +10907,14 @@ class basic_sequential_impulse {
   static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
 
   detail::solver_stages stages_;
-  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
-  detail::constraint_graph graph_;
+  detail::contact_groups groups_;
+  std::vector<contact_set> sets_;  // the step's, or one per group
   detail::joint_tree<T> tree_;
-  detail::support_order support_;
-  std::vector<batch_type> batches_;
-  std::vector<row_type> rows_;
-  std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start, in parts
   std::vector<pose> poses_;  // each body's pose before a projection between parts
   std::vector<displacement> moved_;  // each body's displacement since the start of the step, in parts
   std::vector<vec3<T>> synced_;      // each body's ω when its L was last brought in step (solver_parts.hpp)
   bool fourth_order_ = false;
+  std::uint32_t solved_groups_ = 0;
 
   /// Between two parts, the joints' drift removed by one pass of
   /// project_joints (with its Newton steps on the trees), the bodies'
@@ -10644,8 +10941,8 @@ class basic_sequential_impulse {
     }
   }
 
-  std::span<row_type> rows_of(const batch_type& b) noexcept {
-    return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
+  static std::span<row_type> rows_of(contact_set& set, const batch_type& b) noexcept {
+    return std::span<row_type>(set.rows).subspan(b.first_row, std::size_t(b.rows_used));
   }
 
   /// One manifold's rows, one after another: the manifolds the coloring
@@ -18806,6 +19103,10 @@ struct step_counts {
   std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
   std::size_t solved_joints = 0;
   std::size_t solved_springs = 0;
+  /// Groups of islands the solver shared among the workers, each solved
+  /// whole on one; 0 when it shared each color's batches instead, or ran
+  /// on one thread (docs/world.md, "Across workers").
+  std::size_t solver_groups = 0;
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };
@@ -21224,6 +21525,8 @@ struct body_solve {
     scratch.profile.prepare = lap.lap_ms();
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     scratch.profile.solve = lap.lap_ms();
+    if constexpr (requires { scratch.solver.solved_groups(); })
+      state.counts.solver_groups = scratch.solver.solved_groups();
     keep_joint_impulses(dt);
     auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       for (std::uint32_t j = begin; j < end; ++j) {

@@ -434,11 +434,12 @@ constexpr bool has_rsqrt_estimate() noexcept {
 
 /// 1/√a for positive, finite, normal a. Float lanes take the hardware
 /// estimate and one Newton–Raphson step, y ← y·(3 − a·y²)/2, which squares
-/// its relative error: 3.7e-4 becomes 2e-7 with the step's own rounding
-/// (1.65e-7, 2.8 ulp, is the worst found over 2^-100 … 2^100; a test holds
-/// it under 2e-7). That is
-/// the accuracy of the particle forces that use it, at a fraction of a
-/// square root and a division. Double lanes (x86 has no estimate below
+/// its relative error: an estimate within e = 1.5·2⁻¹² (rsqrtps; 2⁻¹⁴ for
+/// AVX-512's rsqrt14ps) leaves (3/2)e² + e³/2, 2e-7, and the step's own
+/// roundings add at most 3·2⁻²⁴, 3.8e-7 in all, the bound a test holds
+/// (the worst found over 2^-100 … 2^100: 1.65e-7 on a Zen 4, 2.41e-7 on an
+/// Ice Lake, whose estimates differ). That is the accuracy of the particle
+/// forces that use it, at a fraction of a square root and a division. Double lanes (x86 has no estimate below
 /// AVX-512) and W = 1 compute 1/sqrt(a), correctly rounded twice.
 template <scalar_type T, int W>
 batch<T, W> rsqrt(batch<T, W> a) noexcept {

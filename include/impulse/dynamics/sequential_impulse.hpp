@@ -68,6 +68,7 @@
 #include "../core/policy.hpp"
 #include "../core/task_system.hpp"
 #include "detail/constraint_graph.hpp"
+#include "detail/contact_groups.hpp"
 #include "detail/contact_batch.hpp"
 #include "contact_constraint.hpp"
 #include "detail/contact_rows.hpp"
@@ -100,6 +101,11 @@ class basic_sequential_impulse {
   /// color share no moving body, so the bodies come out the same, bit for
   /// bit, whichever worker solves which; the rest stays on this thread.
   void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
+
+  /// How many groups of islands the last solve shared among the workers,
+  /// each solved whole on one (detail/contact_groups.hpp); 0 when its
+  /// colors were shared instead, or it ran on one thread.
+  [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
     stages_.prepare(bodies, contacts);
@@ -139,12 +145,35 @@ class basic_sequential_impulse {
   }
 
  private:
+  static constexpr int width = detail::contact_lanes<T>;
+  using batch_type = detail::contact_batch<T, width>;
+  using row_type = detail::batch_row<T, width>;
+
+  using displacement = detail::body_displacement<T>;
+  /// Contacts that one program solves: their colors and SIMD batches, the
+  /// batches' rows, and their order of support. The step's, or one group
+  /// of islands' (contact_groups.hpp).
+  struct contact_set {
+    detail::constraint_graph graph;
+    detail::support_order support;
+    std::vector<batch_type> batches;
+    std::vector<row_type> rows;
+    std::vector<std::uint32_t> first_rows;        // each batch's first row in rows
+    std::vector<std::pair<T, T>> leftover_slips;  // the leftover manifolds' slip targets at the start, in parts
+  };
+
+  /// What one program solves: a contact set, and which contacts and bodies
+  /// are its own (a group's), or all of them, across the workers (`whole`).
+  struct scope {
+    contact_set& set;
+    std::span<const std::uint32_t> contacts, bodies;
+    bool whole;
+  };
+
   void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
                     std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
     const int parts = settings.substeps;
-    const T h = dt / T(parts), share = T(1) / T(parts);
-    const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
-                                          settings.max_correction_speed, T(1) / h};
+    const T share = T(1) / T(parts);
     synced_.resize(bodies.size());
     moved_.assign(parts > 1 ? bodies.size() : 0, {});
     auto start_bodies = [&](std::size_t begin, std::size_t end) {
@@ -168,65 +197,155 @@ class basic_sequential_impulse {
       for (contact_constraint<T>& c : contacts) detail::forget_impulses(c);
     const std::span<const solver_body<T>> read = bodies;
     tree_.build(read, joints, settings.exact_joint_trees);
-    graph_.build(read, std::span<const contact_constraint<T>>(contacts), width);
-    for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, {});
-    leftover_slips_.clear();
+    // Islands shared out among the workers, each group solved whole on
+    // one (contact_groups.hpp); else each color's batches split among
+    // them. Joints, solved one by one across the islands, keep the colors.
+    const std::uint32_t workers = stages_.tasks().workers;
+    solved_groups_ = 0;
+    if (stages_.shared() && joints.empty() &&
+        groups_.split(read, std::span<const contact_constraint<T>>(contacts), workers)) {
+      sets_.resize(std::max<std::size_t>(sets_.size(), groups_.size()));
+      auto solve_groups = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t g = begin; g < end; ++g)
+          solve_set({sets_[g], groups_.contacts(std::uint32_t(g)), groups_.bodies(std::uint32_t(g)), false}, bodies,
+                    contacts, joints, settings, dt);
+      };
+      stages_.each_index(groups_.size(), 1, solve_groups);
+      solved_groups_ = groups_.size();
+      // The bodies at rest that nothing moves, moved as the parts would
+      // have: no group read anything their moves change.
+      for (int part = 0; part < parts; ++part)
+        for (const std::uint32_t i : groups_.fixed_bodies()) move_part(bodies, i, part, parts, true, dt);
+      return;
+    }
+    solve_set({sets_.empty() ? sets_.emplace_back() : sets_[0], {}, {}, true}, bodies, contacts, joints, settings,
+              dt);
+  }
+
+  /// f(i) for each of the scope's bodies.
+  template <class F>
+  void each_body(const scope& s, std::size_t count, F& f) {
+    if (!s.whole) {
+      for (const std::uint32_t i : s.bodies) f(i);
+      return;
+    }
+    auto range = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) f(i);
+    };
+    stages_.each_index(count, min_bodies, range);
+  }
+
+  /// f(written, batches, backward) over the scope's batches color by
+  /// color (solver_stages.hpp, by_color); a group's, on this thread,
+  /// writes only the bodies that move (the others are read by every group).
+  template <class F>
+  void by_color(const scope& s, bool backward, F& f) {
+    if (s.whole)
+      stages_.by_color(s.set.graph, std::span<batch_type>(s.set.batches), backward, f);
+    else
+      f(std::integral_constant<detail::lanes_written, detail::lanes_written::moving>{},
+        std::span<batch_type>(s.set.batches), backward);
+  }
+
+  /// f(begin, end) over the scope's batches.
+  template <class F>
+  void each_batch(const scope& s, F& f) {
+    if (s.whole)
+      stages_.each_index(s.set.batches.size(), min_batches, f);
+    else
+      f(std::size_t(0), s.set.batches.size());
+  }
+
+  /// Body i moved through part `part` of `parts` with the solved velocities
+  /// plus the position pass's pseudo-velocities, turned with its L held;
+  /// then, unless it was the last, the next part's share of the forces
+  /// added when `next` (the move before stands in for a loop of its own
+  /// when no projection of the joints comes between the parts), or its L
+  /// brought in step after the last.
+  void move_part(std::span<solver_body<T>> bodies, std::size_t i, int part, int parts, bool next, T dt) {
+    const T h = dt / T(parts);
+    solver_body<T>& b = bodies[i];
+    if (!moved_.empty()) {
+      moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
+      moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
+    }
+    detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
+    if (part + 1 == parts)
+      detail::sync_momentum(b, synced_[i]);
+    else if (next)
+      next_part(b, T(1) / T(parts));
+  }
+
+  /// A part's share of the forces, and its bias reset.
+  static void next_part(solver_body<T>& b, T share) noexcept {
+    b.linear_velocity += b.force_linear * share;
+    b.angular_velocity += b.force_angular * share;
+    b.bias_linear = {};
+    b.bias_angular = {};
+  }
+
+  /// Steps 3 to 6 for the scope's contacts and bodies, from their colors
+  /// and batches to the impulses stored back.
+  void solve_set(const scope& s, std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                 std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+    contact_set& set = s.set;
+    const int parts = settings.substeps;
+    const T h = dt / T(parts), share = T(1) / T(parts);
+    const detail::row_target_rule<T> rule{settings.rest_depth, settings.linear_slop, settings.position_correction,
+                                          settings.max_correction_speed, T(1) / h};
+    const std::span<const solver_body<T>> read = bodies;
+    const std::span<const contact_constraint<T>> all = contacts;
+    if (s.whole)
+      set.graph.build(read, all, width);
+    else
+      set.graph.build(read, all, s.contacts, width);
+    for (const std::uint32_t i : set.graph.leftover()) row_targets(contacts[i], rule, {});
+    set.leftover_slips.clear();
     if (parts > 1)
-      for (const std::uint32_t i : graph_.leftover())
-        leftover_slips_.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
+      for (const std::uint32_t i : set.graph.leftover())
+        set.leftover_slips.push_back({contacts[i].slip_target1, contacts[i].slip_target2});
     // Each batch's rows placed first, then the batches loaded side by
     // side, each with its contacts' row targets.
-    batches_.resize(graph_.batch_count());
-    rows_.resize(detail::place_batch_rows(graph_, std::span<const contact_constraint<T>>(contacts), first_rows_));
+    set.batches.resize(set.graph.batch_count());
+    set.rows.resize(detail::place_batch_rows(set.graph, all, set.first_rows));
     auto load = [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        for (const std::uint32_t i : graph_.batch(k)) row_targets(contacts[i], rule, {});
-        detail::load_batch(read, std::span<const contact_constraint<T>>(contacts), graph_.batch(k), batches_[k],
-                           std::span<row_type>(rows_), first_rows_[k]);
+        for (const std::uint32_t i : set.graph.batch(k)) row_targets(contacts[i], rule, {});
+        detail::load_batch(read, all, set.graph.batch(k), set.batches[k], std::span<row_type>(set.rows),
+                           set.first_rows[k]);
       }
     };
-    stages_.each_index(batches_.size(), min_batches, load);
-    if (settings.support_sweep) support_.build(read, std::span<const batch_type>(batches_));
+    each_batch(s, load);
+    const std::span<const batch_type> batches = set.batches;
+    if (settings.support_sweep) set.support.build(read, batches);
     const joint_pass<T> rigid_pass{softness<T>::rigid(), h};
     constexpr auto real = detail::velocity_kind::real, pseudo = detail::velocity_kind::pseudo;
     int sweeps = 0;  // over all parts so far
-    // A part's share of the forces, and its bias reset, per body: done by
-    // the move that ends the part before, when no projection of the joints
-    // comes between them (one loop over the bodies, not two; each loop
-    // across workers costs a wait for the slowest).
-    auto next_part = [&](solver_body<T>& b) {
-      b.linear_velocity += b.force_linear * share;
-      b.angular_velocity += b.force_angular * share;
-      b.bias_linear = {};
-      b.bias_angular = {};
-    };
     const bool projected = !joints.empty();  // project_between_parts
     for (int part = 0; part < parts; ++part) {
       if (part > 0) {
         if (projected) {
-          auto next_parts = [&](std::size_t begin, std::size_t end) {
-            for (solver_body<T>& b : bodies.subspan(begin, end - begin)) next_part(b);
-          };
-          stages_.each_index(bodies.size(), min_bodies, next_parts);
+          auto next_parts = [&](std::size_t i) { next_part(bodies[i], share); };
+          each_body(s, bodies.size(), next_parts);
         }
-        for (const std::uint32_t i : graph_.leftover()) row_targets(contacts[i], rule, moved_);
-        for (std::size_t k = 0; k < graph_.leftover().size(); ++k)
-          detail::turn_slip_targets(contacts[graph_.leftover()[k]], std::span<const displacement>(moved_),
-                                    leftover_slips_[k]);
+        for (const std::uint32_t i : set.graph.leftover()) row_targets(contacts[i], rule, moved_);
+        for (std::size_t k = 0; k < set.graph.leftover().size(); ++k)
+          detail::turn_slip_targets(contacts[set.graph.leftover()[k]], std::span<const displacement>(moved_),
+                                    set.leftover_slips[k]);
       }
-      const bool exact = detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
+      const bool exact = projected && detail::start_joints(tree_, bodies, joints, h, part == 0 && !settings.warm_starting);
       // After the first part, each batch's targets turned with the moves
       // so far, then its warm start: one loop over the batches, not two.
       auto warm_start = [&](auto written, std::span<batch_type> range, bool) {
         for (batch_type& b : range) {
-          if (part > 0) detail::retarget_batch(b, rows_of(b), std::span<const displacement>(moved_), rule);
+          if (part > 0) detail::retarget_batch(b, rows_of(set, b), std::span<const displacement>(moved_), rule);
           detail::batch_velocities<T, width> v = detail::gather(read, b, real);
-          detail::warm_start_batch(v, b, rows_of(b));
+          detail::warm_start_batch(v, b, rows_of(set, b));
           detail::scatter(bodies, b, v, real, written);
         }
       };
-      stages_.by_color(graph_, std::span<batch_type>(batches_), false, warm_start);
-      for (const std::uint32_t i : graph_.leftover()) detail::warm_start(bodies, contacts[i]);
+      by_color(s, false, warm_start);
+      for (const std::uint32_t i : set.graph.leftover()) detail::warm_start(bodies, contacts[i]);
       for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (joint_constraint<T>& j : joints) detail::solve_joint(bodies, j, rigid_pass);
         if (exact) tree_.solve_velocities(bodies, joints);
@@ -243,18 +362,18 @@ class basic_sequential_impulse {
             // Friction first: it is bounded by the normal impulses, and the
             // normal rows, solved last, are the ones that must hold (no
             // sinking).
-            detail::solve_batch_friction(v, b, rows_of(b));
-            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(b), settings.manifold_sweeps);
+            detail::solve_batch_friction(v, b, rows_of(set, b));
+            detail::solve_batch_normals<detail::normal_pass::velocity>(v, b, rows_of(set, b),
+                                                                       settings.manifold_sweeps);
             detail::scatter(bodies, b, v, real, written);
           }
         };
-        stages_.by_color(graph_, std::span<batch_type>(batches_), (sweeps + iteration) % 2 != 0, sweep);
-        for (const std::uint32_t i : graph_.leftover()) solve_velocity(bodies, contacts[i], settings);
+        by_color(s, (sweeps + iteration) % 2 != 0, sweep);
+        for (const std::uint32_t i : set.graph.leftover()) solve_velocity(bodies, contacts[i], settings);
       }
       if (settings.support_sweep)
-        support_.template sweep<detail::support_kind::velocity>(bodies, std::span<const batch_type>(batches_),
-                                                                std::span<const row_type>(rows_),
-                                                                settings.manifold_sweeps);
+        set.support.template sweep<detail::support_kind::velocity>(bodies, batches, std::span<const row_type>(set.rows),
+                                                                   settings.manifold_sweeps);
       sweeps += settings.velocity_iterations;
       // The position pass, in the last part: it pushes the step's fraction
       // of each penetration out within it, for the cost of one part's.
@@ -264,48 +383,27 @@ class basic_sequential_impulse {
       auto push = [&](auto written, std::span<batch_type> range, bool) {
         for (batch_type& b : range) {
           detail::batch_velocities<T, width> v = detail::gather(read, b, pseudo);
-          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(b), settings.manifold_sweeps);
+          detail::solve_batch_normals<detail::normal_pass::position>(v, b, rows_of(set, b), settings.manifold_sweeps);
           detail::scatter(bodies, b, v, pseudo, written);
         }
       };
       for (int iteration = 0; part + 1 == parts && iteration < settings.position_iterations; ++iteration) {
-        stages_.by_color(graph_, std::span<batch_type>(batches_), false, push);
-        for (const std::uint32_t i : graph_.leftover()) solve_position(bodies, contacts[i], settings);
+        by_color(s, false, push);
+        for (const std::uint32_t i : set.graph.leftover()) solve_position(bodies, contacts[i], settings);
       }
       if (part + 1 == parts && settings.support_sweep)
-        support_.template sweep<detail::support_kind::position>(bodies, std::span<const batch_type>(batches_),
-                                                                std::span<const row_type>(rows_),
-                                                                settings.manifold_sweeps);
-      // The bodies moved with the solved velocities plus the position
-      // pass's pseudo-velocities, each turned with its L held.
-      auto move = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          solver_body<T>& b = bodies[i];
-          if (!moved_.empty()) {
-            moved_[i].linear += (b.linear_velocity + b.bias_linear) * h;
-            moved_[i].angular += (b.angular_velocity + b.bias_angular) * h;
-          }
-          detail::move_body(b, synced_[i], h, fourth_order_, b.bias_linear, b.bias_angular);
-          if (part + 1 == parts)
-            detail::sync_momentum(b, synced_[i]);
-          else if (!projected)
-            next_part(b);
-        }
-      };
-      stages_.each_index(bodies.size(), min_bodies, move);
-      if (part + 1 < parts && !joints.empty()) project_between_parts(bodies, joints, settings);
+        set.support.template sweep<detail::support_kind::position>(bodies, batches, std::span<const row_type>(set.rows),
+                                                                   settings.manifold_sweeps);
+      auto move = [&](std::size_t i) { move_part(bodies, i, part, parts, !projected, dt); };
+      each_body(s, bodies.size(), move);
+      if (part + 1 < parts && projected) project_between_parts(bodies, joints, settings);
     }
-    auto store = [&](std::span<batch_type> range) {
-      for (const batch_type& b : range) detail::store_batch(b, rows_of(b), contacts);
+    auto store = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) detail::store_batch(set.batches[k], rows_of(set, set.batches[k]), contacts);
     };
-    stages_.each_batch(std::span<batch_type>(batches_), store);
+    each_batch(s, store);
   }
 
-  static constexpr int width = detail::contact_lanes<T>;
-  using batch_type = detail::contact_batch<T, width>;
-  using row_type = detail::batch_row<T, width>;
-
-  using displacement = detail::body_displacement<T>;
   struct pose {
     vec3<T> position;
     quat<T> orientation;
@@ -315,17 +413,14 @@ class basic_sequential_impulse {
   static constexpr std::uint32_t min_bodies = detail::solver_stages::min_bodies;
 
   detail::solver_stages stages_;
-  std::vector<std::uint32_t> first_rows_;  ///< each batch's first row in rows_
-  detail::constraint_graph graph_;
+  detail::contact_groups groups_;
+  std::vector<contact_set> sets_;  // the step's, or one per group
   detail::joint_tree<T> tree_;
-  detail::support_order support_;
-  std::vector<batch_type> batches_;
-  std::vector<row_type> rows_;
-  std::vector<std::pair<T, T>> leftover_slips_;  // the leftover manifolds' slip targets at the start, in parts
   std::vector<pose> poses_;  // each body's pose before a projection between parts
   std::vector<displacement> moved_;  // each body's displacement since the start of the step, in parts
   std::vector<vec3<T>> synced_;      // each body's ω when its L was last brought in step (solver_parts.hpp)
   bool fourth_order_ = false;
+  std::uint32_t solved_groups_ = 0;
 
   /// Between two parts, the joints' drift removed by one pass of
   /// project_joints (with its Newton steps on the trees), the bodies'
@@ -352,8 +447,8 @@ class basic_sequential_impulse {
     }
   }
 
-  std::span<row_type> rows_of(const batch_type& b) noexcept {
-    return std::span<row_type>(rows_).subspan(b.first_row, std::size_t(b.rows_used));
+  static std::span<row_type> rows_of(contact_set& set, const batch_type& b) noexcept {
+    return std::span<row_type>(set.rows).subspan(b.first_row, std::size_t(b.rows_used));
   }
 
   /// One manifold's rows, one after another: the manifolds the coloring

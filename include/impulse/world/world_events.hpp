@@ -55,6 +55,10 @@ struct step_counts {
   std::size_t solved_manifolds = 0;  ///< touching manifolds the solver solved
   std::size_t solved_joints = 0;
   std::size_t solved_springs = 0;
+  /// Groups of islands the solver shared among the workers, each solved
+  /// whole on one; 0 when it shared each color's batches instead, or ran
+  /// on one thread (docs/world.md, "Across workers").
+  std::size_t solver_groups = 0;
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
 };

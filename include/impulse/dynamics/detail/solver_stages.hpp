@@ -51,6 +51,10 @@ class solver_stages {
   void set_task_system(const task_system& tasks) noexcept { tasks_ = tasks; }
   [[nodiscard]] const task_system& tasks() const noexcept { return tasks_; }
 
+  /// Whether the loops are shared with other workers: inside run(), with
+  /// a hook that has them.
+  [[nodiscard]] bool shared() const noexcept { return runner_.shared(); }
+
   /// Runs program() on this thread, its loops shared with the workers.
   template <class Program>
   void run(Program& program) {

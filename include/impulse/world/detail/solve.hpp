@@ -193,6 +193,8 @@ struct body_solve {
     scratch.profile.prepare = lap.lap_ms();
     scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
     scratch.profile.solve = lap.lap_ms();
+    if constexpr (requires { scratch.solver.solved_groups(); })
+      state.counts.solver_groups = scratch.solver.solved_groups();
     keep_joint_impulses(dt);
     auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       for (std::uint32_t j = begin; j < end; ++j) {

@@ -1,0 +1,189 @@
+// Islands shared out among the workers (dynamics/detail/contact_groups.hpp):
+// whole islands to each group, every body the solve changes in exactly one
+// group and the bodies at rest in none, the groups within their bound of
+// an even share or no split at all; and an island's contacts colored alone
+// come out in the colors and the order they take among all the contacts.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "impulse/dynamics/detail/constraint_graph.hpp"
+#include "impulse/dynamics/detail/contact_groups.hpp"
+
+namespace dynamics_contact_groups_tests {
+
+namespace {
+
+using namespace impulse;
+using impulse::detail::contact_groups;
+
+solver_body<float> moving() {
+  solver_body<float> b;
+  b.inverse_mass = 1;
+  b.inverse_inertia = mat3<float>::diagonal({6, 6, 6});
+  return b;
+}
+
+contact_constraint<float> between(std::uint32_t a, std::uint32_t b) {
+  contact_constraint<float> c;
+  c.body_a = a, c.body_b = b;
+  return c;
+}
+
+/// Checks what every split must hold: each contact in one group, in the
+/// contacts' order; each of its bodies that is not at rest in that group;
+/// each such body in exactly one group; the bodies at rest in none.
+void check_split(const contact_groups& groups, std::span<const solver_body<float>> bodies,
+                 std::span<const contact_constraint<float>> contacts) {
+  std::vector<int> contact_group(contacts.size(), -1), body_group(bodies.size(), -1);
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    const auto mine = groups.contacts(g);
+    CHECK(std::is_sorted(mine.begin(), mine.end()));
+    for (const std::uint32_t k : mine) {
+      CHECK(contact_group[k] == -1);
+      contact_group[k] = int(g);
+    }
+    for (const std::uint32_t i : groups.bodies(g)) {
+      CHECK(body_group[i] == -1);
+      body_group[i] = int(g);
+    }
+  }
+  for (const std::uint32_t i : groups.fixed_bodies()) {
+    CHECK(contact_groups::fixed(bodies[i]));
+    CHECK(body_group[i] == -1);
+    body_group[i] = -2;
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) CHECK(body_group[i] != -1);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    REQUIRE(contact_group[k] >= 0);
+    for (const std::uint32_t i : {contacts[k].body_a, contacts[k].body_b})
+      if (!contact_groups::fixed(bodies[i])) CHECK(body_group[i] == contact_group[k]);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("columns on the ground are shared out whole, a moving platform joins the two it carries") {
+  // Body 0 the ground, at rest; 20 columns of 3 boxes, each on the ground
+  // and on one another (3 contacts a column); body 61 a kinematic
+  // platform moving under the tops of columns 5 and 6; 62 and 63 free.
+  std::vector<solver_body<float>> bodies(64, moving());
+  bodies[0] = solver_body<float>{};
+  bodies[61] = solver_body<float>{};
+  bodies[61].linear_velocity = {1, 0, 0};
+  std::vector<contact_constraint<float>> contacts;
+  for (std::uint32_t c = 0; c < 20; ++c) {
+    const std::uint32_t base = 1 + 3 * c;
+    contacts.push_back(between(0, base));
+    contacts.push_back(between(base, base + 1));
+    contacts.push_back(between(base + 1, base + 2));
+  }
+  contacts.push_back(between(61, 1 + 3 * 5 + 2));
+  contacts.push_back(between(1 + 3 * 6 + 2, 61));
+  CHECK_FALSE(contact_groups::fixed(bodies[61]));
+  contact_groups groups;
+  for (const std::uint32_t count : {2u, 3u, 4u}) {
+    CAPTURE(count);
+    REQUIRE(groups.split(std::span<const solver_body<float>>(bodies),
+                         std::span<const contact_constraint<float>>(contacts), count));
+    CHECK(groups.size() == count);
+    check_split(groups, bodies, contacts);
+    CHECK(groups.fixed_bodies().size() == 1);
+    CHECK(groups.fixed_bodies()[0] == 0);
+    // Within 1.15 of an even share, and the islands in the order of their
+    // first contact: a column's group never falls below the one before.
+    std::size_t heaviest = 0;
+    for (std::uint32_t g = 0; g < count; ++g) heaviest = std::max(heaviest, groups.contacts(g).size());
+    CHECK(double(heaviest) * count <= contact_groups::most_uneven * double(contacts.size()));
+    std::vector<int> column_group(20);
+    for (std::uint32_t g = 0; g < count; ++g)
+      for (const std::uint32_t k : groups.contacts(g))
+        if (k < 60) column_group[k / 3] = int(g);
+    CHECK(std::is_sorted(column_group.begin(), column_group.end()));
+    CHECK(column_group[5] == column_group[6]);  // joined through the platform
+  }
+}
+
+TEST_CASE("one island, or a body in more than 64 contacts, is not split") {
+  std::vector<solver_body<float>> bodies(200, moving());
+  bodies[0] = solver_body<float>{};
+  contact_groups groups;
+  SUBCASE("a chain of 100 boxes is one island") {
+    std::vector<contact_constraint<float>> chain;
+    for (std::uint32_t i = 0; i < 100; ++i) chain.push_back(between(i, i + 1));
+    CHECK_FALSE(groups.split(std::span<const solver_body<float>>(bodies),
+                             std::span<const contact_constraint<float>>(chain), 2));
+    CHECK(groups.size() == 0);
+  }
+  SUBCASE("two even islands, one a body touching `leaves` others") {
+    for (const std::uint32_t leaves : {64u, 65u}) {
+      CAPTURE(leaves);
+      std::vector<contact_constraint<float>> contacts;
+      for (std::uint32_t i = 0; i < leaves; ++i) contacts.push_back(between(1, 2 + i));
+      for (std::uint32_t i = 0; i < leaves; ++i) contacts.push_back(between(100 + i, 101 + i));
+      // A contact whose bodies have 65 contacts between them always takes
+      // a color; with 66 it may be left over, solved alone, and the
+      // islands stay together.
+      const bool split = groups.split(std::span<const solver_body<float>>(bodies),
+                                      std::span<const contact_constraint<float>>(contacts), 2);
+      CHECK(split == (leaves == 64));
+      if (split) check_split(groups, bodies, contacts);
+    }
+  }
+  SUBCASE("no workers to share among, or no contacts") {
+    const std::vector<contact_constraint<float>> one{between(1, 2), between(3, 4)};
+    CHECK_FALSE(groups.split(std::span<const solver_body<float>>(bodies),
+                             std::span<const contact_constraint<float>>(one), 1));
+    CHECK_FALSE(groups.split(std::span<const solver_body<float>>(bodies), std::span<const contact_constraint<float>>(),
+                             2));
+  }
+}
+
+TEST_CASE("an island's contacts colored alone take the colors and the order they take among all") {
+  // 12 towers of 6 boxes on the ground, their contacts given interleaved
+  // (tower by tower would be too kind): each tower its own island.
+  std::vector<solver_body<float>> bodies(1 + 12 * 6, moving());
+  bodies[0] = solver_body<float>{};
+  std::vector<contact_constraint<float>> contacts;
+  for (std::uint32_t level = 0; level < 6; ++level)
+    for (std::uint32_t t = 0; t < 12; ++t) {
+      const std::uint32_t box = 1 + 6 * t + level;
+      contacts.push_back(between(level == 0 ? 0 : box - 1, box));
+      if (level >= 2 && t % 3 == 0) contacts.push_back(between(box - 2, box));  // a second contact two down
+    }
+  contact_groups groups;
+  REQUIRE(groups.split(std::span<const solver_body<float>>(bodies), std::span<const contact_constraint<float>>(contacts),
+                       3));
+  detail::constraint_graph whole, part;
+  const auto all = std::span<const contact_constraint<float>>(contacts);
+  whole.build(std::span<const solver_body<float>>(bodies), all, 4);
+  // Each color's contacts, in order, as the whole graph has them.
+  const auto colors_of = [](const detail::constraint_graph& g) {
+    std::vector<std::vector<std::uint32_t>> colors(g.color_count());
+    for (std::size_t q = 0; q < g.color_count(); ++q)
+      for (std::uint32_t k = g.first_batch(q); k < g.first_batch(q + 1); ++k)
+        for (const std::uint32_t i : g.batch(k)) colors[q].push_back(i);
+    return colors;
+  };
+  const std::vector<std::vector<std::uint32_t>> every = colors_of(whole);
+  CHECK(every.size() >= 2);
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    CAPTURE(g);
+    const auto mine = groups.contacts(g);
+    part.build(std::span<const solver_body<float>>(bodies), all, mine, 4);
+    std::vector<std::vector<std::uint32_t>> expected;
+    for (const std::vector<std::uint32_t>& color : every) {
+      std::vector<std::uint32_t> kept;
+      for (const std::uint32_t i : color)
+        if (std::find(mine.begin(), mine.end(), i) != mine.end()) kept.push_back(i);
+      if (!kept.empty()) expected.push_back(kept);
+    }
+    CHECK(colors_of(part) == expected);
+    CHECK(part.leftover().empty());
+  }
+}
+
+}  // namespace dynamics_contact_groups_tests
