@@ -96,10 +96,13 @@ class basic_sequential_impulse {
   /// fourth-order integrator policy; contact_solver.hpp).
   void set_fourth_order_turns(bool fourth) noexcept { fourth_order_ = fourth; }
 
-  /// Spreads each color's batches, and the loops over bodies and batches,
-  /// across the hook's workers (core/task_system.hpp). The batches of one
-  /// color share no moving body, so the bodies come out the same, bit for
-  /// bit, whichever worker solves which; the rest stays on this thread.
+  /// Spreads the solve across the hook's workers (core/task_system.hpp):
+  /// groups of islands, each solved whole by one worker, when the contacts
+  /// share out evenly that way (detail/contact_groups.hpp); else each
+  /// color's batches, and the loops over bodies and batches. Islands share
+  /// no moving body, nor do the batches of one color, so the bodies come
+  /// out the same, bit for bit, whichever worker solves which; the rest
+  /// stays on this thread.
   void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
   /// How many groups of islands the last solve shared among the workers,
