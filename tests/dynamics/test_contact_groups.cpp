@@ -133,6 +133,16 @@ TEST_CASE("one island, or a body in more than 64 contacts, is not split") {
       if (split) check_split(groups, bodies, contacts);
     }
   }
+  SUBCASE("a contact between two bodies at rest joins no island, and goes to a group") {
+    std::vector<contact_constraint<float>> contacts;
+    for (std::uint32_t i = 1; i < 41; i += 2) contacts.push_back(between(i, i + 1));
+    bodies[150] = solver_body<float>{};
+    contacts.push_back(between(0, 150));  // the ground and a kinematic body standing on it
+    REQUIRE(groups.split(std::span<const solver_body<float>>(bodies),
+                         std::span<const contact_constraint<float>>(contacts), 2));
+    check_split(groups, bodies, contacts);
+    CHECK(groups.fixed_bodies().size() == 2);
+  }
   SUBCASE("no workers to share among, or no contacts") {
     const std::vector<contact_constraint<float>> one{between(1, 2), between(3, 4)};
     CHECK_FALSE(groups.split(std::span<const solver_body<float>>(bodies),

@@ -83,7 +83,7 @@ class contact_groups {
     contact_island_.resize(contacts.size());
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const std::uint32_t a = contacts[k].body_a, b = contacts[k].body_b;
-      const std::uint32_t root = find(parent_[a] != fixed_body ? a : b);
+      const std::uint32_t root = parent_[a] != fixed_body ? find(a) : parent_[b] != fixed_body ? find(b) : fixed_body;
       if (root == fixed_body) {  // two bodies at rest: nothing to solve, any group reads it
         contact_island_[k] = 0;
         if (weights_.empty()) weights_.push_back(0);
@@ -161,8 +161,8 @@ class contact_groups {
  private:
   static constexpr std::uint32_t fixed_body = ~std::uint32_t(0), none = ~std::uint32_t(0);
 
+  /// The root of body i's island; i is not a fixed body.
   std::uint32_t find(std::uint32_t i) noexcept {
-    if (i == fixed_body) return fixed_body;
     while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
     return i;
   }
