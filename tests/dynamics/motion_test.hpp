@@ -62,3 +62,15 @@ vec3<T> body_angular_velocity(const rigid_body<T>& b) {
 }
 
 }  // namespace impulse::test
+
+// Compiled once for the unit-test executable: tests/world/scenes.hpp says why.
+#if IMPULSE_TEST_WORLDS_EXTERN
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<float, impulse::integrators::euler>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<float, impulse::integrators::symplectic_euler>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<float, impulse::integrators::midpoint>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<float, impulse::integrators::rk4>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<double, impulse::integrators::euler>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<double, impulse::integrators::symplectic_euler>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<double, impulse::integrators::midpoint>);
+IMPULSE_DECLARE_WORLD(impulse::test::motion_config<double, impulse::integrators::rk4>);
+#endif

@@ -14,10 +14,8 @@ namespace faults_api_driver_tests {
 
 namespace {
 
-struct soft_step_double_config : impulse::default_double_config {
-  using solver = impulse::solver::soft_step;
-  static constexpr bool sleeping = false;
-};
+/// The soft step in double, sleeping off (tests/world/scenes.hpp).
+using soft_step_double_config = impulse::test::soft_double_config;
 
 /// Runs `calls` calls from `seed` and checks the driver found nothing.
 template <class Config>

@@ -31,12 +31,8 @@ using namespace impulse;
 
 namespace {
 
-struct soft_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
-struct soft_double_config : impulse::test::awake_double_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
+using impulse::test::soft_double_config;
 
 enum class masses {
   equal,             ///< 1 kg each

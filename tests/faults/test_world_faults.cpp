@@ -22,11 +22,10 @@ using impulse::test::error_code_of;
 
 namespace {
 
-struct gauss_seidel_solver_config : impulse::test::awake_config {};
-struct soft_step_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
-struct double_config : impulse::test::awake_double_config {};
+// The shared test worlds (tests/world/scenes.hpp), compiled once.
+using gauss_seidel_solver_config = impulse::test::awake_config;
+using soft_step_config = impulse::test::soft_config;
+using double_config = impulse::test::awake_double_config;
 
 /// Everything a refused call must leave as it was: each body's pose and
 /// momenta, bit for bit, and the counts.

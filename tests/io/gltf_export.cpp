@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "../world/scenes.hpp"
 #include "impulse/io/gltf.hpp"
 #include "impulse/world.hpp"
 
@@ -21,9 +22,8 @@ using json = nlohmann::json;
 
 namespace {
 
-struct awake : default_config {
-  static constexpr bool sleeping = false;
-};
+// The shared test world (tests/world/scenes.hpp), compiled once.
+using awake = impulse::test::awake_config;
 
 std::uint32_t word(const std::vector<std::uint8_t>& bytes, std::size_t at) {
   std::uint32_t v = 0;

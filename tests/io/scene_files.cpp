@@ -10,18 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "../world/scenes.hpp"
 #include "impulse/io/scene.hpp"
 
 using namespace impulse;
 
 namespace {
 
-struct awake : default_config {
-  static constexpr bool sleeping = false;
-};
-struct awake_double : awake {
-  using scalar = double;
-};
+// The shared test worlds (tests/world/scenes.hpp), compiled once.
+using awake = impulse::test::awake_config;
+using awake_double = impulse::test::awake_double_config;
 template <class T>
 using awake_world = world<std::conditional_t<std::is_same_v<T, float>, awake, awake_double>>;
 
@@ -277,10 +275,7 @@ TEST_CASE("a scene's solver numbers reach the world of either solver: the shared
   CHECK(sequential.settings().solver.velocity_iterations == 7);
   CHECK(sequential.settings().solver.rest_depth == doctest::Approx(0.00001f));
   CHECK(sequential.settings().solver.substeps == 8);  // both solvers have substeps
-  struct soft : awake {
-    using solver = solver::soft_step;
-  };
-  world<soft> substepping;
+  world<impulse::test::soft_config> substepping;
   (void)io::add_scene(substepping, scene);
   CHECK(substepping.settings().solver.velocity_iterations == 7);
   CHECK(substepping.settings().solver.substeps == 8);

@@ -23,6 +23,13 @@ struct awake_double_config : awake_config {
 struct sleeping_config : impulse::default_config {
   static constexpr bool sleeping = true;
 };
+/// The soft-step solver in place of sequential impulses, sleeping off.
+struct soft_config : awake_config {
+  using solver = impulse::solver::soft_step;
+};
+struct soft_double_config : awake_double_config {
+  using solver = impulse::solver::soft_step;
+};
 
 template <class T>
 inline constexpr T step_dt = T(1) / T(60);
@@ -150,3 +157,14 @@ std::uint64_t transform_hash(const World& w) {
 }
 
 }  // namespace impulse::test
+
+// The unit-test executable compiles these worlds once, in
+// tests/instantiate/*.cpp, instead of in every translation unit that steps
+// one (a world's pipeline is the bulk of a test file's compile time).
+#if IMPULSE_TEST_WORLDS_EXTERN
+IMPULSE_DECLARE_WORLD(impulse::test::awake_config);
+IMPULSE_DECLARE_WORLD(impulse::test::awake_double_config);
+IMPULSE_DECLARE_WORLD(impulse::test::sleeping_config);
+IMPULSE_DECLARE_WORLD(impulse::test::soft_config);
+IMPULSE_DECLARE_WORLD(impulse::test::soft_double_config);
+#endif

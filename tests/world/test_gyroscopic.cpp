@@ -21,9 +21,7 @@ using namespace impulse;
 
 namespace {
 
-struct soft_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
 struct euler_config : impulse::test::awake_double_config {
   using integrator = integrators::euler;
 };

@@ -19,9 +19,7 @@ using impulse::test::error_code_of;
 
 namespace {
 
-struct soft_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
 
 template <class World>
 body_id add_pivot(World& w, vec3<typename World::scalar> at) {

@@ -21,9 +21,7 @@ using namespace impulse;
 
 namespace {
 
-struct soft_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
 
 /// How deep (m, below resting height 0.5) a ball or cube of half-size 0.5
 /// gets, deepest over 3 s and at the end, dropped at `speed` from 6 steps'

@@ -18,9 +18,7 @@ using namespace impulse;
 
 namespace {
 
-struct soft_config : impulse::test::awake_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
 using soft_world = world<soft_config>;
 
 }  // namespace

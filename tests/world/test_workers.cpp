@@ -24,9 +24,7 @@ namespace {
 using namespace impulse;
 using impulse::test::awake_config;
 using world_type = world<awake_config>;
-struct soft_config : awake_config {
-  using solver = impulse::solver::soft_step;
-};
+using impulse::test::soft_config;
 using soft_world = world<soft_config>;
 
 /// What a run leaves: every body's transform (transform_hash), and the

@@ -1,0 +1,7 @@
+// The double worlds of tests/world/scenes.hpp, compiled once for the
+// unit-test executable (IMPULSE_TEST_WORLDS_EXTERN: every other file only
+// parses them).
+#include "../world/scenes.hpp"
+
+IMPULSE_INSTANTIATE_WORLD(impulse::test::awake_double_config);
+IMPULSE_INSTANTIATE_WORLD(impulse::test::soft_double_config);
