@@ -18,7 +18,8 @@
 // engine's step (collision detection, solving, integration) and nothing
 // else; states() may copy, it is called outside the clock. Adding an
 // engine is one header with such a type and one line in main.cpp's engine
-// list (impulse_engine.hpp is impulse's own).
+// list, or, for a peer library, in peers.cpp's (impulse_engine.hpp is
+// impulse's own).
 #pragma once
 
 #include <concepts>
