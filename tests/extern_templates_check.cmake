@@ -4,9 +4,25 @@
 # leaves to impulse/instantiate.hpp's file. A member moved back inside its
 # class (inline, so compiled wherever it is used) would show up here.
 #   cmake -DNM=nm -DOBJECTS="a.o;b.o" -P extern_templates_check.cmake
+# With -DPART=narrow_phase, it checks only that the objects define none of
+# the narrow phase that IMPULSE_DECLARE_NARROW_PHASE declares extern: the
+# case of a file that instantiates a world of its own configuration.
 execute_process(COMMAND ${NM} -C --defined-only ${OBJECTS} OUTPUT_VARIABLE symbols RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "nm failed on ${OBJECTS}")
+endif()
+if(PART STREQUAL "narrow_phase")
+  string(REGEX MATCHALL "impulse::narrowphase::(detail::call_collide|time_of_impact|sphere_cast)<[^(]*>\\(" found
+    "${symbols}")
+  list(REMOVE_DUPLICATES found)
+  if(found)
+    message(FATAL_ERROR "compiled in a file that should only parse the narrow phase: ${found}")
+  endif()
+  if(NOT symbols MATCHES "impulse::world<")
+    message(FATAL_ERROR "no world compiled in ${OBJECTS}: the check checks nothing")
+  endif()
+  message(STATUS "a world compiled, none of the default shapes' narrow phase")
+  return()
 endif()
 set(found)
 foreach(member IN ITEMS step advance update_contacts collide solve continuous update_sleep create_joint ray_cast)

@@ -36,7 +36,9 @@
 #include "../config.hpp"
 #include "../core/error.hpp"
 #include "../core/task_system.hpp"
+#include "../narrowphase/dispatch.hpp"
 #include "../narrowphase/ray_cast.hpp"
+#include "../narrowphase/time_of_impact.hpp"
 #include "body_def.hpp"
 #include "world_events.hpp"
 #include "world_ray_hit.hpp"
@@ -622,6 +624,8 @@ class world_snapshot {
 #include "world_queries.hpp"
 
 #if IMPULSE_EXTERN_TEMPLATES
+IMPULSE_DECLARE_NARROW_PHASE(float);
+IMPULSE_DECLARE_NARROW_PHASE(double);
 IMPULSE_DECLARE_WORLD(impulse::default_config);
 IMPULSE_DECLARE_WORLD(impulse::default_double_config);
 #endif
