@@ -12,7 +12,7 @@
 //
 // --quick stops at N = 10 000 and runs one repeat (a smoke test). Brute
 // force runs once up to N = 10 000 and not at 100 000, where one update
-// would take seconds; Bullet's axis sweep not at 100 000 either (below).
+// would take seconds; Bullet's axis sweep not at 100 000 either (peers.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -24,10 +24,7 @@
 
 #include "impulse/broadphase.hpp"
 #include "moving_boxes.hpp"
-
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-#include "bullet_broad_phases.hpp"
-#endif
+#include "peers.hpp"
 
 namespace {
 
@@ -115,20 +112,11 @@ int main(int argc, char** argv) {
       ours_report("spatial_hash", median_run(d, n, steps, repeats, make_ours<basic_spatial_hash<float>>()));
       ours_report("dynamic_bvh", median_run(d, n, steps, repeats, make_ours<basic_dynamic_bvh<float>>()));
       ours_report("octree", median_run(d, n, steps, repeats, make_ours<basic_octree<float>>()));
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-      const auto make_bullet = [n](bench::bullet_broad_phase::kind k) {
-        return [k, n](const bench::moving_boxes& scene) {
-          return std::make_unique<bench::bullet_broad_phase>(k, scene.bounds(), std::size_t(n));
-        };
-      };
-      report("bullet_dbvt", median_run(d, n, steps, repeats, make_bullet(bench::bullet_broad_phase::kind::dbvt)));
-      // At 100 000, bt32BitAxisSweep3 takes minutes just to create the
-      // proxies (each sifts in from the top of all three axes, O(n²)): it
-      // is left out there.
-      if (n <= 10000)
-        report("bullet_axis_sweep",
-               median_run(d, n, steps, repeats, make_bullet(bench::bullet_broad_phase::kind::axis_sweep)));
-#endif
+      for (const bench::peer_broad_phase& peer : bench::peer_broad_phases())
+        if (n <= peer.max_n)
+          report(peer.name, median_run(d, n, steps, repeats, [&](const bench::moving_boxes& scene) {
+                   return peer.make(scene.bounds(), std::size_t(n));
+                 }));
     }
   }
   if (!agree) return 1;

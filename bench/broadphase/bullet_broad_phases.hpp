@@ -18,10 +18,11 @@
 #include <btBulletCollisionCommon.h>
 
 #include "moving_boxes.hpp"
+#include "peers.hpp"
 
 namespace bench {
 
-class bullet_broad_phase {
+class bullet_broad_phase final : public broad_phase_driver {
  public:
   enum class kind { dbvt, axis_sweep };
 
@@ -36,21 +37,21 @@ class bullet_broad_phase {
       broad_phase_ = std::make_unique<bt32BitAxisSweep3>(lo, hi, static_cast<unsigned int>(capacity + 1));
     }
   }
-  ~bullet_broad_phase() {
+  ~bullet_broad_phase() override {
     for (btBroadphaseProxy* p : proxies_) broad_phase_->destroyProxy(p, &dispatcher_);
   }
   bullet_broad_phase(const bullet_broad_phase&) = delete;
   bullet_broad_phase& operator=(const bullet_broad_phase&) = delete;
 
-  void create(const box& b) {
+  void create(const box& b) override {
     proxies_.push_back(broad_phase_->createProxy(to_bullet(b.lower), to_bullet(b.upper), BOX_SHAPE_PROXYTYPE, nullptr,
                                                  1, -1, &dispatcher_));
   }
-  void move(std::uint32_t i, const box& b) {
+  void move(std::uint32_t i, const box& b) override {
     broad_phase_->setAabb(proxies_[i], to_bullet(b.lower), to_bullet(b.upper), &dispatcher_);
   }
-  void update() { broad_phase_->calculateOverlappingPairs(&dispatcher_); }
-  [[nodiscard]] std::size_t pair_count() const {
+  void update() override { broad_phase_->calculateOverlappingPairs(&dispatcher_); }
+  [[nodiscard]] std::size_t pair_count() const override {
     return std::size_t(broad_phase_->getOverlappingPairCache()->getNumOverlappingPairs());
   }
 

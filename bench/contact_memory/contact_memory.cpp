@@ -16,21 +16,18 @@
 #include <vector>
 
 #include "impulse/world.hpp"
-
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-#include <btBulletDynamicsCommon.h>
-#endif
-
-namespace {
+#include "peers.hpp"
 
 // ---- counting every allocation ----
 
-std::size_t held = 0, peak = 0;
+std::size_t contact_memory::held = 0, contact_memory::peak = 0;
 
+namespace {
 /// Each block carries its size in front of it, so that free can count it.
 constexpr std::size_t header = 64;  // keeps any alignment up to 64 bytes
+}  // namespace
 
-void* counted_alloc(std::size_t size, std::size_t align = alignof(std::max_align_t)) {
+void* contact_memory::counted_alloc(std::size_t size, std::size_t align) {
   if (align > header) std::abort();
   auto* base = static_cast<unsigned char*>(std::aligned_alloc(header, (size + 2 * header - 1) / header * header));
   if (base == nullptr) throw std::bad_alloc();
@@ -39,14 +36,15 @@ void* counted_alloc(std::size_t size, std::size_t align = alignof(std::max_align
   if (held > peak) peak = held;
   return base + header;
 }
-void counted_free(void* p) noexcept {
+void contact_memory::counted_free(void* p) noexcept {
   if (p == nullptr) return;
   unsigned char* base = static_cast<unsigned char*>(p) - header;
   held -= *reinterpret_cast<std::size_t*>(base);
   std::free(base);
 }
 
-}  // namespace
+using contact_memory::counted_alloc;
+using contact_memory::counted_free;
 
 void* operator new(std::size_t size) { return counted_alloc(size); }
 void* operator new[](std::size_t size) { return counted_alloc(size); }
@@ -63,9 +61,9 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { counte
 
 namespace {
 
-struct figures {
-  std::size_t before, peak, after, touching;
-};
+using contact_memory::figures;
+using contact_memory::held;
+using contact_memory::peak;
 
 void print(const char* engine, int n, const figures& f) {
   const double pairs = double(n) * double(n - 1) / 2;
@@ -96,51 +94,6 @@ figures impulse_heap(int n) {
   return f;
 }
 
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-void* bullet_alloc(std::size_t size, int align) { return counted_alloc(size, std::size_t(align)); }
-void* bullet_alloc_plain(std::size_t size) { return counted_alloc(size); }
-
-figures bullet_heap(int n) {
-  btAlignedAllocSetCustomAligned(bullet_alloc, counted_free);
-  btAlignedAllocSetCustom(bullet_alloc_plain, counted_free);
-  held = peak = 0;
-  figures f{};
-  {
-    btDefaultCollisionConfiguration configuration;
-    btCollisionDispatcher dispatcher(&configuration);
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-    world.setGravity({0, -9.81f, 0});
-    btBoxShape shape({0.5f, 0.5f, 0.5f});
-    btVector3 inertia;
-    shape.calculateLocalInertia(1, inertia);
-    std::vector<btDefaultMotionState*> states;
-    std::vector<btRigidBody*> bodies;
-    for (int i = 0; i < n; ++i) {
-      btTransform pose;
-      pose.setIdentity();
-      pose.setOrigin({0.001f * float(i), 5, 0});
-      states.push_back(new btDefaultMotionState(pose));
-      bodies.push_back(new btRigidBody(1, states.back(), &shape, inertia));
-      world.addRigidBody(bodies.back());
-    }
-    f.before = held;
-    peak = held;
-    world.stepSimulation(1.0f / 60, 0);
-    f.peak = peak;
-    f.after = held;
-    for (int m = 0; m < dispatcher.getNumManifolds(); ++m)
-      f.touching += dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0;
-    for (btRigidBody* b : bodies) {
-      world.removeRigidBody(b);
-      delete b;
-    }
-    for (btDefaultMotionState* s : states) delete s;
-  }
-  return f;
-}
-#endif
 
 }  // namespace
 
@@ -152,8 +105,6 @@ int main(int argc, char** argv) {
   for (const int n : sizes) {
     print("impulse, float", n, impulse_heap<impulse::default_config>(n));
     print("impulse, double", n, impulse_heap<impulse::default_double_config>(n));
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-    print("Bullet 3 (float)", n, bullet_heap(n));
-#endif
+    if (const std::optional<figures> bullet = contact_memory::bullet_heap(n)) print("Bullet 3 (float)", n, *bullet);
   }
 }

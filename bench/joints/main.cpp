@@ -36,25 +36,15 @@
 
 #include "impulse/world.hpp"
 #include "measure.hpp"
+#include "peers.hpp"
 #include "ragdoll_pile.hpp"
-
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-#include <btBulletDynamicsCommon.h>
-#endif
 
 namespace {
 
 using joints_bench::awake_config;
+using joints_bench::grid_spec;
 using joints_bench::result;
 
-struct grid_spec {
-  int n = 100;
-  int steps = 300;
-  static constexpr double radius = 0.4, dt = 1.0 / 60;
-  [[nodiscard]] bool is_static(int row, int column) const noexcept {
-    return row == 0 && column >= n / 2 - 3 && column <= n / 2 + 3;
-  }
-};
 
 template <class Solver>
 result run_impulse(const grid_spec& spec) {
@@ -84,35 +74,6 @@ result run_impulse(const grid_spec& spec) {
   return joints_bench::run_impulse_world(w, bodies, joints, spec.steps, grid_spec::dt);
 }
 
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-result run_bullet(const grid_spec& spec) {
-  btSphereShape shape{btScalar(grid_spec::radius)};
-  joints_bench::bullet_world w;
-  btVector3 inertia(0, 0, 0);
-  shape.calculateLocalInertia(1, inertia);
-  const auto join = [&](btRigidBody& a, btRigidBody& b, const btVector3& anchor) {
-    w.add_joint(std::make_unique<btPoint2PointConstraint>(a, b, a.getWorldTransform().inverse() * anchor,
-                                                          b.getWorldTransform().inverse() * anchor));
-  };
-  for (int row = 0; row < spec.n; ++row)
-    for (int column = 0; column < spec.n; ++column) {
-      const bool fixed = spec.is_static(row, column);
-      btRigidBody::btRigidBodyConstructionInfo info(fixed ? 0 : 1, nullptr, &shape,
-                                                   fixed ? btVector3(0, 0, 0) : inertia);
-      info.m_startWorldTransform.setIdentity();
-      info.m_startWorldTransform.setOrigin(btVector3(btScalar(column), btScalar(-row), 0));
-      // sqrt(0.6): Bullet multiplies the pair's values (bench/scenes/bullet_engine.hpp).
-      info.m_friction = btScalar(std::sqrt(0.6));
-      btRigidBody& self = w.add_body(info);
-      if (row > 0)
-        join(*w.bodies[std::size_t((row - 1) * spec.n + column)], self,
-             btVector3(btScalar(column), btScalar(-row + 0.5), 0));
-      if (column > 0 && !(fixed && spec.is_static(row, column - 1)))
-        join(*w.bodies[w.bodies.size() - 2], self, btVector3(btScalar(column - 0.5), btScalar(-row), 0));
-    }
-  return w.run(spec.steps, grid_spec::dt);
-}
-#endif
 
 }  // namespace
 
@@ -147,9 +108,7 @@ int main(int argc, char** argv) {
   }
   if (engines.empty()) {
     engines = {"impulse", "soft_step", "impulse_gs", "soft_step_gs"};
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-    engines.push_back("bullet");
-#endif
+    if (joints_bench::have_bullet()) engines.push_back("bullet");
   }
   if (scenes.empty()) scenes = {"grid", "ragdolls"};
   for (const std::string& scene : scenes) {
@@ -182,10 +141,8 @@ int main(int argc, char** argv) {
         } else if (engine == "soft_step") {
           r = is_grid ? run_impulse<impulse::solver::soft_step>(grid)
                       : joints_bench::run_ragdolls_impulse<impulse::solver::soft_step>(pile);
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-        } else if (engine == "bullet") {
-          r = is_grid ? run_bullet(grid) : joints_bench::run_ragdolls_bullet(pile);
-#endif
+        } else if (engine == "bullet" && joints_bench::have_bullet()) {
+          r = *(is_grid ? joints_bench::run_bullet(grid) : joints_bench::run_bullet(pile));
         } else {
           std::fprintf(stderr, "joints: no engine %s in this build\n", engine.c_str());
           return 2;

@@ -1,6 +1,7 @@
 // bench/joints/measure.hpp — what the joint benchmarks share: an awake
-// world configuration, and one run of a built scene, timed and measured the
-// same way on impulse and on Bullet.
+// world configuration, the joint grid's numbers, and one run of a built
+// scene, timed and measured the same way on impulse and on Bullet
+// (peers.cpp).
 #pragma once
 
 #include <algorithm>
@@ -10,10 +11,6 @@
 
 #include "impulse/world.hpp"
 
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-#include <btBulletDynamicsCommon.h>
-#endif
-
 namespace joints_bench {
 
 struct result {
@@ -21,6 +18,16 @@ struct result {
   double worst_gap = 0;    ///< m, the largest gap between a joint's anchors at the end
   double lowest = 0;       ///< m, the lowest body's center at the end
   int moving = 0;          ///< bodies faster than 0.1 m/s at the end
+};
+
+/// The joint grid (main.cpp describes it).
+struct grid_spec {
+  int n = 100;
+  int steps = 300;
+  static constexpr double radius = 0.4, dt = 1.0 / 60;
+  [[nodiscard]] bool is_static(int row, int column) const noexcept {
+    return row == 0 && column >= n / 2 - 3 && column <= n / 2 + 3;
+  }
 };
 
 inline double median(std::vector<double> v) {
@@ -62,70 +69,5 @@ result run_impulse_world(World& w, const std::vector<impulse::body_id>& bodies,
   return out;
 }
 
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-/// btDiscreteDynamicsWorld out of the box (bench/scenes/bullet_engine.hpp
-/// says what that is), owning the bodies and joints a scene adds.
-struct bullet_world {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broad_phase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broad_phase, &solver, &configuration};
-  std::vector<std::unique_ptr<btRigidBody>> bodies, statics;  ///< measured, and not
-  std::vector<std::unique_ptr<btTypedConstraint>> joints;
-
-  bullet_world() { world.setGravity(btVector3(0, btScalar(-9.81), 0)); }
-  bullet_world(const bullet_world&) = delete;
-  bullet_world& operator=(const bullet_world&) = delete;
-  ~bullet_world() {
-    for (const auto& j : joints) world.removeConstraint(j.get());
-    for (const auto& b : bodies) world.removeRigidBody(b.get());
-    for (const auto& b : statics) world.removeRigidBody(b.get());
-  }
-
-  /// A static body that takes no part in the measures (the ground).
-  void add_static(const btRigidBody::btRigidBodyConstructionInfo& info) {
-    statics.push_back(std::make_unique<btRigidBody>(info));
-    world.addRigidBody(statics.back().get());
-  }
-
-  btRigidBody& add_body(const btRigidBody::btRigidBodyConstructionInfo& info) {
-    bodies.push_back(std::make_unique<btRigidBody>(info));
-    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-    world.addRigidBody(bodies.back().get());
-    return *bodies.back();
-  }
-  /// Adds a joint; the bodies it joins do not collide.
-  void add_joint(std::unique_ptr<btTypedConstraint> joint) {
-    joints.push_back(std::move(joint));
-    world.addConstraint(joints.back().get(), true);
-  }
-
-  /// Steps it (one internal step of dt each) and measures the bodies added.
-  result run(int steps, double dt) {
-    result out;
-    out.ms_per_step = median_step_ms(steps, [&] { world.stepSimulation(btScalar(dt), 0); });
-    for (const auto& c : joints) {
-      btVector3 a, b;
-      if (c->getConstraintType() == HINGE_CONSTRAINT_TYPE) {
-        const auto* hinge = static_cast<const btHingeConstraint*>(c.get());
-        a = c->getRigidBodyA().getWorldTransform() * hinge->getAFrame().getOrigin();
-        b = c->getRigidBodyB().getWorldTransform() * hinge->getBFrame().getOrigin();
-      } else {
-        const auto* ball = static_cast<const btPoint2PointConstraint*>(c.get());
-        a = c->getRigidBodyA().getWorldTransform() * ball->getPivotInA();
-        b = c->getRigidBodyB().getWorldTransform() * ball->getPivotInB();
-      }
-      out.worst_gap = std::max(out.worst_gap, double((a - b).length()));
-    }
-    out.lowest = 1e9;
-    for (const auto& b : bodies) {
-      out.lowest = std::min(out.lowest, double(b->getWorldTransform().getOrigin().y()));
-      out.moving += b->getLinearVelocity().length() > btScalar(0.1) ? 1 : 0;
-    }
-    return out;
-  }
-};
-#endif
 
 }  // namespace joints_bench

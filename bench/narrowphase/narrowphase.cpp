@@ -66,65 +66,14 @@
 #include <string>
 #include <vector>
 
+#include "cases.hpp"
 #include "convex_pairs.hpp"
 #include "impulse/narrowphase.hpp"
-
-#ifdef IMPULSE_BENCH_HAVE_CCD
-#include "ccd_shapes.hpp"
-#endif
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
-#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
-#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
-#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
-#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
-#include <btBulletCollisionCommon.h>
-#endif
 
 namespace {
 
 using namespace peers;
-constexpr double not_given = std::numeric_limits<double>::quiet_NaN();
-
-/// One line of the table: a pass over the pairs that returns a checksum
-/// (so that the compiler keeps the work), the times of the passes, and the
-/// error measured on a separate, untimed pass.
-struct timed_case {
-  std::string pair, algorithm, engine;
-  std::size_t tests = 0;
-  std::function<double()> pass;
-  double max_error = not_given;
-  std::vector<double> ns_per_test;
-
-  [[nodiscard]] double median() const {
-    std::vector<double> v = ns_per_test;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  }
-};
-
-/// A case from `signed_distance(i)`: the engine's signed distance for pair
-/// i, or NaN where it gives none. `reference[i]` is the exact one; for a
-/// collide test (`overlap_only`) a pair it finds apart is skipped when
-/// they are apart and counts its whole depth when they overlap.
-template <class F>
-timed_case make_case(std::string pair, std::string algorithm, std::string engine, const std::vector<std::size_t>& which,
-                     const std::vector<double>& reference, F signed_distance, bool measured = true) {
-  timed_case c{std::move(pair), std::move(algorithm), std::move(engine), which.size(), {}, not_given, {}};
-  for (const std::size_t i : which) {
-    if (!measured) break;
-    const double s = signed_distance(i);
-    if (std::isnan(s)) continue;
-    const double e = std::abs(s - reference[i]);
-    c.max_error = std::isnan(c.max_error) ? e : std::max(c.max_error, e);
-  }
-  c.pass = [which, signed_distance]() {
-    double sum = 0;
-    for (const std::size_t i : which) sum += signed_distance(i);
-    return sum;
-  };
-  return c;
-}
+using namespace narrowphase_bench;
 
 /// Our shapes and poses for a pairing, in scalar T.
 template <class A, class B, class T>
@@ -178,124 +127,6 @@ void add_ours(std::vector<timed_case>& cases, const std::string& pair, const cha
     }));
 }
 
-#ifdef IMPULSE_BENCH_HAVE_CCD
-void add_ccd(std::vector<timed_case>& cases, const std::string& pair, const generated_pairs& g,
-             const std::vector<std::size_t>& all, const std::vector<double>& reference,
-             const std::vector<std::size_t>& separated, bool distance_row) {
-  auto shapes = std::make_shared<std::vector<std::pair<ccd_shape, ccd_shape>>>();
-  for (const pair_spec& p : g.pairs) shapes->push_back({ccd_shape(p.a), ccd_shape(p.b)});
-  for (const bool tight : {false, true}) {
-    const char* engine = tight ? "libccd_tight" : "libccd";
-    ccd_t ccd = ccd_setup(1e-12);
-    if (!tight) {  // CCD_INIT's tolerances and iteration limit
-      ccd_t defaults;
-      CCD_INIT(&defaults);
-      ccd.max_iterations = defaults.max_iterations;
-      ccd.epa_tolerance = defaults.epa_tolerance;
-      ccd.mpr_tolerance = defaults.mpr_tolerance;
-      ccd.dist_tolerance = defaults.dist_tolerance;
-    }
-    cases.push_back(make_case(pair, "gjk_epa", engine, all, reference, [shapes, ccd](std::size_t i) {
-      const double depth = ccd_depth(ccd, (*shapes)[i].first, (*shapes)[i].second);
-      return depth < 0 ? not_given : -depth;
-    }));
-    cases.push_back(make_case(pair, "mpr", engine, all, reference, [shapes, ccd](std::size_t i) {
-      ccd_real_t depth = 0;
-      ccd_vec3_t direction, position;
-      if (ccdMPRPenetration(&(*shapes)[i].first, &(*shapes)[i].second, &ccd, &depth, &direction, &position) != 0)
-        return not_given;
-      return -double(depth);
-    }));
-    if (distance_row && !tight)
-      cases.push_back(make_case(
-          pair, "gjk_intersect", engine, separated, reference,
-          [shapes, ccd](std::size_t i) { return double(ccdGJKIntersect(&(*shapes)[i].first, &(*shapes)[i].second, &ccd)); },
-          false));  // a yes/no answer: no distance to compare
-  }
-}
-#endif
-
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-std::unique_ptr<btConvexShape> bullet_shape(const shape_spec& s) {
-  std::unique_ptr<btConvexShape> shape;
-  switch (s.kind) {
-    case shape_kind::sphere: shape = std::make_unique<btSphereShape>(btScalar(s.radius)); break;
-    case shape_kind::capsule:  // along y, as ours; its radius is its margin
-      shape = std::make_unique<btCapsuleShape>(btScalar(s.radius), btScalar(2 * s.half_height));
-      break;
-    case shape_kind::box:
-      shape = std::make_unique<btBoxShape>(btVector3(btScalar(s.half_extents.x), btScalar(s.half_extents.y),
-                                                     btScalar(s.half_extents.z)));
-      shape->setMargin(0);  // keeps the extents (btBoxShape::setMargin)
-      break;
-    case shape_kind::hull: {
-      auto hull = std::make_unique<btConvexHullShape>();
-      for (const v3& p : s.points) hull->addPoint(btVector3(btScalar(p.x), btScalar(p.y), btScalar(p.z)), false);
-      hull->recalcLocalAabb();
-      hull->setMargin(0);
-      shape = std::move(hull);
-      break;
-    }
-  }
-  return shape;
-}
-
-btTransform bullet_pose(const shape_spec& s) {
-  const auto& q = s.pose.rotation;
-  const auto& p = s.pose.position;
-  return btTransform(btQuaternion(btScalar(q.x), btScalar(q.y), btScalar(q.z), btScalar(q.w)),
-                     btVector3(btScalar(p.x), btScalar(p.y), btScalar(p.z)));
-}
-
-/// btBoxBoxDetector reports up to four points through a Result: keep the
-/// deepest (its depth is negative when they overlap).
-struct deepest_point : btDiscreteCollisionDetectorInterface::Result {
-  btScalar depth = BT_LARGE_FLOAT;
-  void setShapeIdentifiersA(int, int) override {}
-  void setShapeIdentifiersB(int, int) override {}
-  void addContactPoint(const btVector3&, const btVector3&, btScalar d) override { depth = std::min(depth, d); }
-};
-
-struct bullet_pair {
-  std::unique_ptr<btConvexShape> a, b;
-  btTransform pose_a, pose_b;
-};
-
-void add_bullet(std::vector<timed_case>& cases, const std::string& pair, const generated_pairs& g,
-                const std::vector<std::size_t>& all, const std::vector<double>& reference,
-                const std::vector<std::size_t>& separated, bool distance_row, bool boxes) {
-  auto shapes = std::make_shared<std::vector<bullet_pair>>();
-  for (const pair_spec& p : g.pairs)
-    shapes->push_back({bullet_shape(p.a), bullet_shape(p.b), bullet_pose(p.a), bullet_pose(p.b)});
-  const auto gjk = [shapes](std::size_t i) {
-    const bullet_pair& p = (*shapes)[i];
-    btVoronoiSimplexSolver simplex;
-    btGjkEpaPenetrationDepthSolver epa;
-    btGjkPairDetector detector(p.a.get(), p.b.get(), &simplex, &epa);
-    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
-    input.m_transformA = p.pose_a;
-    input.m_transformB = p.pose_b;
-    btPointCollector out;
-    detector.getClosestPoints(input, out, nullptr);
-    return out.m_hasResult ? double(out.m_distance) : not_given;
-  };
-  cases.push_back(make_case(pair, "gjk_epa", "bullet", all, reference, gjk));
-  if (distance_row) cases.push_back(make_case(pair, "gjk_distance", "bullet", separated, reference, gjk));
-  if (boxes)
-    cases.push_back(make_case(pair, "box_box", "bullet", all, reference, [shapes, &g](std::size_t i) {
-      const bullet_pair& p = (*shapes)[i];
-      btBoxBoxDetector detector(static_cast<const btBoxShape*>(p.a.get()), static_cast<const btBoxShape*>(p.b.get()));
-      btDiscreteCollisionDetectorInterface::ClosestPointInput input;
-      input.m_transformA = p.pose_a;
-      input.m_transformB = p.pose_b;
-      deepest_point out;
-      detector.getClosestPoints(input, out, nullptr);
-      if (out.depth == BT_LARGE_FLOAT) return g.answers[i].overlapping ? 0.0 : not_given;
-      return double(out.depth);
-    }));
-}
-#endif
-
 /// Every case of one pairing.
 template <template <class> class SA, template <class> class SB>
 std::vector<timed_case> pairing(shape_kind ka, shape_kind kb, int n, std::uint32_t seed, bool distance_row,
@@ -313,13 +144,7 @@ std::vector<timed_case> pairing(shape_kind ka, shape_kind kb, int n, std::uint32
   std::vector<timed_case> cases;
   add_ours<SA<float>, SB<float>, float>(cases, pair, "impulse_f32", g, all, reference, separated, distance_row);
   add_ours<SA<double>, SB<double>, double>(cases, pair, "impulse_f64", g, all, reference, separated, distance_row);
-#ifdef IMPULSE_BENCH_HAVE_CCD
-  add_ccd(cases, pair, g, all, reference, separated, distance_row);
-#endif
-#ifdef IMPULSE_BENCH_HAVE_BULLET
-  add_bullet(cases, pair, g, all, reference, separated, distance_row,
-             ka == shape_kind::box && kb == shape_kind::box);
-#endif
+  add_peers(cases, pair, g, all, reference, separated, distance_row, ka == shape_kind::box && kb == shape_kind::box);
   return cases;
 }
 
