@@ -46,7 +46,6 @@
 
 #include <array>
 #include <cmath>
-#include <memory>
 #include <numbers>
 #include <vector>
 
