@@ -155,13 +155,16 @@ struct contact_update {
   }
 
   /// Tests the records index(0), …, index(count − 1) (collide), across
-  /// the workers, then does in the records' order what they share.
+  /// the workers, then does in the records' order what they share. One
+  /// worker does it as it goes, in the same order, so that it keeps no
+  /// copy of the manifolds: the slots it takes are the same.
   template <class Index>
   void collide_all(std::uint32_t count, Index index, const reuse_limits& limits) {
     const task_system& tasks = scratch.tasks;
     std::vector<pair_work>& work = scratch.pair_work;
     work.resize(tasks.parallel() ? tasks.workers : 1);
-    for (pair_work& w : work) w.clear();
+    for (std::size_t k = 0; k < work.size(); ++k) work[k].clear(std::uint32_t(k));
+    work[0].direct = work.size() == 1;
     auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
       pair_work& w = work[worker];
       for (std::uint32_t i = begin; i < end; ++i) collide(index(i), limits, w);
@@ -182,14 +185,17 @@ struct contact_update {
     }
     for (const resized_record& r : all.resized) {
       contact_record<T>& c = state.contacts[r.record];
+      const pair_work& from = work[r.worker];
       resize_slots(c, int(r.count));
-      for (std::size_t m = 0; m < r.count; ++m) keep(c, m, r.fresh[m], r.carried[m], r.pose_a);
+      for (std::size_t m = 0; m < r.count; ++m)
+        keep(c, m, from.fresh[r.first + m], from.carried[r.first + m], r.pose_a);
     }
-    for (const touch_event& e : all.events) {
-      const contact_record<T>& c = state.contacts[e.record];
-      (e.begun ? state.begun : state.ended).push_back({c.a, c.b});
-    }
+    for (const touch_event& e : all.events) touch(state.contacts[e.record], e.begun);
     state.counts.updated_contacts += all.updated;
+  }
+
+  void touch(const contact_record<T>& c, bool begun) const {
+    (begun ? state.begun : state.ended).push_back({c.a, c.b});
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
@@ -215,7 +221,7 @@ struct contact_update {
 
   /// Gives the record n manifold slots, keeping its first ones: freed
   /// slots are reused before the pool grows.
-  void resize_slots(contact_record<T>& c, int n) {
+  void resize_slots(contact_record<T>& c, int n) const {
     while (c.manifold_count > n) state.free_manifolds.push_back(c.slots[std::size_t(--c.manifold_count)]);
     while (c.manifold_count < n) {
       std::uint32_t slot;
@@ -232,7 +238,8 @@ struct contact_update {
 
   /// The record `record` tested again, or its manifolds carried (below).
   /// Writes only the record and the manifolds it holds; a change in their
-  /// count, and an event, go to the worker's `w` for collide_all.
+  /// count, and an event, go to the worker's `w` for collide_all, unless
+  /// it is the only worker.
   void collide(std::uint32_t record, const reuse_limits& limits, pair_work& w) const {
     contact_record<T>& c = state.contacts[record];
     const body_record<T>& ra = state.bodies[c.a];
@@ -274,15 +281,19 @@ struct contact_update {
     }
     c.tested = true;
     c.tested_relative = relative;
-    if (n == std::size_t(c.manifold_count)) {
-      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
+    if (n != std::size_t(c.manifold_count) && !w.direct) {
+      w.resized.push_back({record, std::uint32_t(n), w.worker, std::uint32_t(w.fresh.size()), pose_a});
+      w.fresh.insert(w.fresh.end(), fresh.begin(), fresh.begin() + std::ptrdiff_t(n));
+      w.carried.insert(w.carried.end(), carried.begin(), carried.begin() + std::ptrdiff_t(n));
     } else {
-      resized_record& r = w.resized.emplace_back();
-      r.record = record, r.count = std::uint32_t(n), r.pose_a = pose_a;
-      for (std::size_t m = 0; m < n; ++m) r.fresh[m] = fresh[m], r.carried[m] = carried[m];
+      resize_slots(c, int(n));
+      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
     }
     const bool touching = n > 0;
-    if (touching != c.touching) w.events.push_back({record, touching});
+    if (touching != c.touching) {
+      if (w.direct) touch(c, touching);
+      else w.events.push_back({record, touching});
+    }
     c.touching = touching;
   }
 

@@ -506,22 +506,31 @@ template <scalar_type T>
 struct alignas(64) worker_pairs {
   struct resized_record {
     std::uint32_t record, count;
+    std::uint32_t worker, first;  ///< its manifolds: fresh and carried of work[worker], from first
     transform<T> pose_a;
-    std::array<contact_manifold<T>, max_manifolds> fresh;
-    std::array<manifold_impulse<T>, max_manifolds> carried;
   };
   struct touch_event {
     std::uint32_t record;
     bool begun;
   };
   std::vector<resized_record> resized;
+  std::vector<contact_manifold<T>> fresh;
+  std::vector<manifold_impulse<T>> carried;
   std::vector<touch_event> events;
   std::size_t updated = 0;  ///< records tested or carried
+  std::uint32_t worker = 0;
+  /// The only worker: resizes the slots and reports the events itself, in
+  /// the records' order, and keeps nothing here.
+  bool direct = false;
 
-  void clear() noexcept {
+  void clear(std::uint32_t index) noexcept {
     resized.clear();
+    fresh.clear();
+    carried.clear();
     events.clear();
     updated = 0;
+    worker = index;
+    direct = false;
   }
 };
 
