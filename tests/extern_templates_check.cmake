@@ -4,24 +4,30 @@
 # leaves to impulse/instantiate.hpp's file. A member moved back inside its
 # class (inline, so compiled wherever it is used) would show up here.
 #   cmake -DNM=nm -DOBJECTS="a.o;b.o" -P extern_templates_check.cmake
-# With -DPART=narrow_phase, it checks only that the objects define none of
-# the narrow phase that IMPULSE_DECLARE_NARROW_PHASE declares extern: the
+# With -DPART=scalar_parts, it checks only that the objects define none of
+# what depends on the scalar alone: the narrow phase that
+# IMPULSE_DECLARE_NARROW_PHASE declares extern, and the solvers' and the
+# dynamic BVH's entry points that IMPULSE_DECLARE_SCALAR_PARTS does. The
 # case of a file that instantiates a world of its own configuration.
 execute_process(COMMAND ${NM} -C --defined-only ${OBJECTS} OUTPUT_VARIABLE symbols RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "nm failed on ${OBJECTS}")
 endif()
-if(PART STREQUAL "narrow_phase")
+if(PART STREQUAL "scalar_parts")
   string(REGEX MATCHALL "impulse::narrowphase::(detail::call_collide|time_of_impact|sphere_cast)<[^(]*>\\(" found
     "${symbols}")
+  string(REGEX MATCHALL
+    "impulse::(basic_sequential_impulse|basic_soft_step|broadphase::basic_dynamic_bvh)<(float|double)>::(solve|prepare|project_joints|update|move|create|destroy)\\("
+    found_parts "${symbols}")
+  list(APPEND found ${found_parts})
   list(REMOVE_DUPLICATES found)
   if(found)
-    message(FATAL_ERROR "compiled in a file that should only parse the narrow phase: ${found}")
+    message(FATAL_ERROR "compiled in a file that should only parse them: ${found}")
   endif()
   if(NOT symbols MATCHES "impulse::world<")
     message(FATAL_ERROR "no world compiled in ${OBJECTS}: the check checks nothing")
   endif()
-  message(STATUS "a world compiled, none of the default shapes' narrow phase")
+  message(STATUS "a world compiled, none of the default shapes' narrow phase, the solvers or the dynamic BVH")
   return()
 endif()
 set(found)

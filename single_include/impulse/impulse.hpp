@@ -2096,68 +2096,18 @@ class basic_dynamic_bvh {
       impulse::detail::report_error(error_code::invalid_parameter, "dynamic_bvh: the margin must be >= 0");
   }
 
-  proxy_id create(const aabb<T>& box, std::uint64_t user_data) {
-    const proxy_id id = store_.insert(box, user_data);  // validates before anything changes
-    if (id.index >= slots_.size()) slots_.resize(id.index + 1);
-    slot_data& s = slots_[id.index];
-    s.exact = box;
-    s.generation = id.generation;
-    s.leaf = tree_.create_leaf(expand(box, margin_), id.index);
-    fat_box_changed(id.index);
-    return id;
-  }
+  proxy_id create(const aabb<T>& box, std::uint64_t user_data);
 
-  void move(proxy_id id, const aabb<T>& box) {
-    store_.set_box(id, box);  // validates before anything changes
-    slot_data& s = slots_[id.index];
-    const aabb<T> old = s.exact;
-    s.exact = box;
-    if (impulse::contains(tree_.box(s.leaf), box)) return;  // the tree and the candidates stand
-    tree_.move_leaf(s.leaf, fatten(old, box));
-    fat_box_changed(id.index);
-    ++reinserted_since_update_;
-  }
+  void move(proxy_id id, const aabb<T>& box);
 
-  void destroy(proxy_id id) {
-    store_.erase(id);  // validates before anything changes
-    tree_.destroy_leaf(slots_[id.index].leaf);
-    slots_[id.index].leaf = detail::null_node;
-    fat_box_changed(id.index);  // its candidates go at the next update
-  }
+  void destroy(proxy_id id);
 
   void update() { update(task_system{}); }
 
   /// The same, the carried candidates checked across the hook's workers
   /// (core/task_system.hpp): the same pairs and candidates, in the same
   /// order, for any worker count.
-  void update(const task_system& tasks) {
-    if (!store_.take_changed()) {  // nothing came, moved or went
-      reinserted_ = 0;
-      return pairs_.keep();
-    }
-    // Stamp every leaf whose fat box changed, and its ancestors, stopping
-    // at the first ancestor already stamped: the path above it is done.
-    auto& nodes = tree_.nodes();
-    for (const std::uint32_t slot : changed_) {
-      std::int32_t node = slots_[slot].leaf;
-      while (node != detail::null_node && nodes[node].mark != epoch_) {
-        nodes[node].mark = epoch_;
-        node = nodes[node].parent;
-      }
-    }
-
-    next_candidates_.clear();
-    found_.clear();
-    keep_candidates(tasks);
-    if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
-    candidates_.swap(next_candidates_);
-    pairs_.publish(found_);
-
-    changed_.clear();
-    reinserted_ = reinserted_since_update_;
-    reinserted_since_update_ = 0;
-    if (++epoch_ == 0) restart_epochs();
-  }
+  void update(const task_system& tasks);
 
   [[nodiscard]] std::span<const proxy_pair> pairs() const noexcept { return pairs_.pairs(); }
   [[nodiscard]] std::span<const proxy_pair> begun() const noexcept { return pairs_.begun(); }
@@ -2393,6 +2343,72 @@ class basic_dynamic_bvh {
   std::uint32_t epoch_ = 1;
   std::size_t reinserted_ = 0, reinserted_since_update_ = 0;
 };
+
+// The members that do the work out of the class, not inline: where a
+// program declares the tree extern (IMPULSE_EXTERN_TEMPLATES,
+// core/extern_templates.hpp), its files then compile none of them.
+
+template <scalar_type T>
+proxy_id basic_dynamic_bvh<T>::create(const aabb<T>& box, std::uint64_t user_data) {
+  const proxy_id id = store_.insert(box, user_data);  // validates before anything changes
+  if (id.index >= slots_.size()) slots_.resize(id.index + 1);
+  slot_data& s = slots_[id.index];
+  s.exact = box;
+  s.generation = id.generation;
+  s.leaf = tree_.create_leaf(expand(box, margin_), id.index);
+  fat_box_changed(id.index);
+  return id;
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::move(proxy_id id, const aabb<T>& box) {
+  store_.set_box(id, box);  // validates before anything changes
+  slot_data& s = slots_[id.index];
+  const aabb<T> old = s.exact;
+  s.exact = box;
+  if (impulse::contains(tree_.box(s.leaf), box)) return;  // the tree and the candidates stand
+  tree_.move_leaf(s.leaf, fatten(old, box));
+  fat_box_changed(id.index);
+  ++reinserted_since_update_;
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::destroy(proxy_id id) {
+  store_.erase(id);  // validates before anything changes
+  tree_.destroy_leaf(slots_[id.index].leaf);
+  slots_[id.index].leaf = detail::null_node;
+  fat_box_changed(id.index);  // its candidates go at the next update
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::update(const task_system& tasks) {
+  if (!store_.take_changed()) {  // nothing came, moved or went
+    reinserted_ = 0;
+    return pairs_.keep();
+  }
+  // Stamp every leaf whose fat box changed, and its ancestors, stopping
+  // at the first ancestor already stamped: the path above it is done.
+  auto& nodes = tree_.nodes();
+  for (const std::uint32_t slot : changed_) {
+    std::int32_t node = slots_[slot].leaf;
+    while (node != detail::null_node && nodes[node].mark != epoch_) {
+      nodes[node].mark = epoch_;
+      node = nodes[node].parent;
+    }
+  }
+
+  next_candidates_.clear();
+  found_.clear();
+  keep_candidates(tasks);
+  if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
+  candidates_.swap(next_candidates_);
+  pairs_.publish(found_);
+
+  changed_.clear();
+  reinserted_ = reinserted_since_update_;
+  reinserted_since_update_ = 0;
+  if (++epoch_ == 0) restart_epochs();
+}
 
 /// The dynamic BVH policy, for a config's `broadphase`.
 struct dynamic_bvh {
@@ -4841,7 +4857,9 @@ struct sweep_and_prune {
 // (IMPULSE_INSTANTIATE_NARROW_PHASE): a file that instantiates a world of
 // its own configuration then compiles only what that configuration
 // changes. One such file at g++ -O3 -march=native took 35 s with the
-// narrow phase and 28 s without it.
+// narrow phase and 28 s without it. The solvers and the dynamic BVH depend
+// on the scalar alone too (IMPULSE_DECLARE_SCALAR_PARTS): without them,
+// 23 s where it took 29 (two compiles side by side).
 // A member template (create_body<Shape>, draw<D>, for_each_contact<F>,
 // step<Field>) is still compiled where it is used; create_body's part that
 // depends on the shape is short.
@@ -4870,8 +4888,21 @@ struct sweep_and_prune {
 /// Compiles the narrow phase of the default shapes in scalar T here, in one translation unit.
 #define IMPULSE_INSTANTIATE_NARROW_PHASE(T) IMPULSE_DETAIL_NARROW_PHASE(template, T)
 
-// The lists behind the two: `how` is `template` or `extern template`. The
+/// The rest of a world that depends on its scalar alone, compiled in
+/// another translation unit: the two solvers (sequential_impulse,
+/// soft_step) and the dynamic BVH. Their entry points are defined outside
+/// their classes, so that a file that only sees this declaration compiles
+/// none of them.
+#define IMPULSE_DECLARE_SCALAR_PARTS(T) IMPULSE_DETAIL_SCALAR_PARTS(extern template, T)
+/// Compiles the solvers and the dynamic BVH of scalar T here, in one translation unit.
+#define IMPULSE_INSTANTIATE_SCALAR_PARTS(T) IMPULSE_DETAIL_SCALAR_PARTS(template, T)
+
+// The lists behind these: `how` is `template` or `extern template`. The
 // last item of each has no semicolon, so that a use ends with one.
+#define IMPULSE_DETAIL_SCALAR_PARTS(how, T)                                                                 \
+  how class impulse::basic_sequential_impulse<T>;                                                          \
+  how class impulse::basic_soft_step<T>;                                                                   \
+  how class impulse::broadphase::basic_dynamic_bvh<T>
 #define IMPULSE_DETAIL_NARROW_PHASE(how, T)                                                                 \
   IMPULSE_DETAIL_COLLIDE_ROW(how, sphere, T);                                                              \
   IMPULSE_DETAIL_COLLIDE_ROW(how, box, T);                                                                 \
@@ -10664,9 +10695,7 @@ class basic_sequential_impulse {
   /// colors were shared instead, or it ran on one thread.
   [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
 
-  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    stages_.prepare(bodies, contacts);
-  }
+  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 
   /// Steps 1–5 above, and the bodies moved: once, or in `substeps` equal
   /// parts. Steps 4 and 5 run on batches of contacts that share no moving
@@ -10687,19 +10716,14 @@ class basic_sequential_impulse {
   /// With a task hook the whole solve is one call of it: its loops are the
   /// stages of a stage_runner (core/detail/stage_runner.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
-    stages_.run(program);
-  }
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
   /// over the bodies' poses after they have moved (joint.hpp,
   /// project_joint), each with a Newton step on the joint trees
   /// (joint_tree.hpp).
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
-  }
+                      const settings_type& settings);
 
  private:
   static constexpr int width = detail::contact_lanes<T>;
@@ -11060,6 +11084,30 @@ class basic_sequential_impulse {
   }
 };
 
+// The entry points out of the class, not inline: where a program declares
+// the solver extern (IMPULSE_EXTERN_TEMPLATES, core/extern_templates.hpp),
+// its files then compile none of it, not even to inline it.
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::prepare(std::span<const solver_body<T>> bodies,
+                                          std::span<contact_constraint<T>> contacts) const noexcept {
+  stages_.prepare(bodies, contacts);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                                        std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::project_joints(std::span<solver_body<T>> bodies,
+                                                 std::span<joint_constraint<T>> joints,
+                                                 const settings_type& settings) {
+  tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
+}
+
 namespace solver {
 /// Projected Gauss–Seidel with warm starting, a restitution pass and split
 /// impulses (dynamics/sequential_impulse.hpp).
@@ -11127,9 +11175,7 @@ class basic_soft_step {
   /// same, bit for bit, for any worker count.
   void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
-  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    stages_.prepare(bodies, contacts);
-  }
+  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 
   /// The whole step: velocities solved and bodies moved.
   ///
@@ -11148,10 +11194,7 @@ class basic_soft_step {
   /// Velocities are left as solved; world::project_joints then calls
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
-    stages_.run(program);
-  }
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
   /// The joints' drift removed once the step is done, as
   /// sequential_impulse does (joint_tree.hpp, project_joints): without it,
@@ -11160,9 +11203,7 @@ class basic_soft_step {
   /// as contacts are: pushed back here too, a hinge resting on its limit
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
-  }
+                      const settings_type& settings);
 
  private:
   static constexpr int width = detail::contact_lanes<T>;
@@ -11340,6 +11381,29 @@ class basic_soft_step {
   softness<T> moving_, fixed_;       // of contacts between moving bodies, and with one that cannot move
   bool fourth_order_ = false;
 };
+
+// The entry points out of the class, as sequential_impulse's are: a
+// program's extern declaration (core/extern_templates.hpp) then keeps the
+// solver out of its files.
+
+template <scalar_type T>
+void basic_soft_step<T>::prepare(std::span<const solver_body<T>> bodies,
+                                 std::span<contact_constraint<T>> contacts) const noexcept {
+  stages_.prepare(bodies, contacts);
+}
+
+template <scalar_type T>
+void basic_soft_step<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                               std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_soft_step<T>::project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
+                                        const settings_type& settings) {
+  tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
+}
 
 namespace solver {
 /// Soft contact rows on substeps with a relax pass, as Box2D v3
@@ -20241,22 +20305,31 @@ template <scalar_type T>
 struct alignas(64) worker_pairs {
   struct resized_record {
     std::uint32_t record, count;
+    std::uint32_t worker, first;  ///< its manifolds: fresh and carried of work[worker], from first
     transform<T> pose_a;
-    std::array<contact_manifold<T>, max_manifolds> fresh;
-    std::array<manifold_impulse<T>, max_manifolds> carried;
   };
   struct touch_event {
     std::uint32_t record;
     bool begun;
   };
   std::vector<resized_record> resized;
+  std::vector<contact_manifold<T>> fresh;
+  std::vector<manifold_impulse<T>> carried;
   std::vector<touch_event> events;
   std::size_t updated = 0;  ///< records tested or carried
+  std::uint32_t worker = 0;
+  /// The only worker: resizes the slots and reports the events itself, in
+  /// the records' order, and keeps nothing here.
+  bool direct = false;
 
-  void clear() noexcept {
+  void clear(std::uint32_t index) noexcept {
     resized.clear();
+    fresh.clear();
+    carried.clear();
     events.clear();
     updated = 0;
+    worker = index;
+    direct = false;
   }
 };
 
@@ -20487,13 +20560,16 @@ struct contact_update {
   }
 
   /// Tests the records index(0), …, index(count − 1) (collide), across
-  /// the workers, then does in the records' order what they share.
+  /// the workers, then does in the records' order what they share. One
+  /// worker does it as it goes, in the same order, so that it keeps no
+  /// copy of the manifolds: the slots it takes are the same.
   template <class Index>
   void collide_all(std::uint32_t count, Index index, const reuse_limits& limits) {
     const task_system& tasks = scratch.tasks;
     std::vector<pair_work>& work = scratch.pair_work;
     work.resize(tasks.parallel() ? tasks.workers : 1);
-    for (pair_work& w : work) w.clear();
+    for (std::size_t k = 0; k < work.size(); ++k) work[k].clear(std::uint32_t(k));
+    work[0].direct = work.size() == 1;
     auto range = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
       pair_work& w = work[worker];
       for (std::uint32_t i = begin; i < end; ++i) collide(index(i), limits, w);
@@ -20514,14 +20590,17 @@ struct contact_update {
     }
     for (const resized_record& r : all.resized) {
       contact_record<T>& c = state.contacts[r.record];
+      const pair_work& from = work[r.worker];
       resize_slots(c, int(r.count));
-      for (std::size_t m = 0; m < r.count; ++m) keep(c, m, r.fresh[m], r.carried[m], r.pose_a);
+      for (std::size_t m = 0; m < r.count; ++m)
+        keep(c, m, from.fresh[r.first + m], from.carried[r.first + m], r.pose_a);
     }
-    for (const touch_event& e : all.events) {
-      const contact_record<T>& c = state.contacts[e.record];
-      (e.begun ? state.begun : state.ended).push_back({c.a, c.b});
-    }
+    for (const touch_event& e : all.events) touch(state.contacts[e.record], e.begun);
     state.counts.updated_contacts += all.updated;
+  }
+
+  void touch(const contact_record<T>& c, bool begun) const {
+    (begun ? state.begun : state.ended).push_back({c.a, c.b});
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
@@ -20547,7 +20626,7 @@ struct contact_update {
 
   /// Gives the record n manifold slots, keeping its first ones: freed
   /// slots are reused before the pool grows.
-  void resize_slots(contact_record<T>& c, int n) {
+  void resize_slots(contact_record<T>& c, int n) const {
     while (c.manifold_count > n) state.free_manifolds.push_back(c.slots[std::size_t(--c.manifold_count)]);
     while (c.manifold_count < n) {
       std::uint32_t slot;
@@ -20564,7 +20643,8 @@ struct contact_update {
 
   /// The record `record` tested again, or its manifolds carried (below).
   /// Writes only the record and the manifolds it holds; a change in their
-  /// count, and an event, go to the worker's `w` for collide_all.
+  /// count, and an event, go to the worker's `w` for collide_all, unless
+  /// it is the only worker.
   void collide(std::uint32_t record, const reuse_limits& limits, pair_work& w) const {
     contact_record<T>& c = state.contacts[record];
     const body_record<T>& ra = state.bodies[c.a];
@@ -20606,15 +20686,19 @@ struct contact_update {
     }
     c.tested = true;
     c.tested_relative = relative;
-    if (n == std::size_t(c.manifold_count)) {
-      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
+    if (n != std::size_t(c.manifold_count) && !w.direct) {
+      w.resized.push_back({record, std::uint32_t(n), w.worker, std::uint32_t(w.fresh.size()), pose_a});
+      w.fresh.insert(w.fresh.end(), fresh.begin(), fresh.begin() + std::ptrdiff_t(n));
+      w.carried.insert(w.carried.end(), carried.begin(), carried.begin() + std::ptrdiff_t(n));
     } else {
-      resized_record& r = w.resized.emplace_back();
-      r.record = record, r.count = std::uint32_t(n), r.pose_a = pose_a;
-      for (std::size_t m = 0; m < n; ++m) r.fresh[m] = fresh[m], r.carried[m] = carried[m];
+      resize_slots(c, int(n));
+      for (std::size_t m = 0; m < n; ++m) keep(c, m, fresh[m], carried[m], pose_a);
     }
     const bool touching = n > 0;
-    if (touching != c.touching) w.events.push_back({record, touching});
+    if (touching != c.touching) {
+      if (w.direct) touch(c, touching);
+      else w.events.push_back({record, touching});
+    }
     c.touching = touching;
   }
 
@@ -22940,6 +23024,8 @@ auto world<Config>::angular_momentum() const noexcept -> vec3<T> {
 #if IMPULSE_EXTERN_TEMPLATES
 IMPULSE_DECLARE_NARROW_PHASE(float);
 IMPULSE_DECLARE_NARROW_PHASE(double);
+IMPULSE_DECLARE_SCALAR_PARTS(float);
+IMPULSE_DECLARE_SCALAR_PARTS(double);
 IMPULSE_DECLARE_WORLD(impulse::default_config);
 IMPULSE_DECLARE_WORLD(impulse::default_double_config);
 #endif

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../error_code_of.hpp"
+#include "../dynamics/motion_test.hpp"
 #include "scenes.hpp"
 
 namespace world_world_ids_tests {
@@ -128,10 +129,8 @@ TEST_CASE("a body's inertia may be given: a box spun about x with I = 2 instead 
 
 namespace {
 
-struct motion_config : impulse::default_config {
-  using scalar = double;
-  static constexpr bool collision = false;
-};
+/// Double, no collision (and so no sleeping): a world the tests compile once.
+using motion_config = impulse::test::motion_config<double, impulse::default_config::integrator>;
 
 }  // namespace
 

@@ -64,68 +64,18 @@ class basic_dynamic_bvh {
       impulse::detail::report_error(error_code::invalid_parameter, "dynamic_bvh: the margin must be >= 0");
   }
 
-  proxy_id create(const aabb<T>& box, std::uint64_t user_data) {
-    const proxy_id id = store_.insert(box, user_data);  // validates before anything changes
-    if (id.index >= slots_.size()) slots_.resize(id.index + 1);
-    slot_data& s = slots_[id.index];
-    s.exact = box;
-    s.generation = id.generation;
-    s.leaf = tree_.create_leaf(expand(box, margin_), id.index);
-    fat_box_changed(id.index);
-    return id;
-  }
+  proxy_id create(const aabb<T>& box, std::uint64_t user_data);
 
-  void move(proxy_id id, const aabb<T>& box) {
-    store_.set_box(id, box);  // validates before anything changes
-    slot_data& s = slots_[id.index];
-    const aabb<T> old = s.exact;
-    s.exact = box;
-    if (impulse::contains(tree_.box(s.leaf), box)) return;  // the tree and the candidates stand
-    tree_.move_leaf(s.leaf, fatten(old, box));
-    fat_box_changed(id.index);
-    ++reinserted_since_update_;
-  }
+  void move(proxy_id id, const aabb<T>& box);
 
-  void destroy(proxy_id id) {
-    store_.erase(id);  // validates before anything changes
-    tree_.destroy_leaf(slots_[id.index].leaf);
-    slots_[id.index].leaf = detail::null_node;
-    fat_box_changed(id.index);  // its candidates go at the next update
-  }
+  void destroy(proxy_id id);
 
   void update() { update(task_system{}); }
 
   /// The same, the carried candidates checked across the hook's workers
   /// (core/task_system.hpp): the same pairs and candidates, in the same
   /// order, for any worker count.
-  void update(const task_system& tasks) {
-    if (!store_.take_changed()) {  // nothing came, moved or went
-      reinserted_ = 0;
-      return pairs_.keep();
-    }
-    // Stamp every leaf whose fat box changed, and its ancestors, stopping
-    // at the first ancestor already stamped: the path above it is done.
-    auto& nodes = tree_.nodes();
-    for (const std::uint32_t slot : changed_) {
-      std::int32_t node = slots_[slot].leaf;
-      while (node != detail::null_node && nodes[node].mark != epoch_) {
-        nodes[node].mark = epoch_;
-        node = nodes[node].parent;
-      }
-    }
-
-    next_candidates_.clear();
-    found_.clear();
-    keep_candidates(tasks);
-    if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
-    candidates_.swap(next_candidates_);
-    pairs_.publish(found_);
-
-    changed_.clear();
-    reinserted_ = reinserted_since_update_;
-    reinserted_since_update_ = 0;
-    if (++epoch_ == 0) restart_epochs();
-  }
+  void update(const task_system& tasks);
 
   [[nodiscard]] std::span<const proxy_pair> pairs() const noexcept { return pairs_.pairs(); }
   [[nodiscard]] std::span<const proxy_pair> begun() const noexcept { return pairs_.begun(); }
@@ -361,6 +311,72 @@ class basic_dynamic_bvh {
   std::uint32_t epoch_ = 1;
   std::size_t reinserted_ = 0, reinserted_since_update_ = 0;
 };
+
+// The members that do the work out of the class, not inline: where a
+// program declares the tree extern (IMPULSE_EXTERN_TEMPLATES,
+// core/extern_templates.hpp), its files then compile none of them.
+
+template <scalar_type T>
+proxy_id basic_dynamic_bvh<T>::create(const aabb<T>& box, std::uint64_t user_data) {
+  const proxy_id id = store_.insert(box, user_data);  // validates before anything changes
+  if (id.index >= slots_.size()) slots_.resize(id.index + 1);
+  slot_data& s = slots_[id.index];
+  s.exact = box;
+  s.generation = id.generation;
+  s.leaf = tree_.create_leaf(expand(box, margin_), id.index);
+  fat_box_changed(id.index);
+  return id;
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::move(proxy_id id, const aabb<T>& box) {
+  store_.set_box(id, box);  // validates before anything changes
+  slot_data& s = slots_[id.index];
+  const aabb<T> old = s.exact;
+  s.exact = box;
+  if (impulse::contains(tree_.box(s.leaf), box)) return;  // the tree and the candidates stand
+  tree_.move_leaf(s.leaf, fatten(old, box));
+  fat_box_changed(id.index);
+  ++reinserted_since_update_;
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::destroy(proxy_id id) {
+  store_.erase(id);  // validates before anything changes
+  tree_.destroy_leaf(slots_[id.index].leaf);
+  slots_[id.index].leaf = detail::null_node;
+  fat_box_changed(id.index);  // its candidates go at the next update
+}
+
+template <scalar_type T>
+void basic_dynamic_bvh<T>::update(const task_system& tasks) {
+  if (!store_.take_changed()) {  // nothing came, moved or went
+    reinserted_ = 0;
+    return pairs_.keep();
+  }
+  // Stamp every leaf whose fat box changed, and its ancestors, stopping
+  // at the first ancestor already stamped: the path above it is done.
+  auto& nodes = tree_.nodes();
+  for (const std::uint32_t slot : changed_) {
+    std::int32_t node = slots_[slot].leaf;
+    while (node != detail::null_node && nodes[node].mark != epoch_) {
+      nodes[node].mark = epoch_;
+      node = nodes[node].parent;
+    }
+  }
+
+  next_candidates_.clear();
+  found_.clear();
+  keep_candidates(tasks);
+  if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
+  candidates_.swap(next_candidates_);
+  pairs_.publish(found_);
+
+  changed_.clear();
+  reinserted_ = reinserted_since_update_;
+  reinserted_since_update_ = 0;
+  if (++epoch_ == 0) restart_epochs();
+}
 
 /// The dynamic BVH policy, for a config's `broadphase`.
 struct dynamic_bvh {

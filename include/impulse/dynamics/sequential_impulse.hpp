@@ -110,9 +110,7 @@ class basic_sequential_impulse {
   /// colors were shared instead, or it ran on one thread.
   [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
 
-  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    stages_.prepare(bodies, contacts);
-  }
+  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 
   /// Steps 1–5 above, and the bodies moved: once, or in `substeps` equal
   /// parts. Steps 4 and 5 run on batches of contacts that share no moving
@@ -133,19 +131,14 @@ class basic_sequential_impulse {
   /// With a task hook the whole solve is one call of it: its loops are the
   /// stages of a stage_runner (core/detail/stage_runner.hpp).
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
-    stages_.run(program);
-  }
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
   /// over the bodies' poses after they have moved (joint.hpp,
   /// project_joint), each with a Newton step on the joint trees
   /// (joint_tree.hpp).
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
-  }
+                      const settings_type& settings);
 
  private:
   static constexpr int width = detail::contact_lanes<T>;
@@ -505,6 +498,30 @@ class basic_sequential_impulse {
       }
   }
 };
+
+// The entry points out of the class, not inline: where a program declares
+// the solver extern (IMPULSE_EXTERN_TEMPLATES, core/extern_templates.hpp),
+// its files then compile none of it, not even to inline it.
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::prepare(std::span<const solver_body<T>> bodies,
+                                          std::span<contact_constraint<T>> contacts) const noexcept {
+  stages_.prepare(bodies, contacts);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                                        std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::project_joints(std::span<solver_body<T>> bodies,
+                                                 std::span<joint_constraint<T>> joints,
+                                                 const settings_type& settings) {
+  tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, true);
+}
 
 namespace solver {
 /// Projected Gauss–Seidel with warm starting, a restitution pass and split

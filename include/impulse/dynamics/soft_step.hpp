@@ -70,9 +70,7 @@ class basic_soft_step {
   /// same, bit for bit, for any worker count.
   void set_task_system(const task_system& tasks) noexcept { stages_.set_task_system(tasks); }
 
-  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept {
-    stages_.prepare(bodies, contacts);
-  }
+  void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 
   /// The whole step: velocities solved and bodies moved.
   ///
@@ -91,10 +89,7 @@ class basic_soft_step {
   /// Velocities are left as solved; world::project_joints then calls
   /// project_joints below.
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-    auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
-    stages_.run(program);
-  }
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
   /// The joints' drift removed once the step is done, as
   /// sequential_impulse does (joint_tree.hpp, project_joints): without it,
@@ -103,9 +98,7 @@ class basic_soft_step {
   /// as contacts are: pushed back here too, a hinge resting on its limit
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
-                      const settings_type& settings) {
-    tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
-  }
+                      const settings_type& settings);
 
  private:
   static constexpr int width = detail::contact_lanes<T>;
@@ -283,6 +276,29 @@ class basic_soft_step {
   softness<T> moving_, fixed_;       // of contacts between moving bodies, and with one that cannot move
   bool fourth_order_ = false;
 };
+
+// The entry points out of the class, as sequential_impulse's are: a
+// program's extern declaration (core/extern_templates.hpp) then keeps the
+// solver out of its files.
+
+template <scalar_type T>
+void basic_soft_step<T>::prepare(std::span<const solver_body<T>> bodies,
+                                 std::span<contact_constraint<T>> contacts) const noexcept {
+  stages_.prepare(bodies, contacts);
+}
+
+template <scalar_type T>
+void basic_soft_step<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                               std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_soft_step<T>::project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
+                                        const settings_type& settings) {
+  tree_.project_joints(bodies, joints, settings.position_iterations, settings.joint_correction, false);
+}
 
 namespace solver {
 /// Soft contact rows on substeps with a relax pass, as Box2D v3

@@ -626,6 +626,8 @@ class world_snapshot {
 #if IMPULSE_EXTERN_TEMPLATES
 IMPULSE_DECLARE_NARROW_PHASE(float);
 IMPULSE_DECLARE_NARROW_PHASE(double);
+IMPULSE_DECLARE_SCALAR_PARTS(float);
+IMPULSE_DECLARE_SCALAR_PARTS(double);
 IMPULSE_DECLARE_WORLD(impulse::default_config);
 IMPULSE_DECLARE_WORLD(impulse::default_double_config);
 #endif
