@@ -1,5 +1,6 @@
-// The one translation unit of hello_world_extern that compiles impulse's
-// default configurations (impulse/instantiate.hpp). hello_world.cpp, built
-// beside it with IMPULSE_EXTERN_TEMPLATES=1, then only parses the world: the
-// way a program with many files keeps each of them fast to compile.
+// The one translation unit that compiles impulse's default configurations
+// (impulse/instantiate.hpp): the examples and the tests, built with
+// IMPULSE_EXTERN_TEMPLATES=1, link it and only parse the world, the way a
+// program with many files keeps each of them fast to compile
+// (hello_world_extern is hello_world.cpp built so).
 #include "impulse/instantiate.hpp"

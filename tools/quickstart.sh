@@ -2,9 +2,9 @@
 # The README's quick start on a fresh Debian 12 machine:
 #   tools/quickstart.sh demo   builds and runs the demo (the Rube Goldberg machine;
 #                              writes out/rube_goldberg.glb)
-#   tools/quickstart.sh test   builds and runs the test suite: every test, example,
-#                              benchmark and header (CMake preset native:
-#                              g++ -O3 -march=native, this machine's full SIMD width)
+#   tools/quickstart.sh test   builds and runs the test suite: every test, example
+#                              and header (CMake preset native: g++ -O3
+#                              -march=native, this machine's full SIMD width)
 # Installs the Debian packages it needs first if any is missing (apt-get, via
 # sudo when not root), and says which.
 set -euo pipefail
