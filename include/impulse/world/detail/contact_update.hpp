@@ -194,6 +194,7 @@ struct contact_update {
     state.counts.updated_contacts += all.updated;
   }
 
+  /// The record's bodies began (or stopped) touching: an event for them.
   void touch(const contact_record<T>& c, bool begun) const {
     (begun ? state.begun : state.ended).push_back({c.a, c.b});
   }
