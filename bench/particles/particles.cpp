@@ -39,9 +39,10 @@
 //   --springs          instead of the above: a 320 × 320 cloth of springs
 //                      (102 400 particles, 203 520 springs) per integrator,
 //                      scalar and thread count (its own CSV)
-//   --exact-root       the attractors' (|d|² + ε)^(-3/2) by a square root and
-//                      a division in float too, instead of the estimate
-//                      of 1/√ (point_forces::root_method)
+//   --root M           how float lanes take the attractors' (|d|² + ε)^(-3/2)
+//                      (point_forces::root_method): automatic (the default:
+//                      the estimate of 1/√ under AVX-512, a square root and
+//                      a division under AVX and SSE), estimate or exact
 //   --threads A,B,...  step the SoA kernel on each of these worker counts
 //                      (impulse::thread_pool; 1, the default, runs on the
 //                      calling thread with no pool)
@@ -71,7 +72,8 @@ struct settings {
   std::vector<std::uint32_t> threads{1};
   int repeats = 7;
   double min_seconds = 0.1;
-  bool aos = true, steady = false, emitter = false, budget = false, springs = false, exact_root = false;
+  bool aos = true, steady = false, emitter = false, budget = false, springs = false;
+  std::string root = "automatic";
 };
 
 bool listed(const std::vector<std::string>& list, const std::string& name) {
@@ -250,10 +252,10 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
     impulse::thread_pool pool{threads};
     system_type system = ps::make<config<T, I>>(n);
     system.set_task_system(pool.tasks());
-    if (s.exact_root) {
-      using points = impulse::particles::point_forces<T>;
-      system.template force<impulse::particles::point_forces>().root = points::root_method::exact;
-    }
+    using points = impulse::particles::point_forces<T>;
+    system.template force<impulse::particles::point_forces>().root =
+        s.root == "exact" ? points::root_method::exact
+        : s.root == "estimate" ? points::root_method::estimate : points::root_method::automatic;
     for (int k = 0; k < (s.steady ? settle_steps : warm_steps); ++k) system.step(dt);
     const double t = s.steady ? seconds_per_steady_step(system, n) : seconds_per_scene_step(system, n, s);
     // Read and written: x, y, z, vx, vy, vz (unit masses: no mass column).
@@ -484,8 +486,10 @@ int main(int argc, char** argv) {
       s.aos = false;
     } else if (std::strcmp(argv[i], "--steady") == 0) {
       s.steady = true;
-    } else if (std::strcmp(argv[i], "--exact-root") == 0) {
-      s.exact_root = true;
+    } else if (std::strcmp(argv[i], "--root") == 0 && value &&
+               (std::strcmp(argv[i + 1], "automatic") == 0 || std::strcmp(argv[i + 1], "estimate") == 0 ||
+                std::strcmp(argv[i + 1], "exact") == 0)) {
+      s.root = argv[++i];
     } else if (std::strcmp(argv[i], "--emitter") == 0) {
       s.emitter = true;
     } else if (std::strcmp(argv[i], "--budget") == 0) {
@@ -495,7 +499,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: %s [--quick] [--n A,B,...] [--integrators euler,symplectic_euler,midpoint,rk4] "
-                   "[--scalars float,double] [--threads 1,2] [--no-aos] [--steady] [--exact-root] [--emitter | --budget | --springs]\n",
+                   "[--scalars float,double] [--threads 1,2] [--no-aos] [--steady] [--root automatic|estimate|exact] [--emitter | --budget | --springs]\n",
                    argv[0]);
       return 2;
     }

@@ -17514,6 +17514,9 @@ class buffer_pool {
   const task_system* tasks_ = nullptr;
 };
 
+template <class E, class S>
+class scaled_state;
+
 /// E needs E + E and E * S for the scalar S the integrator steps with.
 template <class E>
 class pooled_state {
@@ -17553,10 +17556,12 @@ class pooled_state {
     else range(0, pool_->used(), 0);
   }
 
-  // An rvalue operand lends its buffer to the result, so `a + b * h` uses
-  // one temporary, not two. Two lvalues are summed (or one scaled) into a
-  // fresh buffer in one pass, not copied and then summed: RK4's stages are
-  // mostly this, and on a large system each pass is a trip through memory.
+  // An rvalue operand lends its buffer to the result, and a product by a
+  // scalar is not worked out on its own but where it is summed: `a + b * h`
+  // is one pass over the state into one buffer, not two. On a large system
+  // each pass is a trip through memory and, across workers, a wait for the
+  // slowest: RK4's stages are mostly this, and it took 28 passes a step
+  // where it now takes 16.
   friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
     a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
     return std::move(a);
@@ -17569,21 +17574,68 @@ class pooled_state {
     return sum;
   }
   template <class S>
-  friend pooled_state operator*(pooled_state&& a, S h) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] * h; });
-    return std::move(a);
+  friend scaled_state<E, S> operator*(const pooled_state& a, S h) {
+    return {a, h};
   }
   template <class S>
-  friend pooled_state operator*(const pooled_state& a, S h) {
-    pooled_state product(*a.pool_);
-    product.for_each([&](std::size_t i) { product.data()[i] = a.data()[i] * h; });
-    return product;
+  friend scaled_state<E, S> operator*(pooled_state&& a, S h) {
+    return {std::move(a), h};
   }
 
  private:
+  template <class, class>
+  friend class scaled_state;
   static constexpr std::size_t none = ~std::size_t(0);
   buffer_pool<E>* pool_;
   std::size_t slot_;
+};
+
+/// A state times a scalar, worked out where it is used: summed into a
+/// state (one pass: a[i] + b[i]·h), or made a state of its own. It holds
+/// the state it scales by reference, or, scaling a temporary, holds that
+/// temporary and reuses its buffer. Made only by pooled_state's operator*
+/// and used in the same expression.
+template <class E, class S>
+class scaled_state {
+ public:
+  scaled_state(const pooled_state<E>& source, S h) : source_(&source), h_(h) {}
+  scaled_state(pooled_state<E>&& source, S h) : owned_(std::move(source)), source_(&*owned_), h_(h) {}
+  scaled_state(const scaled_state&) = delete;
+  scaled_state& operator=(const scaled_state&) = delete;
+
+  operator pooled_state<E>() && {
+    const E* b = source_->data();
+    pooled_state<E> result = take_buffer();
+    result.for_each([&](std::size_t i) { result.data()[i] = b[i] * h_; });
+    return result;
+  }
+
+  friend pooled_state<E> operator+(pooled_state<E>&& a, scaled_state&& b) {
+    const E* s = b.source_->data();
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + s[i] * b.h_; });
+    return std::move(a);
+  }
+  friend pooled_state<E> operator+(const pooled_state<E>& a, scaled_state&& b) {
+    const E* s = b.source_->data();
+    pooled_state<E> result = b.take_buffer();
+    result.for_each([&](std::size_t i) { result.data()[i] = a.data()[i] + s[i] * b.h_; });
+    return result;
+  }
+  friend pooled_state<E> operator+(scaled_state&& a, const pooled_state<E>& b) { return b + std::move(a); }
+  friend pooled_state<E> operator+(scaled_state&& a, pooled_state<E>&& b) { return std::move(b) + std::move(a); }
+
+ private:
+  /// The held temporary's buffer (each element is read before it is
+  /// written, so the result may overwrite it), or a fresh one. The
+  /// source's data must be read first: the held temporary is moved out.
+  pooled_state<E> take_buffer() {
+    if (owned_) return std::move(*owned_);
+    return pooled_state<E>(*source_->pool_);
+  }
+
+  std::optional<pooled_state<E>> owned_;
+  const pooled_state<E>* source_;
+  S h_;
 };
 
 }  // namespace impulse::detail
@@ -18597,9 +18649,13 @@ struct point_forces {
   /// carries the float roundings of d and |d|² + ε as well
   /// (tests/particles/test_forces.cpp). Double lanes and single
   /// particles (W = 1) always take the exact form: x86 has no double estimate
-  /// below AVX-512.
-  enum class root_method { estimate, exact };
-  root_method root = root_method::estimate;
+  /// below AVX-512. `automatic`, the default, takes the estimate where it
+  /// has 14 bits (AVX-512's rsqrt14ps: a linear correction) and the exact
+  /// form where it has 11 (AVX's and SSE's rsqrtps, whose quadratic
+  /// correction made the kernel no faster than a square root and a
+  /// division: docs/particles_benchmark.md).
+  enum class root_method { automatic, estimate, exact };
+  root_method root = root_method::automatic;
 
   /// Adds a point and returns its index; a ninth point is refused.
   std::size_t add(const vec3<T>& position, T strength) {
@@ -18625,8 +18681,10 @@ struct point_forces {
   template <int W>
   vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
                             const particle_lanes<T, W>&) const noexcept {
-    if constexpr (impulse::detail::has_rsqrt_estimate<T, W>())
-      if (root == root_method::estimate) return sum<W, root_method::estimate>(x);
+    constexpr int bits = impulse::detail::rsqrt_estimate_bits<T, W>();
+    if constexpr (bits > 0)
+      if (root == root_method::estimate || (bits >= 14 && root == root_method::automatic))
+        return sum<W, root_method::estimate>(x);
     return sum<W, root_method::exact>(x);
   }
 

@@ -169,6 +169,45 @@ TEST_CASE("the float force from the 1/sqrt estimate is within 5e-7 of the law, a
   CHECK(exact_8 <= 4e-7);
 }
 
+/// Whether `automatic` gives, bit for bit, what `expected` gives on W float
+/// lanes, over particles scattered around two points.
+template <int W>
+bool automatic_matches(point_forces<float>::root_method expected) {
+  using batch3 = impulse::vec3_batch<float, W>;
+  point_forces<float> automatic, chosen;
+  chosen.root = expected;
+  for (point_forces<float>* p : {&automatic, &chosen}) {
+    p->add({0.3f, 5.0f, -0.2f}, 20.0f);
+    p->add({-2.0f, 1.0f, 4.0f}, -3.0f);
+  }
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> coordinate(-10, 10);
+  for (int round = 0; round < 100; ++round) {
+    batch3 x = batch3::broadcast({});
+    for (int lane = 0; lane < W; ++lane) x.set_lane(lane, {coordinate(random), coordinate(random), coordinate(random)});
+    const batch3 a = automatic.evaluate(x, x, particle_lanes<float, W>{});
+    const batch3 b = chosen.evaluate(x, x, particle_lanes<float, W>{});
+    for (int lane = 0; lane < W; ++lane)
+      if (!(a.lane(lane) == b.lane(lane))) return false;
+  }
+  return true;
+}
+
+TEST_CASE("the automatic root is the estimate where it has 14 bits and the exact form elsewhere") {
+  using method = point_forces<float>::root_method;
+  CHECK(point_forces<float>{}.root == method::automatic);
+  const auto rule = [](int bits) { return bits >= 14 ? method::estimate : method::exact; };
+  CHECK(automatic_matches<16>(rule(impulse::detail::rsqrt_estimate_bits<float, 16>())));
+  CHECK(automatic_matches<8>(rule(impulse::detail::rsqrt_estimate_bits<float, 8>())));
+  CHECK(automatic_matches<4>(rule(impulse::detail::rsqrt_estimate_bits<float, 4>())));
+  CHECK(automatic_matches<1>(method::exact));
+  // The two forms differ in their last bits, so the checks above tell them apart.
+  if constexpr (impulse::detail::rsqrt_estimate_bits<float, 8>() > 0) {
+    const method other = rule(impulse::detail::rsqrt_estimate_bits<float, 8>()) == method::exact ? method::estimate : method::exact;
+    CHECK_FALSE(automatic_matches<8>(other));
+  }
+}
+
 }  // namespace
 
 }  // namespace particles_forces_tests

@@ -44,9 +44,13 @@ struct point_forces {
   /// carries the float roundings of d and |d|² + ε as well
   /// (tests/particles/test_forces.cpp). Double lanes and single
   /// particles (W = 1) always take the exact form: x86 has no double estimate
-  /// below AVX-512.
-  enum class root_method { estimate, exact };
-  root_method root = root_method::estimate;
+  /// below AVX-512. `automatic`, the default, takes the estimate where it
+  /// has 14 bits (AVX-512's rsqrt14ps: a linear correction) and the exact
+  /// form where it has 11 (AVX's and SSE's rsqrtps, whose quadratic
+  /// correction made the kernel no faster than a square root and a
+  /// division: docs/particles_benchmark.md).
+  enum class root_method { automatic, estimate, exact };
+  root_method root = root_method::automatic;
 
   /// Adds a point and returns its index; a ninth point is refused.
   std::size_t add(const vec3<T>& position, T strength) {
@@ -72,8 +76,10 @@ struct point_forces {
   template <int W>
   vec3_batch<T, W> evaluate(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
                             const particle_lanes<T, W>&) const noexcept {
-    if constexpr (impulse::detail::has_rsqrt_estimate<T, W>())
-      if (root == root_method::estimate) return sum<W, root_method::estimate>(x);
+    constexpr int bits = impulse::detail::rsqrt_estimate_bits<T, W>();
+    if constexpr (bits > 0)
+      if (root == root_method::estimate || (bits >= 14 && root == root_method::automatic))
+        return sum<W, root_method::estimate>(x);
     return sum<W, root_method::exact>(x);
   }
 
