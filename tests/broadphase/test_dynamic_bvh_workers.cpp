@@ -23,7 +23,7 @@ using impulse::test::cube;
 
 TEST_CASE("dynamic_bvh gives the same pairs, begun and ended, in the same order, with a task hook of any width") {
   // 4000 boxes of 1 m in a 16 m cube, most drifting, some jumping: tens of
-  // thousands of carried candidates, past the size split across workers.
+  // thousands of carried candidates, in many chunks shared across workers.
   using T = float;
   constexpr int n = 4000;
   impulse::thread_pool pool2{2}, pool3{3};
@@ -61,7 +61,7 @@ TEST_CASE("dynamic_bvh gives the same pairs, begun and ended, in the same order,
       CHECK(std::equal(alone.ended().begin(), alone.ended().end(), hooked[h].ended().begin(), hooked[h].ended().end()));
     }
   }
-  CHECK(candidates_seen > 8192);  // the pairs alone are past the split
+  CHECK(candidates_seen > 8192);  // the pairs alone fill eight chunks
 }
 
 }  // namespace broadphase_dynamic_bvh_workers_tests

@@ -196,4 +196,70 @@ TEST_CASE("an island's contacts colored alone take the colors and the order they
   }
 }
 
+TEST_CASE("a split asked again of the same contacts keeps its groups, and one of changed contacts or bodies is redone") {
+  // Ten columns of two boxes on the ground (body 0): ten islands of two
+  // contacts each, split in two groups of five columns.
+  const auto columns = [] {
+    std::vector<contact_constraint<float>> contacts;
+    for (std::uint32_t c = 0; c < 10; ++c) {
+      contacts.push_back(between(0, 1 + 2 * c));
+      contacts.push_back(between(1 + 2 * c, 2 + 2 * c));
+    }
+    return contacts;
+  };
+  std::vector<solver_body<float>> bodies(21, moving());
+  bodies[0] = solver_body<float>{};
+  std::vector<contact_constraint<float>> contacts = columns();
+  contact_groups groups, fresh;
+  const auto split = [&](contact_groups& g) {
+    return g.split(std::span<const solver_body<float>>(bodies), std::span<const contact_constraint<float>>(contacts), 2);
+  };
+  const auto same_groups = [](const contact_groups& x, const contact_groups& y) {
+    if (x.size() != y.size()) return false;
+    for (std::uint32_t g = 0; g < x.size(); ++g) {
+      const auto cx = x.contacts(g), cy = y.contacts(g), bx = x.bodies(g), by = y.bodies(g);
+      if (!std::equal(cx.begin(), cx.end(), cy.begin(), cy.end()) || !std::equal(bx.begin(), bx.end(), by.begin(), by.end()))
+        return false;
+    }
+    const auto fx = x.fixed_bodies(), fy = y.fixed_bodies();
+    return std::equal(fx.begin(), fx.end(), fy.begin(), fy.end());
+  };
+  REQUIRE(split(groups));
+  REQUIRE(groups.contacts(0).size() == 10);
+  // Asked again, with the bodies' velocities changed (the split reads only
+  // whether a body moves under impulses and whether it is at rest).
+  bodies[3].linear_velocity = {0, -1, 0};
+  REQUIRE(split(groups));
+  REQUIRE(fresh.split(std::span<const solver_body<float>>(bodies), std::span<const contact_constraint<float>>(contacts), 2));
+  CHECK(same_groups(groups, fresh));
+  SUBCASE("a contact between two columns joins them") {
+    contacts.push_back(between(2, 4));  // the tops of columns 0 and 1
+    REQUIRE(split(groups));
+    REQUIRE(split(fresh = contact_groups{}));
+    CHECK(same_groups(groups, fresh));
+    check_split(groups, bodies, contacts);
+    CHECK(groups.contacts(0).size() == 11);
+  }
+  SUBCASE("a contact that changes one of its bodies") {
+    contacts[19] = between(0, 20);  // the top of the last column on the ground
+    REQUIRE(split(groups));
+    REQUIRE(split(fresh = contact_groups{}));
+    CHECK(same_groups(groups, fresh));
+    check_split(groups, bodies, contacts);
+  }
+  SUBCASE("the ground set moving joins every column in one island: no split") {
+    bodies[0].linear_velocity = {1, 0, 0};
+    CHECK_FALSE(split(groups));
+    CHECK(groups.size() == 0);
+    bodies[0].linear_velocity = {};
+    REQUIRE(split(groups));
+    CHECK(same_groups(groups, fresh));
+  }
+  SUBCASE("five groups asked for") {
+    REQUIRE(groups.split(std::span<const solver_body<float>>(bodies), std::span<const contact_constraint<float>>(contacts), 5));
+    CHECK(groups.size() == 5);
+    check_split(groups, bodies, contacts);
+  }
+}
+
 }  // namespace dynamics_contact_groups_tests

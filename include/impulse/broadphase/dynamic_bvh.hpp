@@ -217,40 +217,55 @@ class basic_dynamic_bvh {
     if (overlaps(x.exact, y.exact)) found_.push_back(pair_of(proxy_id{a, x.generation}, proxy_id{b, y.generation}));
   }
 
-  /// The last update's candidates whose fat boxes have not changed, kept
-  /// (keep_candidate). Across workers, in two passes: each candidate's
-  /// verdict side by side, where the time goes (two slots read at random),
-  /// then the kept ones in order.
+  /// The last update's candidates whose fat boxes have not changed, kept,
+  /// and reported as pairs where their exact boxes overlap; in the
+  /// candidates' order. Chunk c of the candidates writes what it keeps
+  /// from place c·chunk on, so the chunks can run on any worker; then the
+  /// chunks' lists are closed up in order. The time goes into reading two
+  /// slots at random for each candidate (`pile` carries ten candidates a
+  /// box). The lists are written in place, not cleared and grown: filling
+  /// them with zeros first more than doubled the pass's time.
   void keep_candidates(const task_system& tasks) {
     const std::uint32_t count = std::uint32_t(candidates_.size());
-    if (!tasks.parallel() || count < 2 * min_candidates) {
-      for (const candidate& c : candidates_)
-        if (slots_[c.a].changed != epoch_ && slots_[c.b].changed != epoch_) keep_candidate(c.a, c.b);
-      return;
-    }
-    verdicts_.resize(count);
-    overlapping_.resize(count);
-    auto judge = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const slot_data& x = slots_[candidates_[i].a];
-        const slot_data& y = slots_[candidates_[i].b];
-        verdicts_[i] = x.changed == epoch_ || y.changed == epoch_ ? drop : overlaps(x.exact, y.exact) ? touching : kept;
-        if (verdicts_[i] == touching)
-          overlapping_[i] = pair_of(proxy_id{candidates_[i].a, x.generation}, proxy_id{candidates_[i].b, y.generation});
+    const std::uint32_t chunks = (count + chunk - 1) / chunk;
+    next_candidates_.resize(count);
+    if (touching_.size() < count) touching_.resize(count);
+    kept_.resize(chunks);
+    auto judge = [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
+      for (std::uint32_t c = first; c < last; ++c) {
+        const std::uint32_t begin = c * chunk, end = std::min(count, begin + chunk);
+        std::uint32_t candidates = begin, pairs = begin;
+        for (std::uint32_t i = begin; i < end; ++i) {
+          const candidate k = candidates_[i];
+          const slot_data& x = slots_[k.a];
+          const slot_data& y = slots_[k.b];
+          if (x.changed == epoch_ || y.changed == epoch_) continue;
+          next_candidates_[candidates++] = k;
+          if (overlaps(x.exact, y.exact))
+            touching_[pairs++] = pair_of(proxy_id{k.a, x.generation}, proxy_id{k.b, y.generation});
+        }
+        kept_[c] = {candidates - begin, pairs - begin};
       }
     };
-    impulse::detail::parallel_for(tasks, count, min_candidates, judge);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      if (verdicts_[i] == drop) continue;
-      next_candidates_.push_back(candidates_[i]);
-      if (verdicts_[i] == touching) found_.push_back(overlapping_[i]);
+    impulse::detail::parallel_for(tasks, chunks, min_chunks, judge);
+    std::uint32_t candidates = 0;
+    found_.clear();
+    for (std::uint32_t c = 0; c < chunks; ++c) {
+      const std::uint32_t begin = c * chunk;
+      if (candidates != begin)
+        std::copy_n(next_candidates_.begin() + begin, kept_[c].candidates, next_candidates_.begin() + candidates);
+      candidates += kept_[c].candidates;
+      found_.insert(found_.end(), touching_.begin() + begin, touching_.begin() + begin + kept_[c].pairs);
     }
+    next_candidates_.resize(candidates);
   }
-  /// A carried candidate's verdict: dropped (a fat box changed), kept, or
-  /// kept and its exact boxes touching.
-  enum verdict : std::uint8_t { drop, kept, touching };
-  /// Candidates a worker judges at a time: a few ns each.
-  static constexpr std::uint32_t min_candidates = 4096;
+  /// What chunk of carried candidates kept: candidates, and pairs among them.
+  struct kept_count {
+    std::uint32_t candidates, pairs;
+  };
+  /// Candidates a chunk judges, and the chunks a worker takes at a time at
+  /// the least: about 5 ns a candidate, so a range is 10 µs or more.
+  static constexpr std::uint32_t chunk = 1024, min_chunks = 2;
 
   /// Every pair of leaves whose fat boxes overlap and at least one of
   /// which is stamped: each stamped subtree against itself (its halves each
@@ -306,8 +321,8 @@ class basic_dynamic_bvh {
   std::vector<std::uint32_t> changed_;                   ///< slots whose fat box changed since the last update, each once
   std::vector<std::int32_t> selves_;                     ///< scratch for the self traversal
   std::vector<node_pair> cross_;                         ///< scratch for the self traversal
-  std::vector<verdict> verdicts_;                        ///< scratch for keep_candidates, by candidate
-  std::vector<proxy_pair> overlapping_;                  ///< scratch for keep_candidates, by candidate
+  std::vector<proxy_pair> touching_;                     ///< scratch for keep_candidates, by candidate
+  std::vector<kept_count> kept_;                         ///< scratch for keep_candidates, by chunk
   std::uint32_t epoch_ = 1;
   std::size_t reinserted_ = 0, reinserted_since_update_ = 0;
 };
@@ -365,8 +380,6 @@ void basic_dynamic_bvh<T>::update(const task_system& tasks) {
     }
   }
 
-  next_candidates_.clear();
-  found_.clear();
   keep_candidates(tasks);
   if (!changed_.empty() && tree_.root() != detail::null_node) find_new_candidates();
   candidates_.swap(next_candidates_);
