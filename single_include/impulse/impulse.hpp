@@ -1507,6 +1507,12 @@ class proxy_store {
     proxies_[id].box = box;
     changed_ = true;
   }
+  /// Stores a box that the caller has found valid (valid_box) for a proxy
+  /// it has found here, and leaves take_changed() alone: calls for
+  /// distinct proxies may run at once. mark_changed() then tells the
+  /// next update.
+  void place(proxy_id id, const aabb<T>& box) noexcept { proxies_[id].box = box; }
+  void mark_changed() noexcept { changed_ = true; }
   void erase(proxy_id id) {
     require(id);
     proxies_.erase(id);
@@ -1516,6 +1522,10 @@ class proxy_store {
   void require(proxy_id id) const {
     if (!proxies_.contains(id))
       impulse::detail::report_error(error_code::out_of_range, "broad phase: the id names no proxy", id.index);
+  }
+  /// Whether require_box() would take the box.
+  [[nodiscard]] static bool valid_box(const aabb<T>& box) noexcept {
+    return is_finite(box.lower) && is_finite(box.upper) && is_valid(box);
   }
   static void require_box(const aabb<T>& box) {
     if (!is_finite(box.lower) || !is_finite(box.upper))
@@ -2099,6 +2109,25 @@ class basic_dynamic_bvh {
   proxy_id create(const aabb<T>& box, std::uint64_t user_data);
 
   void move(proxy_id id, const aabb<T>& box);
+
+  /// move() for a caller that moves many proxies across workers (the
+  /// world's step): when the proxy is here and `box` is valid and inside
+  /// its fat box, stores the box, as move() would, and returns true; else
+  /// changes nothing and returns false, and the caller calls move().
+  /// Calls for distinct proxies may run at once, with no other call
+  /// between them; moved_within() then follows, on one thread, when any
+  /// returned true. Most proxies of a step take this way, and the tree
+  /// sees only those that leave their fat boxes, in the caller's order.
+  [[nodiscard]] bool move_within(proxy_id id, const aabb<T>& box) noexcept {
+    if (!store_.contains(id) || !detail::proxy_store<T>::valid_box(box)) return false;
+    slot_data& s = slots_[id.index];
+    if (!impulse::contains(tree_.box(s.leaf), box)) return false;
+    store_.place(id, box);
+    s.exact = box;
+    return true;
+  }
+  /// After move_within() returned true: the next update() tests the moved boxes.
+  void moved_within() noexcept { store_.mark_changed(); }
 
   void destroy(proxy_id id);
 
@@ -20464,6 +20493,7 @@ struct step_scratch {
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
   std::vector<aabb<T>> proxy_boxes;        ///< each awake body's, when it moves (contact_update.hpp)
+  std::vector<std::uint8_t> proxy_moves;   ///< each awake body's proxy_move (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;
@@ -20552,6 +20582,10 @@ struct contact_update {
   static constexpr std::uint32_t min_pairs_per_range = 64;
   /// Bodies whose boxes a worker works out at a time: about 100 ns each.
   static constexpr std::uint32_t min_bodies_per_range = 512;
+  /// What a body's proxy took in update_broad_phase: nothing (the body
+  /// stands still), a move within its fat box (done across the workers),
+  /// or a move by move() on the calling thread.
+  enum proxy_move : std::uint8_t { still, within, by_move };
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -20571,22 +20605,37 @@ struct contact_update {
 
  private:
   /// The moving bodies' boxes, worked out across the workers (each its own
-  /// body's reach and box), then moved into the broad phase in order.
+  /// body's reach and box), then moved into the broad phase in order. A
+  /// broad phase that can move a proxy within what it already holds, with
+  /// no shared change (dynamic_bvh::move_within), takes those moves across
+  /// the workers too, and the calling thread moves only the rest: in
+  /// `pile`, about one box in a hundred a step, where the thousand moves
+  /// took 90 µs on the calling thread.
   void update_broad_phase(T h) {
     const std::span<const std::uint32_t> awake = state.awake_bodies;
     std::vector<aabb<T>>& boxes = scratch.proxy_boxes;
+    std::vector<std::uint8_t>& way = scratch.proxy_moves;
     boxes.resize(awake.size());
+    way.resize(awake.size());
     auto reach = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       for (std::uint32_t k = begin; k < end; ++k) {
         body_record<T>& r = state.bodies.values()[awake[k]];
-        if (is_moving(r)) boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+        way[k] = still;
+        if (!is_moving(r)) continue;
+        boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+        way[k] = by_move;
+        if constexpr (requires { state.broad.move_within(r.proxy, boxes[k]); })
+          if (state.broad.move_within(r.proxy, boxes[k])) way[k] = within;
       }
     };
     parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies_per_range, reach);
+    bool any_within = false;
     for (std::size_t k = 0; k < awake.size(); ++k) {
-      const body_record<T>& r = state.bodies.values()[awake[k]];
-      if (is_moving(r)) state.broad.move(r.proxy, boxes[k]);
+      any_within = any_within || way[k] == within;
+      if (way[k] == by_move) state.broad.move(state.bodies.values()[awake[k]].proxy, boxes[k]);
     }
+    if constexpr (requires { state.broad.moved_within(); })
+      if (any_within) state.broad.moved_within();
     if constexpr (requires { state.broad.update(scratch.tasks); })
       state.broad.update(scratch.tasks);
     else

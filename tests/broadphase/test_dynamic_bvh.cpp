@@ -324,4 +324,54 @@ TEST_CASE_TEMPLATE("bad boxes rays ids and margins leave the tree untouched", T,
   CHECK(bp.reinserted() == 0);
 }
 
+TEST_CASE_TEMPLATE("move_within takes a move that stays inside the fat box, as move would, and refuses any other untouched",
+                   T, float, double) {
+  // Two BVHs fed the same moves, one through move() alone, one through
+  // move_within() where it takes them: the same boxes, tree and pairs.
+  basic_dynamic_bvh<T> plain, within;
+  std::vector<proxy_id> ids;
+  for (int i = 0; i < 4; ++i) {
+    ids.push_back(plain.create(cube<T>(T(1.05) * T(i), 0, 0, T(0.5)), std::uint64_t(i)));
+    REQUIRE(within.create(cube<T>(T(1.05) * T(i), 0, 0, T(0.5)), std::uint64_t(i)) == ids.back());
+  }
+  plain.update();
+  within.update();
+  const aabb<T> fat = within.fat_box(ids[1]);
+  SUBCASE("inside the fat box: stored, and the next update sees it") {
+    const aabb<T> nudged = cube<T>(T(1.05) - T(0.08), 0, 0, T(0.5));  // 0.03 m into box 0
+    REQUIRE(contains(fat, nudged));
+    CHECK(within.move_within(ids[1], nudged));
+    within.moved_within();
+    plain.move(ids[1], nudged);
+    CHECK(within.box(ids[1]) == nudged);
+    CHECK(within.fat_box(ids[1]) == fat);
+    plain.update();
+    within.update();
+    CHECK(within.reinserted() == 0);
+    REQUIRE(within.pairs().size() == 1);
+    CHECK(within.pairs()[0] == pair_of(ids[0], ids[1]));
+    CHECK(std::equal(plain.pairs().begin(), plain.pairs().end(), within.pairs().begin(), within.pairs().end()));
+    CHECK(std::equal(plain.begun().begin(), plain.begun().end(), within.begun().begin(), within.begun().end()));
+  }
+  SUBCASE("leaving the fat box, a bad box or a stale id: refused, nothing changed") {
+    const aabb<T> before = within.box(ids[1]);
+    CHECK_FALSE(within.move_within(ids[1], cube<T>(T(1.05) + T(0.2), 0, 0, T(0.5))));
+    aabb<T> not_finite = before;
+    not_finite.upper.x = std::numeric_limits<T>::quiet_NaN();
+    CHECK_FALSE(within.move_within(ids[1], not_finite));
+    aabb<T> inverted = before;
+    std::swap(inverted.lower.x, inverted.upper.x);
+    CHECK_FALSE(within.move_within(ids[1], inverted));
+    within.destroy(ids[3]);
+    CHECK_FALSE(within.move_within(ids[3], cube<T>(T(1.05) * T(3), 0, 0, T(0.5))));
+    CHECK(within.box(ids[1]) == before);
+    CHECK(within.fat_box(ids[1]) == fat);
+    // move() then does what move_within() refused, and reports bad input.
+    within.move(ids[1], cube<T>(T(1.05) + T(0.2), 0, 0, T(0.5)));
+    within.update();
+    CHECK(within.reinserted() == 1);
+    CHECK(error_code_of([&] { within.move(ids[1], not_finite); }) == error_code::non_finite);
+  }
+}
+
 }  // namespace broadphase_dynamic_bvh_tests

@@ -68,6 +68,25 @@ class basic_dynamic_bvh {
 
   void move(proxy_id id, const aabb<T>& box);
 
+  /// move() for a caller that moves many proxies across workers (the
+  /// world's step): when the proxy is here and `box` is valid and inside
+  /// its fat box, stores the box, as move() would, and returns true; else
+  /// changes nothing and returns false, and the caller calls move().
+  /// Calls for distinct proxies may run at once, with no other call
+  /// between them; moved_within() then follows, on one thread, when any
+  /// returned true. Most proxies of a step take this way, and the tree
+  /// sees only those that leave their fat boxes, in the caller's order.
+  [[nodiscard]] bool move_within(proxy_id id, const aabb<T>& box) noexcept {
+    if (!store_.contains(id) || !detail::proxy_store<T>::valid_box(box)) return false;
+    slot_data& s = slots_[id.index];
+    if (!impulse::contains(tree_.box(s.leaf), box)) return false;
+    store_.place(id, box);
+    s.exact = box;
+    return true;
+  }
+  /// After move_within() returned true: the next update() tests the moved boxes.
+  void moved_within() noexcept { store_.mark_changed(); }
+
   void destroy(proxy_id id);
 
   void update() { update(task_system{}); }

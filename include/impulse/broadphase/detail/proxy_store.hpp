@@ -38,6 +38,12 @@ class proxy_store {
     proxies_[id].box = box;
     changed_ = true;
   }
+  /// Stores a box that the caller has found valid (valid_box) for a proxy
+  /// it has found here, and leaves take_changed() alone: calls for
+  /// distinct proxies may run at once. mark_changed() then tells the
+  /// next update.
+  void place(proxy_id id, const aabb<T>& box) noexcept { proxies_[id].box = box; }
+  void mark_changed() noexcept { changed_ = true; }
   void erase(proxy_id id) {
     require(id);
     proxies_.erase(id);
@@ -47,6 +53,10 @@ class proxy_store {
   void require(proxy_id id) const {
     if (!proxies_.contains(id))
       impulse::detail::report_error(error_code::out_of_range, "broad phase: the id names no proxy", id.index);
+  }
+  /// Whether require_box() would take the box.
+  [[nodiscard]] static bool valid_box(const aabb<T>& box) noexcept {
+    return is_finite(box.lower) && is_finite(box.upper) && is_valid(box);
   }
   static void require_box(const aabb<T>& box) {
     if (!is_finite(box.lower) || !is_finite(box.upper))

@@ -43,6 +43,10 @@ struct contact_update {
   static constexpr std::uint32_t min_pairs_per_range = 64;
   /// Bodies whose boxes a worker works out at a time: about 100 ns each.
   static constexpr std::uint32_t min_bodies_per_range = 512;
+  /// What a body's proxy took in update_broad_phase: nothing (the body
+  /// stands still), a move within its fat box (done across the workers),
+  /// or a move by move() on the calling thread.
+  enum proxy_move : std::uint8_t { still, within, by_move };
 
   world_state<Config>& state;
   step_scratch<Config>& scratch;
@@ -62,22 +66,37 @@ struct contact_update {
 
  private:
   /// The moving bodies' boxes, worked out across the workers (each its own
-  /// body's reach and box), then moved into the broad phase in order.
+  /// body's reach and box), then moved into the broad phase in order. A
+  /// broad phase that can move a proxy within what it already holds, with
+  /// no shared change (dynamic_bvh::move_within), takes those moves across
+  /// the workers too, and the calling thread moves only the rest: in
+  /// `pile`, about one box in a hundred a step, where the thousand moves
+  /// took 90 µs on the calling thread.
   void update_broad_phase(T h) {
     const std::span<const std::uint32_t> awake = state.awake_bodies;
     std::vector<aabb<T>>& boxes = scratch.proxy_boxes;
+    std::vector<std::uint8_t>& way = scratch.proxy_moves;
     boxes.resize(awake.size());
+    way.resize(awake.size());
     auto reach = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       for (std::uint32_t k = begin; k < end; ++k) {
         body_record<T>& r = state.bodies.values()[awake[k]];
-        if (is_moving(r)) boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+        way[k] = still;
+        if (!is_moving(r)) continue;
+        boxes[k] = state.proxy_box(r, state.set_reach(r, h));
+        way[k] = by_move;
+        if constexpr (requires { state.broad.move_within(r.proxy, boxes[k]); })
+          if (state.broad.move_within(r.proxy, boxes[k])) way[k] = within;
       }
     };
     parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies_per_range, reach);
+    bool any_within = false;
     for (std::size_t k = 0; k < awake.size(); ++k) {
-      const body_record<T>& r = state.bodies.values()[awake[k]];
-      if (is_moving(r)) state.broad.move(r.proxy, boxes[k]);
+      any_within = any_within || way[k] == within;
+      if (way[k] == by_move) state.broad.move(state.bodies.values()[awake[k]].proxy, boxes[k]);
     }
+    if constexpr (requires { state.broad.moved_within(); })
+      if (any_within) state.broad.moved_within();
     if constexpr (requires { state.broad.update(scratch.tasks); })
       state.broad.update(scratch.tasks);
     else

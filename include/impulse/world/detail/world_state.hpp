@@ -561,6 +561,7 @@ struct step_scratch {
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
   std::vector<aabb<T>> proxy_boxes;        ///< each awake body's, when it moves (contact_update.hpp)
+  std::vector<std::uint8_t> proxy_moves;   ///< each awake body's proxy_move (contact_update.hpp)
   /// The bodies the solver sees (solve.hpp): the active ones and the static
   /// ones their solved contacts and joints reach, in dense order.
   std::vector<solver_body<T>> solver_bodies;
