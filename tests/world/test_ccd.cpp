@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <utility>
 
 #include "impulse/world.hpp"
 #include "scenes.hpp"
@@ -184,6 +185,66 @@ TEST_CASE("a ball rolling fast along the ground is not held back by its sweep") 
   for (int i = 0; i < 60; ++i) w.step(impulse::test::step_dt<float>);
   // Rolling without slipping, it covers 30 m in the second.
   CHECK(w.body(ball).position.x == doctest::Approx(30.0f).epsilon(0.02));
+}
+
+TEST_CASE("a bullet meets a fast body where the fast body's own sweep left it, whichever was made first") {
+  // A 20 cm cube at 240 m/s (4 m a step) from x = 2.5 at the wall, which
+  // its sweep stops at x = 4.895; its reach in the broad phase is capped at
+  // 1 m. A 5 cm bullet at 120 m/s straight down the line x = 4.89 from
+  // y = 2: it reaches the cube's top near the end of the step, where the
+  // cube's sweep left it, and had the cube gone on through the wall it
+  // would have passed behind it.
+  const auto fire = [](bool cube_first) {
+    world<ccd_config> w(weightless());
+    add_wall(w);
+    body_def<float> cube, shot;
+    cube.pose.position = {2.5f, 0, 0};
+    cube.linear_velocity = {240, 0, 0};
+    shot.pose.position = {4.89f, 2, 0};
+    shot.linear_velocity = {0, -120, 0};
+    shot.bullet = true;
+    const auto make_cube = [&] { return w.create_body(cube, box<float>::make({0.1f, 0.1f, 0.1f})); };
+    const auto make_shot = [&] { return w.create_body(shot, sphere<float>::make(0.05f)); };
+    body_id c, b;
+    if (cube_first) {
+      c = make_cube();
+      b = make_shot();
+    } else {
+      b = make_shot();
+      c = make_cube();
+    }
+    w.step(impulse::test::step_dt<float>);
+    return std::pair{w.body(c).position, w.body(b).position};
+  };
+  const auto [cube, shot] = fire(true);
+  CHECK(cube.x == doctest::Approx(4.895f).epsilon(1e-5));  // 5 mm (ccd_gap) short of the wall
+  // The bullet stops on the cube's top (y = 0.1) before its center gets
+  // below it, 2 m short of where its step would have taken it.
+  CHECK(shot.y > 0.1f);
+  CHECK(shot.y < 0.2f);
+  const auto [cube_second, shot_second] = fire(false);
+  CHECK(cube_second == cube);
+  CHECK(shot_second == shot);
+}
+
+TEST_CASE("a fast ball meets a fast kinematic plate coming at it, though the plate's reach in the broad phase is capped") {
+  // A ball of radius 5 cm at 300 m/s along +x from x = 0, and a kinematic
+  // plate 2 cm thick at 300 m/s along -x from x = 8: they close 10 m in
+  // the step, and would have passed through each other at x = 4.
+  world<ccd_config> w(weightless());
+  body_def<float> d;
+  d.linear_velocity = {300, 0, 0};
+  const body_id ball = w.create_body(d, sphere<float>::make(0.05f));
+  body_def<float> p;
+  p.type = body_type::kinematic;
+  p.pose.position = {8, 0, 0};
+  p.linear_velocity = {-300, 0, 0};
+  const body_id plate = w.create_body(p, box<float>::make({0.01f, 1, 1}));
+  w.step(impulse::test::step_dt<float>);
+  // Stopped where the gap between them closes to ccd_gap (5 mm), the two
+  // at the same speed: the ball at (8 − 0.01 − 0.05 − 0.005) / 2.
+  CHECK(w.body(ball).position.x == doctest::Approx(3.9675f).epsilon(1e-5));
+  CHECK(w.body(plate).position.x == doctest::Approx(3.0f));  // kinematic: it goes on
 }
 
 }  // namespace world_ccd_tests

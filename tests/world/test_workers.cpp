@@ -26,6 +26,11 @@ using impulse::test::awake_config;
 using world_type = world<awake_config>;
 using impulse::test::soft_config;
 using soft_world = world<soft_config>;
+using sleeping_world = world<impulse::test::sleeping_config>;
+struct ccd_config : awake_config {
+  static constexpr bool ccd = true;
+};
+using ccd_world = world<ccd_config>;
 
 /// What a run leaves: every body's transform (transform_hash), and the
 /// contact events of every step, their pairs in the order given (FNV-1a).
@@ -75,6 +80,17 @@ void check_any_worker_count(const std::function<void(World&)>& build, int steps)
   }
   const task_system backwards = impulse::test::backwards_scheduler::tasks();
   CHECK(run(build, steps, &backwards) == one);
+}
+
+/// Builds a scene in `w` with `build` and steps it `steps` times at 2
+/// workers, then hands the world back to its own thread (the pool ends).
+template <class World>
+void step_on_two_workers(World& w, const std::function<void(World&)>& build, int steps) {
+  thread_pool pool{2};
+  w.set_task_system(pool.tasks());
+  build(w);
+  impulse::test::run(w, steps);
+  w.set_task_system(task_system{});
 }
 
 /// `spheres` (docs/standard_scenes.md), its first `layers` of 25 layers:
@@ -171,6 +187,52 @@ void add_islands(World& w) {
   impulse::test::add_cube(w, {-3.0f, 3.6f, -7.0f});
 }
 
+
+/// A field of 400 cubes on the ground, 20 by 20 and 1.5 m apart, every
+/// fifth one in a stack of three: 560 bodies in 400 islands, which come to
+/// rest within a second (enough bodies that a check over them splits into
+/// ranges).
+template <class World>
+void add_field(World& w) {
+  impulse::test::add_ground(w);
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) {
+      const int height = (i + j) % 5 == 0 ? 3 : 1;
+      for (int k = 0; k < height; ++k)
+        impulse::test::add_cube(w, {(float(i) - 9.5f) * 1.5f, 0.52f + 1.02f * float(k), (float(j) - 9.5f) * 1.5f});
+    }
+}
+
+/// Fast bodies and bullets, beside the field (add_field): 40 cubes of 20 cm at 240 m/s at a
+/// 1 cm wall (each swept back), 20 bullets of 5 cm at 120 m/s down into
+/// their paths, and a kinematic plate at 300 m/s through the lot, its reach
+/// in the broad phase capped.
+template <class World>
+void add_shooting(World& w) {
+  add_field(w);
+  body_def<float> wall;
+  wall.type = body_type::static_body;
+  wall.pose.position = {15.005f, 4, 0};  // just past the field's edge (x = 14.75)
+  w.create_body(wall, box<float>::make({0.005f, 4, 8}));
+  for (int c = 0; c < 40; ++c) {
+    body_def<float> d;
+    d.pose.position = {12.5f - 0.03f * float(c), 1.0f + 0.15f * float(c % 8), -6.0f + 0.3f * float(c)};
+    d.linear_velocity = {240, 0, 0};
+    w.create_body(d, box<float>::make({0.1f, 0.1f, 0.1f}));
+    if (c % 2 != 0) continue;
+    body_def<float> shot;
+    shot.pose.position = {14.89f, d.pose.position.y + 2, d.pose.position.z};
+    shot.linear_velocity = {0, -120, 0};
+    shot.bullet = true;
+    w.create_body(shot, sphere<float>::make(0.05f));
+  }
+  body_def<float> plate;
+  plate.type = body_type::kinematic;
+  plate.pose.position = {14, 2, -10};
+  plate.linear_velocity = {0, 0, 300};
+  w.create_body(plate, box<float>::make({0.5f, 1, 0.01f}));
+}
+
 }  // namespace
 
 TEST_CASE("islands solved whole on each worker are bit-identical for 1, 2, 3 and 8 workers, over 300 steps") {
@@ -218,6 +280,31 @@ TEST_CASE("soft_step's pile and chains are bit-identical for 1, 2, 3 and 8 worke
     impulse::test::add_pile(w);
   }, impulse::test::long_run(300));
   check_any_worker_count<soft_world>(add_chains<soft_world>, impulse::test::long_run(300));
+}
+
+TEST_CASE("fast bodies and bullets swept beside a field of cubes are bit-identical for 1, 2, 3 and 8 workers, over 60 steps") {
+  check_any_worker_count<ccd_world>(add_shooting<ccd_world>, 60);
+  // And the sweeps ran: after the first step, at 2 workers, every cube
+  // that would have passed the wall (its face at x = 15) is short of it.
+  ccd_world w;
+  step_on_two_workers<ccd_world>(w, add_shooting<ccd_world>, 1);
+  int past = 0, short_of_wall = 0;
+  for (const body_id id : w.body_ids()) {
+    const rigid_body<float>& b = w.body(id);
+    if (b.type != body_type::dynamic) continue;
+    if (b.position.x >= 15.0f) ++past;
+    if (b.position.x > 14.85f) ++short_of_wall;
+  }
+  CHECK(past == 0);
+  CHECK(short_of_wall >= 40);
+}
+
+TEST_CASE("a field of cubes falling asleep is bit-identical for 1, 2, 3 and 8 workers, over 60 steps") {
+  check_any_worker_count<sleeping_world>(add_field<sleeping_world>, 60);
+  // And it does fall asleep within those steps (by step 36), at 2 workers.
+  sleeping_world w;
+  step_on_two_workers<sleeping_world>(w, add_field<sleeping_world>, 60);
+  CHECK(w.awake_body_count() == 0);
 }
 
 TEST_CASE("a snapshot restored into a world with workers steps on as it would have on one thread") {

@@ -91,6 +91,10 @@ struct contact_batch {
   /// soft_step's softness of each lane's pushing rows: its rate, mass
   /// scale and leak (softness.hpp; soften_batch).
   lanes soft_rate{}, soft_mass_scale{}, soft_leak{};
+  /// 1 in a lane whose contact has more than one point, else 0: a lane's
+  /// single rigid row is solved by the first pass alone, whatever the
+  /// points of its neighbours (solve_batch_normals).
+  lanes chained{};
 };
 
 /// The velocities of a batch's bodies, in lanes.
@@ -140,6 +144,7 @@ void load_batch(std::span<const solver_body<T>> bodies, std::span<const contact_
     out.tangent2.set_lane(l, c.tangent2);
     out.inverse_mass_a.set(l, a.inverse_mass);
     out.inverse_mass_b.set(l, b.inverse_mass);
+    out.chained.set(l, c.count > 1 ? T(1) : T(0));
     if (a.inverse_mass > T(0)) out.moving_a |= 1u << l;
     if (b.inverse_mass > T(0)) out.moving_b |= 1u << l;
     for (int i = 0; i < c.count; ++i) {
@@ -567,8 +572,14 @@ void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& i
   constexpr bool position = Pass == normal_pass::position, soft = Pass == normal_pass::soft;
   const lanes zero = lanes::broadcast(T(0));
   const int n = int(rows.size());
-  // A single rigid row is solved exactly by its first pass.
+  // A single rigid row is solved exactly by its first pass; later passes
+  // would only round it again. So a lane with one point keeps its first
+  // pass's impulse: it computes the same beside lanes of any point count,
+  // and a contact comes out the same in whichever batch it falls (the
+  // batches of a group of islands are not the whole step's;
+  // contact_groups.hpp).
   if (n == 1 && !soft) sweeps = 1;
+  const auto chained = in.chained > zero;
   const vec3_batch<T, W> dv = v.vb - v.va;
   lanes speed[capacity], first[capacity], mass[capacity], target[capacity], leak[capacity];
   for (int i = 0; i < n; ++i) {
@@ -590,6 +601,8 @@ void solve_batch_normals(batch_velocities<T, W>& v, const contact_batch<T, W>& i
       lanes next = total - mass[i] * (speed[i] + target[i]);
       if constexpr (soft) next = next - leak[i] * total;
       next = max(next, zero);
+      if constexpr (!soft)
+        if (sweep > 0) next = select(chained, next, total);
       const lanes delta = next - total;
       total = next;
       for (int k = 0; k < n; ++k) speed[k] = speed[k] + r.coupling[k] * delta;

@@ -5,7 +5,8 @@
 // started the step to where it ended, and stopped ccd_gap short of the
 // first body it would have met (Box2D v3's continuous stage: the rest of
 // its step is lost, and the next step's speculative contact resolves the
-// impact; its velocity is kept for that).
+// impact; its velocity is kept for that). The sweeps run across the
+// workers (run).
 #pragma once
 
 #include <algorithm>
@@ -44,43 +45,122 @@ struct continuous_collision {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
-  /// Sweeps the bodies that need it (above).
+  /// The fewest bodies a worker checks at a time: a check is a subtraction,
+  /// a length and a comparison.
+  static constexpr std::uint32_t min_bodies = 256;
+  /// What a worker saw among its bodies (scratch.sweep_seen, one per worker
+  /// so that no two write the same).
+  enum seen : std::uint8_t { bullet = 1, mover = 2 };
+
+  /// Sweeps the bodies that need it (above), across the workers, in two
+  /// passes as Box2D v3 does: first the fast bodies, which meet only static
+  /// and kinematic bodies, which no sweep moves; then the bullets, which
+  /// meet moving bodies too, where the first pass left them, but never
+  /// another bullet. Within a pass no sweep reads what another writes (a
+  /// body's own pose), so the poses are the same whichever worker sweeps
+  /// which body, and in whatever order.
   void run() {
-    std::vector<body_record<T>>& bodies = state.bodies.values();
-    for (const std::uint32_t i : state.awake_bodies) {
-      const body_record<T>& r = bodies[i];
-      if (!is_solved(r) || scratch.is_held(scratch.solver_place[i])) continue;
-      const T moved = length(r.body.position - r.previous.position);
-      if (r.bullet || moved > state.settings.ccd_motion_fraction * r.thinnest) sweep_back(i);
-    }
+    const std::vector<std::uint32_t>& awake = state.awake_bodies;
+    const std::vector<body_record<T>>& bodies = state.bodies.values();
+    const auto swept = [&](std::uint32_t i) {
+      return is_solved(bodies[i]) && !scratch.is_held(scratch.solver_place[i]);
+    };
+    scratch.sweep_movers.clear();
+    find_movers([&](const body_record<T>& r, std::uint8_t& saw) {
+      if (r.bullet && is_solved(r)) saw |= bullet;
+      return r.body.type == body_type::kinematic && is_moving(r);
+    });
+    auto fast = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const std::uint32_t i = awake[k];
+        const body_record<T>& r = bodies[i];
+        if (!r.bullet && swept(i) &&
+            length(r.body.position - r.previous.position) > state.settings.ccd_motion_fraction * r.thinnest)
+          sweep_back(i);
+      }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies, fast);
+    if (!saw_any(bullet)) return;
+    find_movers([](const body_record<T>& r, std::uint8_t&) { return is_solved(r) && !r.bullet; });
+    auto bullets = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k)
+        if (bodies[awake[k]].bullet && swept(awake[k])) sweep_back(awake[k]);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies, bullets);
   }
 
  private:
-  void sweep_back(std::size_t i) {
+  /// Adds to scratch.sweep_movers, in awake order, the awake bodies that
+  /// `pick(record, saw)` picks and that left their broad-phase boxes in the
+  /// step. The broad phase holds a body's box swept over its reach, which
+  /// is capped (solver.max_speculative_distance): a query for a sweep
+  /// cannot find a body that went further, so every sweep tests these too.
+  template <class Pick>
+  void find_movers(Pick pick) {
+    const std::vector<std::uint32_t>& awake = state.awake_bodies;
+    const std::vector<body_record<T>>& bodies = state.bodies.values();
+    std::vector<std::uint8_t>& left = scratch.sweep_left;
+    left.resize(awake.size());
+    scratch.sweep_seen.assign(scratch.tasks.workers, 0);
+    auto mark = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
+      std::uint8_t saw = 0;
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const body_record<T>& r = bodies[awake[k]];
+        left[k] = pick(r, saw) && !contains(state.broad.box(r.proxy), state.bounds_of(r));
+        if (left[k]) saw |= mover;
+      }
+      scratch.sweep_seen[worker] |= saw;
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies, mark);
+    if (!saw_any(mover)) return;
+    for (std::size_t k = 0; k < awake.size(); ++k)
+      if (left[k]) scratch.sweep_movers.push_back(awake[k]);
+  }
+  [[nodiscard]] bool saw_any(std::uint8_t what) const noexcept {
+    return std::any_of(scratch.sweep_seen.begin(), scratch.sweep_seen.end(),
+                       [&](std::uint8_t saw) { return (saw & what) != 0; });
+  }
+
+  /// The body at dense place i stopped ccd_gap short of the first body its
+  /// motion over the step meets, if any.
+  void sweep_back(std::uint32_t i) {
     body_record<T>& r = state.bodies.values()[i];
     const body_id id = state.bodies.ids()[i];
-    const narrowphase::sweep<T> path{{r.previous.position - rotate(r.previous.rotation, r.center), r.previous.rotation},
-                                     shape_pose_of(r), r.center};
-    const aabb<T> swept = state.shape_store.visit(r.shape, [&](const auto& s) {
-      return merge(s.world_aabb(path.start), s.world_aabb(path.end));
-    });
+    const narrowphase::sweep<T> path = path_of(r);
+    const aabb<T> swept = swept_box(r, path);
     T first = T(1);
-    state.broad.query(swept, [&](proxy_id proxy) {
-      const body_id other = state.unpack(state.broad.user_data(proxy));
+    const auto meet = [&](body_id other) {
       if (other == id || state.joined_apart(id, other)) return;
       const body_record<T>& o = state.bodies[other];
       // Fast bodies meet the world; bullets meet moving bodies too, but
       // not each other (each is already swept).
       if (o.body.type == body_type::dynamic && (!r.bullet || o.bullet)) return;
-      const narrowphase::sweep<T> other_path{
-          {o.previous.position - rotate(o.previous.rotation, o.center), o.previous.rotation}, shape_pose_of(o),
-          o.center};
-      first = std::min(first, impact_time(r, path, o, other_path));
-    });
+      first = std::min(first, impact_time(r, path, o, path_of(o)));
+    };
+    state.broad.query(swept, [&](proxy_id proxy) { meet(state.unpack(state.broad.user_data(proxy))); });
+    // Those the query cannot find where they went (one it found as well
+    // gives the same impact again).
+    for (const std::uint32_t m : scratch.sweep_movers) {
+      const body_record<T>& o = state.bodies.values()[m];
+      if (overlaps(swept, swept_box(o, path_of(o)))) meet(state.bodies.ids()[m]);
+    }
     if (!(first < T(1))) return;
     const transform<T> at = narrowphase::sweep_motion<T>(path).at(first);
     r.body.position = apply(at, r.center);
     r.body.orientation = at.rotation;
+  }
+
+  /// A body's shape's motion over the step, from where it started to where
+  /// it is.
+  [[nodiscard]] static narrowphase::sweep<T> path_of(const body_record<T>& r) {
+    return {{r.previous.position - rotate(r.previous.rotation, r.center), r.previous.rotation}, shape_pose_of(r),
+            r.center};
+  }
+  /// The box around its shape at both ends of the path.
+  [[nodiscard]] aabb<T> swept_box(const body_record<T>& r, const narrowphase::sweep<T>& path) const {
+    return state.shape_store.visit(r.shape, [&](const auto& s) {
+      return merge(s.world_aabb(path.start), s.world_aabb(path.end));
+    });
   }
 
   /// When r, moving along path, first comes within ccd_gap of o moving along

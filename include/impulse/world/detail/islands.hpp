@@ -35,6 +35,9 @@ struct island_update {
   world_state<Config>& state;
   step_scratch<Config>& scratch;
 
+  /// The fewest bodies a worker times at a time (sleep).
+  static constexpr std::uint32_t min_bodies = 256;
+
   /// Before the solve: a sleeping island touching or joined to a moving
   /// body wakes; then the awake bodies' islands.
   void wake() {
@@ -47,25 +50,32 @@ struct island_update {
   }
 
   /// After the bodies have moved: an island whose every body has been slow
-  /// for sleep_time goes to sleep.
+  /// for sleep_time goes to sleep. The bodies' timers run across the
+  /// workers; the islands' least timers and their sleep follow in order.
   void sleep(T dt) {
     std::vector<body_record<T>>& bodies = state.bodies.values();
     const auto& s = state.settings;
-    for (const std::uint32_t i : state.awake_bodies) {
-      body_record<T>& r = bodies[i];
-      if (r.body.type != body_type::dynamic) continue;
-      // A body still being pushed out of a penetration is not at rest,
-      // though its velocity is: it would sleep sunk in.
-      // The correction speed is held to a tenth of the sleep speeds: 5 mm/s
-      // is 0.4 mm of penetration beyond the slop at the default rate.
-      const solver_body<T>& motion = scratch.solver_bodies[scratch.solver_place[i]];
-      const T linear = s.sleep_linear_speed, angular = s.sleep_angular_speed;
-      const bool slow = length_squared(r.body.linear_velocity()) <= linear * linear &&
-                        length_squared(r.body.angular_velocity()) <= angular * angular &&
-                        length_squared(motion.bias_linear) <= T(0.01) * linear * linear &&
-                        length_squared(motion.bias_angular) <= T(0.01) * angular * angular;
-      r.sleep_timer = slow ? r.sleep_timer + dt : T(0);
-    }
+    const std::vector<std::uint32_t>& awake = state.awake_bodies;
+    // Each body's timer, across the workers: it reads and writes only its own.
+    auto time = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const std::uint32_t i = awake[k];
+        body_record<T>& r = bodies[i];
+        if (r.body.type != body_type::dynamic) continue;
+        // A body still being pushed out of a penetration is not at rest,
+        // though its velocity is: it would sleep sunk in.
+        // The correction speed is held to a tenth of the sleep speeds: 5 mm/s
+        // is 0.4 mm of penetration beyond the slop at the default rate.
+        const solver_body<T>& motion = scratch.solver_bodies[scratch.solver_place[i]];
+        const T linear = s.sleep_linear_speed, angular = s.sleep_angular_speed;
+        const bool slow = length_squared(r.body.linear_velocity()) <= linear * linear &&
+                          length_squared(r.body.angular_velocity()) <= angular * angular &&
+                          length_squared(motion.bias_linear) <= T(0.01) * linear * linear &&
+                          length_squared(motion.bias_angular) <= T(0.01) * angular * angular;
+        r.sleep_timer = slow ? r.sleep_timer + dt : T(0);
+      }
+    };
+    parallel_for(scratch.tasks, std::uint32_t(awake.size()), min_bodies, time);
     // A body carried by (or joined to) a moving kinematic body stays awake.
     const auto carried = [&](body_id ia, body_id ib) {
       body_record<T>& a = state.bodies[ia];

@@ -592,6 +592,10 @@ struct step_scratch {
   std::vector<T> island_timer;
   std::vector<std::uint32_t> island_set;
   std::vector<std::uint8_t> held;  ///< per solver body: held in this step (hold)
+  // Continuous collision's (continuous.hpp): per worker, what it saw; per
+  // awake body, whether it left its broad-phase box; the bodies that did.
+  std::vector<std::uint8_t> sweep_seen, sweep_left;
+  std::vector<std::uint32_t> sweep_movers;
 
   /// A world without collision's (force_motion.hpp).
   struct motion_scratch {
