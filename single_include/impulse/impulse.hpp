@@ -10806,6 +10806,22 @@ class basic_sequential_impulse {
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
+  /// What the caller does with a solve's results, handed over by the worker
+  /// that solved a group of islands as soon as the group is done, while its
+  /// contacts and bodies are in that worker's cache: run(context, contacts,
+  /// bodies) names each contact and body of the solve once, over all the
+  /// calls (the bodies that no impulse moves last, on the calling thread).
+  /// Only when the solve went by groups (solved_groups() > 0); otherwise
+  /// the caller takes the results after solve returns.
+  struct group_results {
+    void (*run)(void* context, std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> bodies);
+    void* context;
+  };
+  /// solve, handing each group's results to `results` (above).
+  void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+             const group_results& results);
+
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
   /// over the bodies' poses after they have moved (joint.hpp,
   /// project_joint), each with a Newton step on the joint trees
@@ -10840,7 +10856,8 @@ class basic_sequential_impulse {
   };
 
   void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+                    const group_results* results) {
     const int parts = settings.substeps;
     const T share = T(1) / T(parts);
     synced_.resize(bodies.size());
@@ -10875,9 +10892,12 @@ class basic_sequential_impulse {
         groups_.split(read, std::span<const contact_constraint<T>>(contacts), workers)) {
       sets_.resize(std::max<std::size_t>(sets_.size(), groups_.size()));
       auto solve_groups = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t g = begin; g < end; ++g)
-          solve_set({sets_[g], groups_.contacts(std::uint32_t(g)), groups_.bodies(std::uint32_t(g)), false}, bodies,
-                    contacts, joints, settings, dt);
+        for (std::size_t g = begin; g < end; ++g) {
+          const std::span<const std::uint32_t> own_contacts = groups_.contacts(std::uint32_t(g));
+          const std::span<const std::uint32_t> own_bodies = groups_.bodies(std::uint32_t(g));
+          solve_set({sets_[g], own_contacts, own_bodies, false}, bodies, contacts, joints, settings, dt);
+          if (results) results->run(results->context, own_contacts, own_bodies);
+        }
       };
       stages_.each_index(groups_.size(), 1, solve_groups);
       solved_groups_ = groups_.size();
@@ -10885,6 +10905,7 @@ class basic_sequential_impulse {
       // have: no group read anything their moves change.
       for (int part = 0; part < parts; ++part)
         for (const std::uint32_t i : groups_.fixed_bodies()) move_part(bodies, i, part, parts, true, dt);
+      if (results) results->run(results->context, {}, groups_.fixed_bodies());
       return;
     }
     solve_set({sets_.empty() ? sets_.emplace_back() : sets_[0], {}, {}, true}, bodies, contacts, joints, settings,
@@ -11185,7 +11206,15 @@ void basic_sequential_impulse<T>::prepare(std::span<const solver_body<T>> bodies
 template <scalar_type T>
 void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
                                         std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt, nullptr); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                                        std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+                                        const group_results& results) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt, &results); };
   stages_.run(program);
 }
 
@@ -19353,14 +19382,16 @@ struct joint_broken_event {
 /// How long the last step took, stage by stage, in milliseconds of the
 /// monotonic clock (world::last_step_profile). Always measured: a few clock
 /// reads a step. The stages run in this order; with a task hook
-/// (world::set_task_system) the narrow phase and the solve run across the
-/// workers, the rest on the thread that called step().
+/// (world::set_task_system) each runs across the workers, but for the
+/// parts docs/world.md ("Across workers") names, which stay on the thread
+/// that called step().
 struct step_profile {
   double broad = 0;       ///< the moving bodies' boxes into the broad phase, and its pairs
   double narrow = 0;      ///< the contact records merged with the pairs, and the pair tests
   double prepare = 0;     ///< the solver's bodies, contacts, joints and springs, and the contacts' masses
   double solve = 0;       ///< the contact and joint solver
-  double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected
+  double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected (the first two in `solve`
+                          ///< when it went by groups of islands, step_counts::solver_groups)
   double continuous = 0;  ///< continuous collision of fast bodies
   double sleep = 0;       ///< islands woken, then put to sleep
   double total = 0;       ///< the whole step, these and what lies between them
@@ -21931,26 +21962,52 @@ struct body_solve {
       scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.profile.prepare = lap.lap_ms();
-    scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    // Each manifold's impulses kept for the next step, and each body's
+    // solved motion put back: by the worker that solved its group of
+    // islands, when the solve goes by groups (its data still in that
+    // worker's cache; two loops fewer), else in two loops afterwards.
+    const auto keep_one = [&](std::uint32_t j) {
+      contact_record<T>& c = state.contacts[scratch.sources[j].record];
+      const contact_constraint<T>& cc = scratch.constraints[j];
+      manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
+      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+      kept.twist = cc.twist_impulse;
+    };
+    const auto move_one = [&](std::uint32_t i) {
+      if (i < count) finish_body(bodies[scratch.solver_dense[i]], i, dt);
+    };
+    bool handed = false;
+    if constexpr (requires { typename solver_type::group_results; }) {
+      auto take = [&](std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> moved) {
+        for (const std::uint32_t j : contacts) keep_one(j);
+        for (const std::uint32_t i : moved) move_one(i);
+      };
+      const typename solver_type::group_results results{
+          [](void* context, std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> moved) {
+            (*static_cast<decltype(take)*>(context))(contacts, moved);
+          },
+          &take};
+      scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt,
+                           results);
+      handed = scratch.solver.solved_groups() > 0;
+    } else {
+      scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    }
     scratch.profile.solve = lap.lap_ms();
     if constexpr (requires { scratch.solver.solved_groups(); })
       state.counts.solver_groups = scratch.solver.solved_groups();
     keep_joint_impulses(dt);
-    auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t j = begin; j < end; ++j) {
-        contact_record<T>& c = state.contacts[scratch.sources[j].record];
-        const contact_constraint<T>& cc = scratch.constraints[j];
-        manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
-        for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
-        kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
-        kept.twist = cc.twist_impulse;
-      }
-    };
-    parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
-    auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::size_t i = begin; i < end; ++i) finish_body(bodies[scratch.solver_dense[i]], i, dt);
-    };
-    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    if (!handed) {
+      auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t j = begin; j < end; ++j) keep_one(j);
+      };
+      parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
+      auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t i = begin; i < end; ++i) move_one(i);
+      };
+      parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    }
     scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
     scratch.profile.integrate = lap.lap_ms();

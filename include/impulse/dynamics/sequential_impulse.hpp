@@ -133,6 +133,22 @@ class basic_sequential_impulse {
   void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
              std::span<joint_constraint<T>> joints, const settings_type& settings, T dt);
 
+  /// What the caller does with a solve's results, handed over by the worker
+  /// that solved a group of islands as soon as the group is done, while its
+  /// contacts and bodies are in that worker's cache: run(context, contacts,
+  /// bodies) names each contact and body of the solve once, over all the
+  /// calls (the bodies that no impulse moves last, on the calling thread).
+  /// Only when the solve went by groups (solved_groups() > 0); otherwise
+  /// the caller takes the results after solve returns.
+  struct group_results {
+    void (*run)(void* context, std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> bodies);
+    void* context;
+  };
+  /// solve, handing each group's results to `results` (above).
+  void solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+             std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+             const group_results& results);
+
   /// Non-linear Gauss–Seidel on the joints, position_iterations passes
   /// over the bodies' poses after they have moved (joint.hpp,
   /// project_joint), each with a Newton step on the joint trees
@@ -167,7 +183,8 @@ class basic_sequential_impulse {
   };
 
   void solve_stages(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
-                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
+                    std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+                    const group_results* results) {
     const int parts = settings.substeps;
     const T share = T(1) / T(parts);
     synced_.resize(bodies.size());
@@ -202,9 +219,12 @@ class basic_sequential_impulse {
         groups_.split(read, std::span<const contact_constraint<T>>(contacts), workers)) {
       sets_.resize(std::max<std::size_t>(sets_.size(), groups_.size()));
       auto solve_groups = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t g = begin; g < end; ++g)
-          solve_set({sets_[g], groups_.contacts(std::uint32_t(g)), groups_.bodies(std::uint32_t(g)), false}, bodies,
-                    contacts, joints, settings, dt);
+        for (std::size_t g = begin; g < end; ++g) {
+          const std::span<const std::uint32_t> own_contacts = groups_.contacts(std::uint32_t(g));
+          const std::span<const std::uint32_t> own_bodies = groups_.bodies(std::uint32_t(g));
+          solve_set({sets_[g], own_contacts, own_bodies, false}, bodies, contacts, joints, settings, dt);
+          if (results) results->run(results->context, own_contacts, own_bodies);
+        }
       };
       stages_.each_index(groups_.size(), 1, solve_groups);
       solved_groups_ = groups_.size();
@@ -212,6 +232,7 @@ class basic_sequential_impulse {
       // have: no group read anything their moves change.
       for (int part = 0; part < parts; ++part)
         for (const std::uint32_t i : groups_.fixed_bodies()) move_part(bodies, i, part, parts, true, dt);
+      if (results) results->run(results->context, {}, groups_.fixed_bodies());
       return;
     }
     solve_set({sets_.empty() ? sets_.emplace_back() : sets_[0], {}, {}, true}, bodies, contacts, joints, settings,
@@ -512,7 +533,15 @@ void basic_sequential_impulse<T>::prepare(std::span<const solver_body<T>> bodies
 template <scalar_type T>
 void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
                                         std::span<joint_constraint<T>> joints, const settings_type& settings, T dt) {
-  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt); };
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt, nullptr); };
+  stages_.run(program);
+}
+
+template <scalar_type T>
+void basic_sequential_impulse<T>::solve(std::span<solver_body<T>> bodies, std::span<contact_constraint<T>> contacts,
+                                        std::span<joint_constraint<T>> joints, const settings_type& settings, T dt,
+                                        const group_results& results) {
+  auto program = [&] { solve_stages(bodies, contacts, joints, settings, dt, &results); };
   stages_.run(program);
 }
 

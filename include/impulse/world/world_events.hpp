@@ -32,14 +32,16 @@ struct joint_broken_event {
 /// How long the last step took, stage by stage, in milliseconds of the
 /// monotonic clock (world::last_step_profile). Always measured: a few clock
 /// reads a step. The stages run in this order; with a task hook
-/// (world::set_task_system) the narrow phase and the solve run across the
-/// workers, the rest on the thread that called step().
+/// (world::set_task_system) each runs across the workers, but for the
+/// parts docs/world.md ("Across workers") names, which stay on the thread
+/// that called step().
 struct step_profile {
   double broad = 0;       ///< the moving bodies' boxes into the broad phase, and its pairs
   double narrow = 0;      ///< the contact records merged with the pairs, and the pair tests
   double prepare = 0;     ///< the solver's bodies, contacts, joints and springs, and the contacts' masses
   double solve = 0;       ///< the contact and joint solver
-  double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected
+  double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected (the first two in `solve`
+                          ///< when it went by groups of islands, step_counts::solver_groups)
   double continuous = 0;  ///< continuous collision of fast bodies
   double sleep = 0;       ///< islands woken, then put to sleep
   double total = 0;       ///< the whole step, these and what lies between them

@@ -191,26 +191,52 @@ struct body_solve {
       scratch.solver.set_task_system(scratch.tasks);
     scratch.solver.prepare(scratch.solver_bodies, scratch.constraints);
     scratch.profile.prepare = lap.lap_ms();
-    scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    // Each manifold's impulses kept for the next step, and each body's
+    // solved motion put back: by the worker that solved its group of
+    // islands, when the solve goes by groups (its data still in that
+    // worker's cache; two loops fewer), else in two loops afterwards.
+    const auto keep_one = [&](std::uint32_t j) {
+      contact_record<T>& c = state.contacts[scratch.sources[j].record];
+      const contact_constraint<T>& cc = scratch.constraints[j];
+      manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
+      for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
+      kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
+      kept.twist = cc.twist_impulse;
+    };
+    const auto move_one = [&](std::uint32_t i) {
+      if (i < count) finish_body(bodies[scratch.solver_dense[i]], i, dt);
+    };
+    bool handed = false;
+    if constexpr (requires { typename solver_type::group_results; }) {
+      auto take = [&](std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> moved) {
+        for (const std::uint32_t j : contacts) keep_one(j);
+        for (const std::uint32_t i : moved) move_one(i);
+      };
+      const typename solver_type::group_results results{
+          [](void* context, std::span<const std::uint32_t> contacts, std::span<const std::uint32_t> moved) {
+            (*static_cast<decltype(take)*>(context))(contacts, moved);
+          },
+          &take};
+      scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt,
+                           results);
+      handed = scratch.solver.solved_groups() > 0;
+    } else {
+      scratch.solver.solve(scratch.solver_bodies, scratch.constraints, scratch.joints, state.settings.solver, dt);
+    }
     scratch.profile.solve = lap.lap_ms();
     if constexpr (requires { scratch.solver.solved_groups(); })
       state.counts.solver_groups = scratch.solver.solved_groups();
     keep_joint_impulses(dt);
-    auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t j = begin; j < end; ++j) {
-        contact_record<T>& c = state.contacts[scratch.sources[j].record];
-        const contact_constraint<T>& cc = scratch.constraints[j];
-        manifold_impulse<T>& kept = state.slot_of(c, int(scratch.sources[j].manifold)).impulse;
-        for (int p = 0; p < cc.count; ++p) kept.normal[std::size_t(p)] = cc.points[p].normal_impulse;
-        kept.friction = cc.tangent1 * cc.tangent_impulse1 + cc.tangent2 * cc.tangent_impulse2;
-        kept.twist = cc.twist_impulse;
-      }
-    };
-    parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
-    auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::size_t i = begin; i < end; ++i) finish_body(bodies[scratch.solver_dense[i]], i, dt);
-    };
-    parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    if (!handed) {
+      auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t j = begin; j < end; ++j) keep_one(j);
+      };
+      parallel_for(scratch.tasks, std::uint32_t(scratch.constraints.size()), min_constraints, keep);
+      auto move = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t i = begin; i < end; ++i) move_one(i);
+      };
+      parallel_for(scratch.tasks, std::uint32_t(count), min_bodies, move);
+    }
     scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
     scratch.profile.integrate = lap.lap_ms();
