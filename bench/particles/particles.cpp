@@ -11,7 +11,8 @@
 // fraction of what the machine can move, not as a lone time.
 //
 // Output: CSV on stdout,
-//   integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction
+//   integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction,
+//   speedup,independent_speedup
 // width is the batch width, or "aos" for the baseline.
 //
 // The cost of a step depends on the state (a particle on a plane takes the
@@ -37,7 +38,7 @@
 //                      within 1, 4 and 16 ms (one 60 Hz frame's share) per
 //                      integrator, scalar and thread count (its own CSV)
 //   --springs          instead of the above: a 320 × 320 cloth of springs
-//                      (102 400 particles, 203 520 springs) per integrator,
+//                      (102 400 particles, 204 160 springs) per integrator,
 //                      scalar and thread count (its own CSV)
 //   --root M           how float lanes take the attractors' (|d|² + ε)^(-3/2)
 //                      (point_forces::root_method): automatic (the default:
@@ -46,14 +47,24 @@
 //   --threads A,B,...  step the SoA kernel on each of these worker counts
 //                      (impulse::thread_pool; 1, the default, runs on the
 //                      calling thread with no pool)
-// The threads column is the number of workers the kernel ran on.
+// The threads column is the number of workers the kernel ran on. On a row
+// of W > 1 workers, speedup is the pool's over one worker and
+// independent_speedup the machine's own ceiling for W workers on the same
+// work: W copies of the system, each stepped on a thread of its own with
+// nothing shared. Both are medians of five rounds that step a one-worker
+// copy, the pooled system and the W copies in turn (1 on a row of one
+// worker). Read the first against the second, not against W: on a shared
+// virtual machine two cores seldom do twice one core's work even when they
+// share nothing.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -133,6 +144,52 @@ double seconds_per_steady_step(System& system, std::size_t n) {
     per_step.push_back(std::chrono::duration<double>(clock_type::now() - t0).count() / double(steps));
   }
   return median(per_step);
+}
+
+/// Speed-ups over one worker, measured in the same rounds.
+struct scaling {
+  double pool = 1.0;         ///< the system on its pool of W workers
+  double independent = 1.0;  ///< W copies, each on a thread of its own
+};
+
+/// For a system on a pool of `workers` workers: five rounds, each stepping
+/// for 2·10^7 particle-steps a copy of it on one worker, then the system on
+/// its pool, then `workers` copies at once, each on a thread of its own with
+/// nothing shared. Returns the medians of the rounds' speed-ups over the
+/// one-worker copy; `independent` is the machine's own ceiling for
+/// `workers` cores on this work (`workers` where they share nothing at all).
+template <class System>
+scaling speedups(System& system, std::uint32_t workers) {
+  using T = typename System::scalar;
+  std::vector<System> copies(workers, system);
+  for (System& copy : copies) copy.set_task_system({});
+  const long steps = std::max(1L, long(2e7 / double(system.size())));
+  auto step = [steps](System& s) {
+    for (long k = 0; k < steps; ++k) s.step(T(particles_scene::dt));
+  };
+  auto seconds = [](const auto& f) {
+    const auto t0 = clock_type::now();
+    f();
+    return std::chrono::duration<double>(clock_type::now() - t0).count();
+  };
+  std::vector<double> pool, independent;
+  for (int r = 0; r < 5; ++r) {
+    const double alone = seconds([&] { step(copies[0]); });
+    pool.push_back(alone / seconds([&] { step(system); }));
+    std::atomic<bool> go{false};
+    std::vector<std::thread> others;
+    for (std::uint32_t c = 1; c < workers; ++c)
+      others.emplace_back([&, c] {
+        while (!go.load()) std::this_thread::yield();
+        step(copies[c]);
+      });
+    independent.push_back(double(workers) * alone / seconds([&] {
+      go = true;
+      step(copies[0]);
+      for (std::thread& t : others) t.join();
+    }));
+  }
+  return {median(pool), median(independent)};
 }
 
 /// Seconds per step over the scene's steps warm_steps … warm_steps +
@@ -233,13 +290,14 @@ struct row {
   std::uint32_t threads;
   std::size_t n;
   double steps_per_s, bytes_per_step, roof;
+  scaling speedup{};  // over one worker, for `threads` workers
 };
 
 void print(const row& r) {
   const double gb_per_s = r.steps_per_s * r.bytes_per_step / 1e9;
   const double fraction = r.roof > 0 ? gb_per_s * 1e9 / r.roof : 0.0;
-  std::printf("%s,%s,%s,%u,%zu,%.1f,%.2f,%.3f\n", r.integrator, r.scalar, r.width.c_str(), r.threads, r.n,
-              r.steps_per_s / 1e6, gb_per_s, fraction);
+  std::printf("%s,%s,%s,%u,%zu,%.1f,%.2f,%.3f,%.2f,%.2f\n", r.integrator, r.scalar, r.width.c_str(), r.threads, r.n,
+              r.steps_per_s / 1e6, gb_per_s, fraction, r.speedup.pool, r.speedup.independent);
   std::fflush(stdout);
 }
 
@@ -260,7 +318,7 @@ void run(const char* integrator_name, std::size_t n, double roof_soa, double roo
     const double t = s.steady ? seconds_per_steady_step(system, n) : seconds_per_scene_step(system, n, s);
     // Read and written: x, y, z, vx, vy, vz (unit masses: no mass column).
     print({integrator_name, scalar_name, std::to_string(system_type::width), threads, n, double(n) / t,
-           double(12 * sizeof(T)), roof_soa});
+           double(12 * sizeof(T)), roof_soa, threads > 1 ? speedups(system, threads) : scaling{}});
   }
   if (s.aos) {
     aos_system<T, I> aos;
@@ -448,13 +506,14 @@ void springs_row(const char* integrator_name, std::uint32_t threads) {
   cloth.add_plane(plane_collider<T>::half_space({T(0), T(1), T(0)}, T(0), T(0.2), T(0.5)));
   for (int k = 0; k < 60; ++k) cloth.step(T(ps::dt));
   const double t = seconds_per_steady_step(cloth, cloth.size());
-  std::printf("%s,%s,%u,%zu,%zu,%.1f\n", integrator_name, sizeof(T) == 4 ? "float" : "double", threads,
-              cloth.size(), list.size(), double(cloth.size()) / t / 1e6);
+  const scaling speedup = threads > 1 ? speedups(cloth, threads) : scaling{};
+  std::printf("%s,%s,%u,%zu,%zu,%.1f,%.2f,%.2f\n", integrator_name, sizeof(T) == 4 ? "float" : "double", threads,
+              cloth.size(), list.size(), double(cloth.size()) / t / 1e6, speedup.pool, speedup.independent);
   std::fflush(stdout);
 }
 
 int run_springs_table(const settings& s) {
-  std::printf("integrator,scalar,threads,n,springs,msteps_per_s\n");
+  std::printf("integrator,scalar,threads,n,springs,msteps_per_s,speedup,independent_speedup\n");
   for (const std::string& scalar : s.scalars)
     for (const std::string& integrator : s.integrators)
       for (std::uint32_t threads : s.threads)
@@ -507,7 +566,7 @@ int main(int argc, char** argv) {
   if (s.emitter) return run_emitter_table(s);
   if (s.budget) return run_budget_table(s);
   if (s.springs) return run_springs_table(s);
-  std::printf("integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction\n");
+  std::printf("integrator,scalar,width,threads,n,msteps_per_s,gb_per_s,bandwidth_fraction,speedup,independent_speedup\n");
   for (std::size_t n : s.sizes) {
     run_scalar<float>(n, s);
     run_scalar<double>(n, s);

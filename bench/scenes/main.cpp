@@ -22,7 +22,12 @@
 // position and orientation equal the first count's to the bit. impulse's
 // runs add, per stage of its step (world::last_step_profile: broad,
 // narrow, prepare, solve, integrate, continuous, sleep), ms_STAGE, the
-// stage's mean time over the same window, and speedup_STAGE.
+// stage's mean time over the same window, and speedup_STAGE. A run on W > 1
+// workers adds independent_speedup: W one-worker runs of the scene at once,
+// each on a thread of its own, W × the first count's step time over
+// theirs; the speed-up the machine gives work that shares nothing, which
+// is the ceiling to read `speedup` against (on a shared virtual machine,
+// seldom W).
 //
 // An engine is a type modelling scene_engine (engine.hpp): to add one,
 // include its header and add it to engines() below (a peer: to peers.cpp). impulse is always
@@ -42,6 +47,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "engine.hpp"
@@ -82,6 +88,36 @@ std::vector<engine_entry> engines() {
   list.push_back(entry<impulse_engine<impulse_soft_step>>());
   for (const engine_entry& peer : peer_engines()) list.push_back(peer);
   return list;
+}
+
+/// The machine's own ceiling for `copies` workers on a scene: that many
+/// one-worker runs of it at once, each on a thread of its own, sharing
+/// nothing. Returns their mean median step time (ms), or 0 if a run
+/// failed. `copies` × one run alone ÷ this is the speed-up `copies` cores
+/// give work that shares nothing: on a shared virtual machine, seldom
+/// `copies`.
+double ms_per_step_side_by_side(const engine_entry& e, const scene_spec& spec, std::uint32_t copies) {
+  std::fprintf(stderr, "%.*s %s: %u one-worker runs side by side ... ", int(e.name.size()), e.name.data(),
+               spec.name.c_str(), copies);
+  std::vector<double> ms(copies, 0.0);
+  std::vector<std::thread> runs;
+  for (std::uint32_t c = 0; c < copies; ++c)
+    runs.emplace_back([&, c] {
+      try {
+        ms[c] = e.run(spec).ms_per_step_median;
+      } catch (const std::exception&) {
+        ms[c] = 0;
+      }
+    });
+  double sum = 0;
+  bool failed = false;
+  for (std::uint32_t c = 0; c < copies; ++c) {
+    runs[c].join();
+    sum += ms[c];
+    failed = failed || ms[c] <= 0;
+  }
+  std::fprintf(stderr, failed ? "failed\n" : "%.4f ms/step\n", sum / copies);
+  return failed ? 0.0 : sum / copies;
 }
 
 /// Six significant digits: more than any of these figures can be trusted to.
@@ -218,6 +254,13 @@ int main(int argc, char** argv) {
               const std::string stage = stage_names[s];
               r.metrics.push_back({"ms_" + stage, r.stage_ms[s]});
               if (r.stage_ms[s] > 0) r.metrics.push_back({"speedup_" + stage, first.stage_ms[s] / r.stage_ms[s]});
+            }
+            if (worker_counts[k] > 1) {
+              impulse_workers = nullptr;
+              const double together = ms_per_step_side_by_side(e, spec, worker_counts[k]);
+              if (together > 0)
+                r.metrics.push_back(
+                    {"independent_speedup", double(worker_counts[k]) * first.ms_per_step_median / together});
             }
           }
           for (const metric_value& m : r.metrics)

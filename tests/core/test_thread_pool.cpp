@@ -1,7 +1,8 @@
 // impulse::thread_pool, the task hook's own implementation: every item of a
 // loop runs exactly once, on a worker index below the pool's count, loops
 // can be outstanding together, waits that spin and waits that sleep both
-// end, and a pool of one runs on the calling thread.
+// end, a pool of one runs on the calling thread, and each worker starts on
+// its own slice of a loop.
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -118,6 +119,35 @@ TEST_CASE("with two workers, both take ranges of a long loop") {
   impulse::detail::parallel_for(tasks, 64, 1, body);
   CHECK(seen[0].load() + seen[1].load() == 8);  // 4 ranges per worker
   CHECK(seen[1].load() > 0);
+}
+
+TEST_CASE("with two workers, each starts on its own half of a loop and takes the other's from its far end") {
+  // Loops over the same items back to back then give each worker the items
+  // it had in the loop before. Eight ranges: the caller's half is 0-3, the
+  // other worker's 4-7. Whatever the timing, a worker's first range is the
+  // front of its own half, and a range taken from the other half is taken
+  // from its back.
+  impulse::thread_pool pool{2};
+  const impulse::task_system tasks = pool.tasks();
+  std::vector<std::uint32_t> order[2];
+  auto body = [&](std::uint32_t begin, std::uint32_t, std::uint32_t worker) {
+    order[worker].push_back(begin / 8);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
+  impulse::detail::parallel_for(tasks, 64, 1, body);
+  REQUIRE(order[0].size() + order[1].size() == 8);
+  if (!order[0].empty()) CHECK(order[0].front() == 0);
+  if (!order[1].empty()) CHECK(order[1].front() == 4);
+  for (std::uint32_t w = 0; w < 2; ++w) {
+    CAPTURE(w);
+    // Its own half in rising order, then the other's in falling order.
+    std::size_t k = 0;
+    while (k + 1 < order[w].size() && order[w][k + 1] == order[w][k] + 1 && order[w][k + 1] / 4 == w) ++k;
+    for (++k; k < order[w].size(); ++k) {
+      CHECK(order[w][k] / 4 != w);
+      if (k + 1 < order[w].size()) CHECK(order[w][k + 1] + 1 == order[w][k]);
+    }
+  }
 }
 
 }  // namespace
