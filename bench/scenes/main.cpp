@@ -27,7 +27,12 @@
 // each on a thread of its own, W × the first count's step time over
 // theirs; the speed-up the machine gives work that shares nothing, which
 // is the ceiling to read `speedup` against (on a shared virtual machine,
-// seldom W).
+// seldom W). It also adds core_round_trip_ns and core_round_trip_ns_after:
+// the time a cache line takes to go from the calling thread to another
+// and back, measured just before and just after the W-worker run. Every
+// loop spread across workers pays it, many times over, and a host that
+// moves a guest's cores between last-level caches changes it by several
+// times from one minute to the next.
 //
 // An engine is a type modelling scene_engine (engine.hpp): to add one,
 // include its header and add it to engines() below (a peer: to peers.cpp). impulse is always
@@ -36,6 +41,7 @@
 // --engine NAME selects every entry of that name: `--engine impulse` runs
 // all of impulse's. --config TEXT keeps the entries whose config (as a
 // fresh engine reports it) contains TEXT: `--config sweep_and_prune`.
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -118,6 +124,38 @@ double ms_per_step_side_by_side(const engine_entry& e, const scene_spec& spec, s
   }
   std::fprintf(stderr, failed ? "failed\n" : "%.4f ms/step\n", sum / copies);
   return failed ? 0.0 : sum / copies;
+}
+
+/// The round trip of a cache line between the calling thread and a thread
+/// of its own (ns): up to 100 000 hand-offs of a counter, each side waiting
+/// for the other's write, or as many as fit in 50 ms (on a loaded machine
+/// a hand-off can wait out a time slice). Run only with at least two
+/// hardware threads.
+double core_round_trip_ns() {
+  constexpr long most = 100000, stop = -1;
+  alignas(64) std::atomic<long> turn{0};
+  std::thread other([&turn] {
+    for (long next = 1;; next += 2) {
+      long seen = turn.load(std::memory_order_acquire);
+      while (seen != next && seen != stop) seen = turn.load(std::memory_order_acquire);
+      if (seen == stop) return;
+      turn.store(next + 1, std::memory_order_release);
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::milliseconds(50);
+  long done = 0;
+  while (done < most) {
+    turn.store(2 * done + 1, std::memory_order_release);
+    while (turn.load(std::memory_order_acquire) != 2 * done + 2) {
+    }
+    ++done;
+    if (done % 64 == 0 && std::chrono::steady_clock::now() > deadline) break;
+  }
+  const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+  turn.store(stop, std::memory_order_release);
+  other.join();
+  return ns / double(done);
 }
 
 /// Six significant digits: more than any of these figures can be trusted to.
@@ -230,7 +268,9 @@ int main(int argc, char** argv) {
     for (const engine_entry& e : selected) {
       const bool threaded = e.name == impulse_engine<impulse_dynamic_bvh>::name && worker_counts.size() > 1;
       scene_result first;
+      const bool probe_cores = threaded && std::thread::hardware_concurrency() >= 2;
       for (std::size_t k = 0; k < (threaded ? worker_counts.size() : 1); ++k) {
+        const double trip_before = probe_cores && worker_counts[k] > 1 ? core_round_trip_ns() : 0.0;
         std::unique_ptr<impulse::thread_pool> pool;
         impulse::task_system tasks;
         if (worker_counts[k] > 1) {
@@ -254,6 +294,12 @@ int main(int argc, char** argv) {
               const std::string stage = stage_names[s];
               r.metrics.push_back({"ms_" + stage, r.stage_ms[s]});
               if (r.stage_ms[s] > 0) r.metrics.push_back({"speedup_" + stage, first.stage_ms[s] / r.stage_ms[s]});
+            }
+            if (trip_before > 0) {
+              impulse_workers = nullptr;
+              pool.reset();  // its threads out of the probe's way
+              r.metrics.push_back({"core_round_trip_ns", trip_before});
+              r.metrics.push_back({"core_round_trip_ns_after", core_round_trip_ns()});
             }
             if (worker_counts[k] > 1) {
               impulse_workers = nullptr;
