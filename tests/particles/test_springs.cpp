@@ -14,8 +14,10 @@
 //   - midpoint: ρ² = 1 + (ωh)⁴/4 undamped, never stable without damping;
 //   - RK4: h < 2√2/ω undamped.
 // docs/particles.md tabulates ω·h_max for ζ = 0 and ζ = 0.05.
+#include <array>
 #include <cmath>
 #include <complex>
+#include <vector>
 
 #include "particle_test.hpp"
 
@@ -152,35 +154,26 @@ TEST_CASE_TEMPLATE("a spring oscillates at its natural frequency and conserves m
   CHECK(crossings == 10);
 }
 
-/// Each particle's acceleration after one explicit Euler step from rest
-/// positions, against Hooke's law with damping along the spring summed in
-/// double: 21 springs (not a whole number of the springs' lanes) among 9
-/// particles of differing masses, one spring with coincident ends (no
-/// force) and a hub with 8.
-TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, whole lanes or not", T, float, double) {
+struct body {
+  double x, y, z, vx, vy, vz, mass;
+};
+struct link {
+  std::uint32_t a, b;
+  double rest, k, c;
+};
+
+/// Each particle's acceleration after one explicit Euler step of a system
+/// of `bodies` and `links`, against Hooke's law with damping along each
+/// spring summed in double. Returns how many springs the system stepped
+/// in runs' groups.
+template <class T>
+std::size_t check_hookes_law(const std::vector<body>& bodies, const std::vector<link>& links) {
   using C = particle_test::config<T, particle_test::native<T>, impulse::integrators::euler>;
-  particle_system<C, springs> s{9};
-  struct body {
-    double x, y, z, vx, vy, vz, mass;
-  };
-  const body bodies[9] = {{0, 0, 0, 0, 0, 0, 2},          {1.1, 0.2, -0.3, 0.5, 0, 0, 1},
-                          {-0.7, 1.3, 0.4, 0, -1, 0.25, 3}, {0.3, -0.9, 1.7, 0.1, 0.2, 0.3, 0.5},
-                          {2.0, 2.0, 2.0, -0.4, 0, 0, 1.5}, {-1.5, -0.5, 0.8, 0, 0, -0.7, 1},
-                          {0.6, 0.6, -1.2, 0.3, 0.3, 0, 4}, {0.6, 0.6, -1.2, -0.2, 0, 0, 1},
-                          {3.0, -1.0, 0.5, 0, 0.8, 0, 0.25}};
+  particle_system<C, springs> s{bodies.size()};
   for (const body& b : bodies) s.add({T(b.x), T(b.y), T(b.z)}, {T(b.vx), T(b.vy), T(b.vz)}, T(b.mass));
-  struct link {
-    std::uint32_t a, b;
-    double rest, k, c;
-  };
-  std::vector<link> links;
-  for (std::uint32_t i = 1; i < 9; ++i) links.push_back({0, i, 0.5 + 0.1 * i, 40.0 + 5 * i, 0.3 * i});  // the hub
-  for (std::uint32_t i = 1; i < 8; ++i) links.push_back({i, i + 1, 1.0, 25.0 * i, 0.5});
-  links.push_back({6, 7, 0.4, 80, 1});  // coincident ends: no direction, no force
-  for (std::uint32_t i = 2; i < 7; ++i) links.push_back({i + 2, i - 1, 0.75, 60, 0.2 * i});
-  REQUIRE(links.size() == 21);
   for (const link& l : links) s.template force<springs>().add(l.a, l.b, T(l.rest), T(l.k), T(l.c));
-  double force[9][3] = {}, scale[9] = {};  // scale: what the terms' roundings are relative to
+  std::vector<std::array<double, 3>> force(bodies.size(), {0, 0, 0});
+  std::vector<double> scale(bodies.size(), 0);  // what the terms' roundings are relative to
   for (const link& l : links) {
     const body &a = bodies[l.a], &b = bodies[l.b];
     const double d[3] = {a.x - b.x, a.y - b.y, a.z - b.z}, dv[3] = {a.vx - b.vx, a.vy - b.vy, a.vz - b.vz};
@@ -196,7 +189,7 @@ TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, who
   const T h = T(1) / T(1024);  // a power of two: v + a·h and (v' − v)/h add no rounding of their own
   s.step(h);
   const vec3_columns<T> v = s.velocities();
-  for (std::uint32_t i = 0; i < 9; ++i) {
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     CAPTURE(i);
     const double velocity[3] = {bodies[i].vx, bodies[i].vy, bodies[i].vz};
     const impulse::vec3<T> now = v[i];
@@ -210,6 +203,57 @@ TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, who
       CHECK(std::abs((got[j] - velocity[j]) / double(h) - expected) <= tolerance);
     }
   }
+  return s.template force<springs>().springs_in_runs();
+}
+
+/// 21 springs (not a whole number of the springs' lanes) among 9 particles
+/// of differing masses, one spring with coincident ends (no force) and a
+/// hub with 8.
+TEST_CASE_TEMPLATE("every spring pulls by Hooke's law with damping along it, whole lanes or not", T, float, double) {
+  const std::vector<body> bodies = {{0, 0, 0, 0, 0, 0, 2},          {1.1, 0.2, -0.3, 0.5, 0, 0, 1},
+                                    {-0.7, 1.3, 0.4, 0, -1, 0.25, 3}, {0.3, -0.9, 1.7, 0.1, 0.2, 0.3, 0.5},
+                                    {2.0, 2.0, 2.0, -0.4, 0, 0, 1.5}, {-1.5, -0.5, 0.8, 0, 0, -0.7, 1},
+                                    {0.6, 0.6, -1.2, 0.3, 0.3, 0, 4}, {0.6, 0.6, -1.2, -0.2, 0, 0, 1},
+                                    {3.0, -1.0, 0.5, 0, 0.8, 0, 0.25}};
+  std::vector<link> links;
+  for (std::uint32_t i = 1; i < 9; ++i) links.push_back({0, i, 0.5 + 0.1 * i, 40.0 + 5 * i, 0.3 * i});  // the hub
+  for (std::uint32_t i = 1; i < 8; ++i) links.push_back({i, i + 1, 1.0, 25.0 * i, 0.5});
+  links.push_back({6, 7, 0.4, 80, 1});  // coincident ends: no direction, no force
+  for (std::uint32_t i = 2; i < 7; ++i) links.push_back({i + 2, i - 1, 0.75, 60, 0.2 * i});
+  REQUIRE(links.size() == 21);
+  check_hookes_law<T>(bodies, links);
+}
+
+/// A 37 × 23 lattice, jittered and moving, of differing masses, with
+/// springs of differing parameters along its rows (every third row listed
+/// from b to a), its columns and one diagonal, interleaved in list order
+/// as a cloth is usually built; one row's springs twice; and a few springs
+/// between far particles. Most springs are in runs, whose groups load
+/// their ends as rows and add their forces a row at a time; the runs'
+/// tails, the duplicates and the far springs are summed one by one.
+TEST_CASE_TEMPLATE("a lattice's springs in runs pull by Hooke's law as springs listed one by one do", T, float,
+                   double) {
+  const std::uint32_t columns = 37, rows = 23;
+  std::vector<body> bodies;
+  impulse::lcg32 random{7};
+  auto jitter = [&] { return random.uniform<double>(-0.02, 0.02); };
+  for (std::uint32_t i = 0; i < rows; ++i)
+    for (std::uint32_t j = 0; j < columns; ++j)
+      bodies.push_back({0.1 * j + jitter(), 0.1 * i + jitter(), jitter(), 10 * jitter(), 10 * jitter(), 10 * jitter(),
+                        1 + 0.25 * ((i + 2 * j) % 5)});
+  std::vector<link> links;
+  for (std::uint32_t i = 0; i < rows; ++i)
+    for (std::uint32_t j = 0; j < columns; ++j) {
+      const std::uint32_t p = i * columns + j;
+      const double k = 150 + 10 * ((i * 7 + j) % 9), c = 0.1 * ((i + j) % 4);
+      if (j + 1 < columns) links.push_back(i % 3 == 2 ? link{p + 1, p, 0.1, k, c} : link{p, p + 1, 0.1, k, c});
+      if (i + 1 < rows) links.push_back({p, p + columns, 0.1, k + 5, c});
+      if (i + 1 < rows && j + 1 < columns) links.push_back({p, p + columns + 1, 0.14, k / 2, c});
+      if (i == 4 && j + 1 < columns) links.push_back({p, p + 1, 0.09, 80, 0.3});
+    }
+  for (std::uint32_t t = 0; t < 11; ++t) links.push_back({t * 61 % 851, (t * 389 + 100) % 851, 1.5, 30, 0.2});
+  const std::size_t in_runs = check_hookes_law<T>(bodies, links);
+  CHECK(in_runs >= links.size() * 3 / 4);
 }
 
 }  // namespace

@@ -32,6 +32,7 @@
 // it is attached to.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -567,9 +568,14 @@ class particle_system {
   state load_from(const T* columns, std::size_t first) const noexcept {
     return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
   }
+  /// Particles [begin, end) of columns a, b and c into the state's three
+  /// segments: one copy per column (a loop over the three at once stayed
+  /// scalar, the compiler unable to rule out that `to` overlaps them).
   void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
                     std::size_t begin, std::size_t end) const noexcept {
-    for (std::size_t i = begin; i < end; ++i) to[i] = a[i], to[stride_ + i] = b[i], to[2 * stride_ + i] = c[i];
+    std::copy(a.data() + begin, a.data() + end, to + begin);
+    std::copy(b.data() + begin, b.data() + end, to + stride_ + begin);
+    std::copy(c.data() + begin, c.data() + end, to + 2 * stride_ + begin);
   }
 
   static constexpr std::size_t pairwise_index() {

@@ -14,8 +14,27 @@
 // them again. A step takes two passes, and workers split both with no two
 // writing the same value: each spring's force goes to its own slot, `width`
 // springs at a time; then each particle sums its own springs' forces.
+//
+// Lattices (cloth, ropes, grids of soft bodies) are mostly runs: springs
+// whose ends both step by one particle from one spring to the next, as
+// (i, i + 1), (i + 1, i + 2), … or (i, i + 320), (i + 1, i + 321), …. When
+// the springs are listed (the first step after their ends change), each
+// spring from a to b finds its next, a spring from a + 1 to b + 1, among
+// the springs listed by their a ends, whatever order they were added in;
+// every `width` springs along such a chain form a group whose ends are
+// loaded as two plain rows instead of gathered lane by lane (the listing
+// is linear in the springs). Runs are cut into pieces of at most a
+// block (128 springs), and the pieces are put in the order of their first
+// particle, so that splitting the springs and splitting the particles
+// across workers give each worker about the same part of the lattice. In
+// the second pass a piece adds its forces to rows of particles `width` at
+// a time. The springs left over (short runs, the tails of runs, any other
+// graph) are gathered and summed one by one. Each particle sums its
+// pieces' rows in the pieces' order, then its other springs in list order:
+// an order that does not depend on how the workers split the particles.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -96,7 +115,7 @@ class springs {
   /// on a spring from a particle to itself.
   std::size_t add(std::uint32_t a, std::uint32_t b, T rest_length, T stiffness, T damping = T(0)) {
     const spring<T> s{a, b, rest_length, stiffness, damping};
-    detail::require(size_ < max_springs, error_code::out_of_range, "springs: at most 2^31 springs");
+    detail::require(size_ < max_springs, error_code::out_of_range, "springs: at most 2^31 - 64 springs");
     check(s, std::uint32_t(size_));
     if (size_ == a_.size()) grow();
     ++size_;
@@ -146,64 +165,89 @@ class springs {
     detail::require(bad == n, error_code::out_of_range, "springs: a spring names a particle that does not exist", bad);
   }
 
-  /// validate(particles, tasks), then lists each particle's springs (in
-  /// list order) if a spring's ends or the particle count changed since
-  /// the last call; once a step, before compute_forces(). Throws on an end
-  /// past the particles, with no particle changed.
+  /// validate(particles, tasks), then lists the springs (runs, groups and
+  /// each particle's springs; see the top of this file) if a spring's ends
+  /// or the particle count changed since the last call; once a step,
+  /// before compute_forces(). Throws on an end past the particles, with no
+  /// particle changed.
   void prepare(std::size_t particles, const task_system& tasks = {}) {
     if (size_ != 0 && max_end_ >= particles) {
       validate(particles, tasks);
       max_end_ = largest_end();  // a larger end was set, and then replaced
     }
     if (listed_ && first_of_.size() == particles + 1) return;
-    first_of_.assign(particles + 1, 0);
-    for (std::size_t k = 0; k < size_; ++k) ++first_of_[a_[k] + 1], ++first_of_[b_[k] + 1];
-    for (std::size_t i = 0; i < particles; ++i) first_of_[i + 1] += first_of_[i];
-    entries_.resize(2 * size_);
-    cursor_.assign(first_of_.begin(), first_of_.end() - 1);
-    for (std::uint32_t k = 0; k < std::uint32_t(size_); ++k) {
-      entries_[cursor_[a_[k]]++] = k << 1;
-      entries_[cursor_[b_[k]]++] = k << 1 | 1;
-    }
-    force_.resize(3 * a_.size());
+    list(particles);
     listed_ = true;
   }
 
   /// Lanes of the first pass: springs go `width` at a time.
   static constexpr int width = native_width<T>;
-  /// Groups of `width` springs; the last one is padded with springs that
-  /// pull on nothing.
-  [[nodiscard]] std::size_t groups() const noexcept { return (size_ + width - 1) / width; }
+  /// Groups of `width` springs in the first pass, as of the last prepare():
+  /// the runs' groups, then the other springs', the last one padded with
+  /// springs that pull on nothing.
+  [[nodiscard]] std::size_t groups() const noexcept { return slots_ / width; }
+  /// How many springs of the last prepare() are in runs' groups.
+  [[nodiscard]] std::size_t springs_in_runs() const noexcept { return run_slots_; }
 
   /// Pass one: the forces of groups [begin, end) of `width` springs, each
   /// spring's into its own slot.
   void compute_forces(std::size_t begin, std::size_t end, const T* position, const T* velocity,
                       std::size_t stride) noexcept {
-    const std::size_t n = a_.size();
+    const std::size_t n = slots_;
     T* fx = force_.data();
-    for (std::size_t first = begin * width; first < end * width; first += width)
-      force(first, position, velocity, stride).store(fx + first, fx + n + first, fx + 2 * n + first);
+    for (std::size_t g = begin; g < end; ++g) {
+      const std::size_t first = g * width;
+      vec3_batch<T> d, dv;
+      if (g < run_slots_ / width) {
+        const std::uint32_t a = group_ends_[2 * g], b = group_ends_[2 * g + 1];
+        d = row(position, stride, a) - row(position, stride, b);
+        dv = row(velocity, stride, a) - row(velocity, stride, b);
+      } else {
+        const std::uint32_t *a = loose_a_.data() + (first - run_slots_), *b = loose_b_.data() + (first - run_slots_);
+        d = ends(position, stride, a) - ends(position, stride, b);
+        dv = ends(velocity, stride, a) - ends(velocity, stride, b);
+      }
+      force(first, d, dv).store(fx + first, fx + n + first, fx + 2 * n + first);
+    }
   }
 
   /// Pass two: adds to particles [begin, end) their springs' forces (of the
   /// last compute_forces()) divided by their masses.
   void add_forces(std::size_t begin, std::size_t end, const T* inverse_mass, std::size_t stride,
                   T* acc) const noexcept {
-    const std::size_t n = a_.size();
-    const T* fx = force_.data();
+    const std::size_t n = slots_;
+    const T* f[3] = {force_.data(), force_.data() + n, force_.data() + 2 * n};
     if (end > first_of_.size() - 1) end = first_of_.size() - 1;
-    for (std::size_t i = begin; i < end; ++i) {
-      if (first_of_[i + 1] == first_of_[i]) continue;
-      vec3<T> sum{};
-      for (std::uint32_t e = first_of_[i]; e < first_of_[i + 1]; ++e) {
-        const std::uint32_t k = entries_[e] >> 1;
-        const vec3<T> f{fx[k], fx[n + k], fx[2 * n + k]};
-        sum += (entries_[e] & 1) ? -f : f;
+    alignas(64) T sum[3][block];
+    for (std::size_t low = begin; low < end;) {
+      const std::size_t at = low / block, high = std::min(end, (at + 1) * block), count = high - low;
+      for (auto& column : sum) std::fill(column, column + count, T(0));
+      for (std::uint32_t e = block_first_[at]; e < block_first_[at + 1]; ++e) {
+        const run& r = runs_[spans_[e] >> 1];
+        const bool b_end = (spans_[e] & 1) != 0;
+        const std::size_t start = b_end ? r.b : r.a, from = std::max(low, start),
+                          to = std::min(high, start + r.length);
+        if (from >= to) continue;
+        for (int j = 0; j < 3; ++j) {
+          if (b_end) accumulate<true>(sum[j] + (from - low), f[j] + r.slot + (from - start), to - from);
+          else accumulate<false>(sum[j] + (from - low), f[j] + r.slot + (from - start), to - from);
+        }
       }
-      if (inverse_mass) sum *= inverse_mass[i];
-      acc[i] += sum.x;
-      acc[stride + i] += sum.y;
-      acc[2 * stride + i] += sum.z;
+      for (std::size_t i = low; i < high && first_of_[i] < first_of_[high]; ++i)
+        for (std::uint32_t e = first_of_[i]; e < first_of_[i + 1]; ++e) {
+          const std::uint32_t k = entries_[e] >> 1;
+          for (int j = 0; j < 3; ++j) {
+            if (entries_[e] & 1) sum[j][i - low] -= f[j][k];
+            else sum[j][i - low] += f[j][k];
+          }
+        }
+      for (int j = 0; j < 3; ++j) {
+        T* to = acc + j * stride + low;
+        if (!inverse_mass) accumulate<false>(to, sum[j], count);
+        else
+          for (std::size_t i = 0; i < count; ++i) to[i] += sum[j][i] * inverse_mass[low + i];
+      }
+      low = high;
     }
   }
 
@@ -223,21 +267,19 @@ class springs {
   }
 
  private:
-  /// The forces on the a ends of springs [first, first + width) (−f on
-  /// their b ends); zero when the ends coincide (or |d| is not a number):
-  /// there is no direction to push along, and the spring does nothing
-  /// until they separate (a rest length of 0 is then exact).
-  vec3_batch<T> force(std::size_t first, const T* position, const T* velocity, std::size_t stride) const noexcept {
-    const std::uint32_t *a = a_.data() + first, *b = b_.data() + first;
-    const vec3_batch<T> d = ends(position, stride, a) - ends(position, stride, b);
-    const vec3_batch<T> dv = ends(velocity, stride, a) - ends(velocity, stride, b);
+  /// The forces on the a ends of slots [first, first + width) (−f on
+  /// their b ends), from their ends' separations d and relative velocities
+  /// dv; zero when the ends coincide (or |d| is not a number): there is no
+  /// direction to push along, and the spring does nothing until they
+  /// separate (a rest length of 0 is then exact).
+  vec3_batch<T> force(std::size_t first, const vec3_batch<T>& d, const vec3_batch<T>& dv) const noexcept {
     using lanes = batch<T>;
     const lanes length = impulse::length(d), zero = lanes::broadcast(T(0));
     const batch_mask<T, width> apart = zero < length;
     const vec3_batch<T> u = d * (lanes::broadcast(T(1)) / length);
-    const lanes stretch = length - lanes::load(rest_length_.data() + first);
-    const lanes magnitude = lanes::load(stiffness_.data() + first) * stretch +
-                            lanes::load(damping_.data() + first) * dot(dv, u);
+    const lanes stretch = length - lanes::load(slot_rest_length_.data() + first);
+    const lanes magnitude = lanes::load(slot_stiffness_.data() + first) * stretch +
+                            lanes::load(slot_damping_.data() + first) * dot(dv, u);
     const vec3_batch<T> f = u * -magnitude;
     return {select(apart, f.x, zero), select(apart, f.y, zero), select(apart, f.z, zero)};
   }
@@ -245,12 +287,154 @@ class springs {
     return {detail::gather<T>(p, index), detail::gather<T>(p + stride, index),
             detail::gather<T>(p + 2 * stride, index)};
   }
+  /// Particles [i, i + width): a run's ends, plain loads.
+  static vec3_batch<T> row(const T* p, std::size_t stride, std::uint32_t i) noexcept {
+    return vec3_batch<T>::load(p + i, p + stride + i, p + 2 * stride + i);
+  }
+  /// to[i] ∓= from[i] for i < count, `width` at a time.
+  template <bool subtract>
+  static void accumulate(T* to, const T* from, std::size_t count) noexcept {
+    using lanes = batch<T>;
+    std::size_t i = 0;
+    for (; i + width <= count; i += width) {
+      const lanes here = lanes::load(to + i), there = lanes::load(from + i);
+      (subtract ? here - there : here + there).store(to + i);
+    }
+    for (; i < count; ++i) to[i] = subtract ? to[i] - from[i] : to[i] + from[i];
+  }
 
-  /// The most springs: an entry of a particle's list holds the index
-  /// shifted left by one.
-  static constexpr std::size_t max_springs = std::size_t(1) << 31;
+  /// Orders the springs into runs and the rest (see the top of this file),
+  /// fills the slots' columns in that order, and lists each block's runs
+  /// and each particle's other springs.
+  void list(std::size_t particles) {
+    const std::uint32_t n = std::uint32_t(size_);
+    constexpr std::uint32_t none = ~std::uint32_t(0);
+    // The springs by their a ends, in list order (first_of_ and entries_
+    // lend their room, and are filled for their own use further down).
+    first_of_.assign(particles + 1, 0);
+    for (std::uint32_t k = 0; k < n; ++k) ++first_of_[a_[k] + 1];
+    for (std::size_t i = 0; i < particles; ++i) first_of_[i + 1] += first_of_[i];
+    entries_.resize(n);
+    cursor_.assign(first_of_.begin(), first_of_.end() - 1);
+    for (std::uint32_t k = 0; k < n; ++k) entries_[cursor_[a_[k]]++] = k;
+    // Each spring's next in a run: the first spring in list order, among
+    // the first `look` from particle a + 1, that goes to b + 1 and is not
+    // already another's next.
+    next_.assign(n, none);
+    preceded_.assign(n, 0u);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::size_t a = std::size_t(a_[k]) + 1, b = std::size_t(b_[k]) + 1;
+      if (a >= particles) continue;
+      for (std::uint32_t e = first_of_[a]; e < std::min(first_of_[a + 1], first_of_[a] + look); ++e)
+        if (b_[entries_[e]] == b && !preceded_[entries_[e]]) {
+          next_[k] = entries_[e];
+          preceded_[entries_[e]] = 1;
+          break;
+        }
+    }
+    // The runs: the chains from each spring no other precedes, in list
+    // order, cut to whole groups and into pieces of at most a block. The
+    // pieces, ordered by the block of their first a, take the first slots:
+    // the first pass then splits the springs across the workers about as
+    // the second splits the particles, and a worker sums mostly forces it
+    // computed.
+    cursor_.resize(n);
+    found_.clear();
+    std::uint32_t chained = 0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (preceded_[k]) continue;
+      const std::uint32_t head = chained;
+      for (std::uint32_t j = k; j != none; j = next_[j]) cursor_[chained++] = j;
+      for (std::uint32_t t = head; t + width <= chained; t += block) {  // `slot` holds its place in cursor_ for now
+        const std::uint32_t length = std::min<std::uint32_t>(block, (chained - t) / width * width);
+        found_.push_back({a_[cursor_[t]], b_[cursor_[t]], length, t});
+      }
+    }
+    const std::size_t blocks = (particles + block - 1) / block;
+    block_first_.assign(blocks + 1, 0);
+    for (const run& r : found_) ++block_first_[r.a / block + 1];
+    for (std::size_t at = 0; at < blocks; ++at) block_first_[at + 1] += block_first_[at];
+    next_.assign(block_first_.begin(), block_first_.end() - 1);
+    runs_.resize(found_.size());
+    for (const run& r : found_) runs_[next_[r.a / block]++] = r;
+    slot_of_.assign(n, none);
+    run_slots_ = 0;
+    for (run& r : runs_) {
+      for (std::uint32_t t = 0; t < r.length; ++t) slot_of_[cursor_[r.slot + t]] = std::uint32_t(run_slots_ + t);
+      r.slot = std::uint32_t(run_slots_);
+      run_slots_ += r.length;
+    }
+    // The other springs, in list order, padded to a whole group.
+    std::size_t loose = 0;
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (slot_of_[k] == none) slot_of_[k] = std::uint32_t(run_slots_ + loose++);
+    slots_ = run_slots_ + (loose + width - 1) / width * width;
+    loose_a_.assign(slots_ - run_slots_, 0);
+    loose_b_.assign(slots_ - run_slots_, 0);
+    slot_rest_length_.assign(slots_, T(0));
+    slot_stiffness_.assign(slots_, T(0));
+    slot_damping_.assign(slots_, T(0));
+    for (std::uint32_t k = 0; k < n; ++k) {
+      store_slot(k);
+      if (slot_of_[k] < run_slots_) continue;
+      loose_a_[slot_of_[k] - run_slots_] = a_[k];
+      loose_b_[slot_of_[k] - run_slots_] = b_[k];
+    }
+    group_ends_.clear();
+    for (const run& r : runs_)
+      for (std::uint32_t t = 0; t < r.length; t += width) {
+        group_ends_.push_back(r.a + t);
+        group_ends_.push_back(r.b + t);
+      }
+    // Each particle's other springs, in list order.
+    first_of_.assign(particles + 1, 0);
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (slot_of_[k] >= run_slots_) ++first_of_[a_[k] + 1], ++first_of_[b_[k] + 1];
+    for (std::size_t i = 0; i < particles; ++i) first_of_[i + 1] += first_of_[i];
+    entries_.resize(first_of_[particles]);
+    cursor_.assign(first_of_.begin(), first_of_.end() - 1);
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (slot_of_[k] >= run_slots_) {
+        entries_[cursor_[a_[k]]++] = slot_of_[k] << 1;
+        entries_[cursor_[b_[k]]++] = slot_of_[k] << 1 | 1;
+      }
+    // Each block's pieces of runs, a ends before b ends, in the pieces' order.
+    block_first_.assign(blocks + 1, 0);
+    auto each_block = [&](auto visit) {
+      for (std::uint32_t r = 0; r < std::uint32_t(runs_.size()); ++r)
+        for (std::uint32_t side = 0; side < 2; ++side) {
+          const std::size_t start = side ? runs_[r].b : runs_[r].a, last = start + runs_[r].length - 1;
+          for (std::size_t at = start / block; at <= last / block; ++at) visit(at, r << 1 | side);
+        }
+    };
+    each_block([&](std::size_t at, std::uint32_t) { ++block_first_[at + 1]; });
+    for (std::size_t at = 0; at < blocks; ++at) block_first_[at + 1] += block_first_[at];
+    spans_.resize(block_first_[blocks]);
+    cursor_.assign(block_first_.begin(), block_first_.end() - 1);
+    each_block([&](std::size_t at, std::uint32_t span) { spans_[cursor_[at]++] = span; });
+    force_.resize(3 * slots_);
+  }
+  /// Copies spring k's parameters to its slot.
+  void store_slot(std::size_t k) noexcept {
+    const std::uint32_t slot = slot_of_[k];
+    slot_rest_length_[slot] = rest_length_[k];
+    slot_stiffness_[slot] = stiffness_[k];
+    slot_damping_[slot] = damping_[k];
+  }
+
+  /// The most springs: an entry of a particle's list holds a slot (the
+  /// springs and a group's padding) shifted left by one.
+  static constexpr std::size_t max_springs = (std::size_t(1) << 31) - 64;
   /// Springs per range of the ends' scan: about 20 µs of work.
   static constexpr std::uint32_t scan_range = 16384;
+  /// Particles per block of the second pass: the runs that reach a block
+  /// are listed with it, and its sums are kept on the stack.
+  static constexpr std::size_t block = 128;
+  static_assert(block % width == 0);
+  /// Springs from particle a + 1 looked at for the next in a run of a
+  /// spring from a: a hub's thousand springs are not searched a thousand
+  /// times.
+  static constexpr std::uint32_t look = 16;
 
   /// Room for more springs: the columns double, in whole groups, padded
   /// with springs between particle 0 and itself that pull on nothing.
@@ -271,6 +455,7 @@ class springs {
     damping_[k] = s.damping;
     if (s.a > max_end_) max_end_ = s.a;
     if (s.b > max_end_) max_end_ = s.b;
+    if (listed_) store_slot(k);  // the same ends: the same slot
   }
   std::size_t largest_end() const noexcept {
     std::uint32_t most = 0;
@@ -295,12 +480,28 @@ class springs {
   std::vector<T> rest_length_, stiffness_, damping_;
   std::size_t size_ = 0;
   std::size_t max_end_ = 0;  // at least the largest end; exact after prepare() finds none too large
+  // The listing of the last prepare(), valid while listed_:
+  struct run {             // a piece of a run
+    std::uint32_t a, b;      // its first spring's ends
+    std::uint32_t length;    // springs, a whole number of groups, at most a block
+    std::uint32_t slot;      // its first spring's slot
+  };
+  std::vector<run> runs_;
+  std::vector<std::uint32_t> slot_of_;          // per spring
+  std::size_t run_slots_ = 0, slots_ = 0;       // the runs' slots come first; all, padded
+  std::vector<std::uint32_t> group_ends_;       // per group of a run, its first a and b
+  std::vector<std::uint32_t> loose_a_, loose_b_;  // per slot after the runs'
+  std::vector<T> slot_rest_length_, slot_stiffness_, slot_damping_;  // per slot
+  std::vector<std::uint32_t> first_of_;     // per particle, its first entry; one more at the end
+  std::vector<std::uint32_t> entries_;      // slot << 1, | 1 at its b end, of springs not in runs; by particle
+  std::vector<std::uint32_t> block_first_;  // per block of particles, its first span; one more at the end
+  std::vector<std::uint32_t> spans_;        // run << 1, | 1 for its b ends; by block, in the runs' order
+  std::vector<std::uint32_t> cursor_, next_;  // while listing
+  std::vector<std::uint32_t> preceded_;        // while listing: 1 where a spring is another's next
+  std::vector<run> found_;                     // while listing: the pieces in the order found
+  bool listed_ = false;                     // whether the listing holds the springs' ends
   // Scratch of the two passes, not state:
-  std::vector<T> force_;                 // per spring, x | y | z columns
-  std::vector<std::uint32_t> first_of_;  // per particle, its first entry; one more at the end
-  std::vector<std::uint32_t> entries_;   // spring << 1, | 1 at its b end; by particle
-  std::vector<std::uint32_t> cursor_;    // per particle, while listing
-  bool listed_ = false;                  // whether first_of_ and entries_ hold the springs' ends
+  std::vector<T> force_;  // per slot, x | y | z columns
 };
 
 }  // namespace impulse::particles
