@@ -43,7 +43,12 @@
 //                      scalar and thread count (its own CSV; in_runs is how
 //                      many springs the step takes as runs, relist_step_ms
 //                      the median of 5 steps each after one spring's ends
-//                      changed, which lists the springs afresh)
+//                      changed, which lists the springs afresh; on W > 1
+//                      workers, a run of 2·10^7 particle-steps through a
+//                      hook that clocks every range: loops_per_step,
+//                      busy_us_per_step, the time ranges ran summed over
+//                      the workers, and waiting_share, the share of the
+//                      workers' time that no range ran; 0 on one worker)
 //   --root M           how float lanes take the attractors' (|d|² + ε)^(-3/2)
 //                      (point_forces::root_method): automatic (the default:
 //                      the estimate of 1/√ under AVX-512, a square root and
@@ -197,6 +202,76 @@ scaling speedups(System& system, std::uint32_t workers) {
     }));
   }
   return {median(pool), median(independent)};
+}
+
+/// Where a system's step on a pool goes: loops through the task hook per
+/// step, and the share of the workers' time in a step that no range of a
+/// loop was running on them (waiting at loops' ends, handing loops over,
+/// and what the step does outside its loops).
+struct loop_profile {
+  double loops_per_step = 0;
+  double busy_us_per_step = 0;  ///< summed over the workers
+  double waiting_share = 0;     ///< 1 − busy / (workers × the step's time)
+};
+
+/// A task hook that forwards to another and clocks each range it runs,
+/// per worker (bench only: the library never times its loops).
+class clocked_hook {
+ public:
+  explicit clocked_hook(const impulse::task_system& inner) : inner_(inner), busy_(inner.workers, 0.0) {}
+  impulse::task_system tasks() { return {inner_.workers, &enqueue, &finish, this}; }
+  [[nodiscard]] long loops() const { return loops_; }
+  [[nodiscard]] double busy_seconds() const {
+    double sum = 0;
+    for (double b : busy_) sum += b;
+    return sum;
+  }
+
+ private:
+  struct loop {
+    clocked_hook* hook;
+    impulse::task_function* task;
+    void* context;
+    void* handle;
+  };
+  static void run(std::uint32_t begin, std::uint32_t end, std::uint32_t worker, void* context) {
+    loop& l = *static_cast<loop*>(context);
+    const auto t0 = clock_type::now();
+    l.task(begin, end, worker, l.context);
+    l.hook->busy_[worker] += std::chrono::duration<double>(clock_type::now() - t0).count();
+  }
+  static void* enqueue(impulse::task_function* task, std::uint32_t count, std::uint32_t min_range, void* context,
+                       void* user) {
+    clocked_hook& h = *static_cast<clocked_hook*>(user);
+    h.loop_ = {&h, task, context, nullptr};
+    h.loop_.handle = h.inner_.enqueue(&run, count, min_range, &h.loop_, h.inner_.user_context);
+    return &h.loop_;
+  }
+  static void finish(void* handle, void* user) {
+    clocked_hook& h = *static_cast<clocked_hook*>(user);
+    h.inner_.finish(static_cast<loop*>(handle)->handle, h.inner_.user_context);
+    ++h.loops_;
+  }
+
+  impulse::task_system inner_;
+  std::vector<double> busy_;  // per worker; a worker runs one range at a time
+  loop loop_{};               // the one loop in flight: impulse issues them one after another
+  long loops_ = 0;
+};
+
+/// The system stepped for 2·10^7 particle-steps on `pool` through a
+/// clocked_hook, then handed `pool` back.
+template <class System>
+loop_profile profile_loops(System& system, impulse::thread_pool& pool) {
+  clocked_hook hook{pool.tasks()};
+  system.set_task_system(hook.tasks());
+  const long steps = std::max(1L, long(2e7 / double(system.size())));
+  const auto t0 = clock_type::now();
+  for (long k = 0; k < steps; ++k) system.step(typename System::scalar(particles_scene::dt));
+  const double seconds = std::chrono::duration<double>(clock_type::now() - t0).count();
+  system.set_task_system(pool.tasks());
+  return {double(hook.loops()) / double(steps), hook.busy_seconds() / double(steps) * 1e6,
+          1 - hook.busy_seconds() / (double(pool.workers()) * seconds)};
 }
 
 /// Seconds per step over the scene's steps warm_steps … warm_steps +
@@ -524,14 +599,17 @@ void springs_row(const char* integrator_name, std::uint32_t threads) {
     relist.push_back(std::chrono::duration<double, std::milli>(clock_type::now() - start).count());
   }
   std::sort(relist.begin(), relist.end());
-  std::printf("%s,%s,%u,%zu,%zu,%zu,%.1f,%.2f,%.2f,%.2f\n", integrator_name, sizeof(T) == 4 ? "float" : "double",
-              threads, cloth.size(), list.size(), list.springs_in_runs(), double(cloth.size()) / t / 1e6, speedup.pool,
-              speedup.independent, relist[2]);
+  const loop_profile loops = threads > 1 ? profile_loops(cloth, pool) : loop_profile{};
+  std::printf("%s,%s,%u,%zu,%zu,%zu,%.1f,%.2f,%.2f,%.2f,%.1f,%.0f,%.3f\n", integrator_name,
+              sizeof(T) == 4 ? "float" : "double", threads, cloth.size(), list.size(), list.springs_in_runs(),
+              double(cloth.size()) / t / 1e6, speedup.pool, speedup.independent, relist[2], loops.loops_per_step,
+              loops.busy_us_per_step, loops.waiting_share);
   std::fflush(stdout);
 }
 
 int run_springs_table(const settings& s) {
-  std::printf("integrator,scalar,threads,n,springs,in_runs,msteps_per_s,speedup,independent_speedup,relist_step_ms\n");
+  std::printf("integrator,scalar,threads,n,springs,in_runs,msteps_per_s,speedup,independent_speedup,relist_step_ms,"
+              "loops_per_step,busy_us_per_step,waiting_share\n");
   for (const std::string& scalar : s.scalars)
     for (const std::string& integrator : s.integrators)
       for (std::uint32_t threads : s.threads)
