@@ -19288,8 +19288,8 @@ class springs {
   /// times.
   static constexpr std::uint32_t look = 16;
 
-  /// Room for more springs: the columns double, in whole groups, padded
-  /// with springs between particle 0 and itself that pull on nothing.
+  /// Room for more springs: the columns double, the new room holding
+  /// springs between particle 0 and itself until add() stores one there.
   void grow() {
     const std::size_t room = a_.empty() ? std::size_t(width) : 2 * a_.size();
     a_.resize(room, 0);
@@ -19327,7 +19327,8 @@ class springs {
                     index);
   }
 
-  // The springs, in columns of whole groups of `width`:
+  // The springs, in list order, in columns (the passes read their copies
+  // in the slots' order, below):
   std::vector<std::uint32_t> a_, b_;
   std::vector<T> rest_length_, stiffness_, damping_;
   std::size_t size_ = 0;
