@@ -17552,10 +17552,10 @@ struct gravity {
 // once per step whatever the integrator, so RK4 moves the bytes Euler moves.
 //
 // Springs couple particles across batches, so a force list that contains them
-// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
-// stage computes every spring's force, then sweeps all batches, adding each
-// particle's springs to its batch's forces. The same integrator code runs
-// both paths.
+// is stepped in stages instead: each integrator stage computes every spring's
+// force, then sweeps all batches, adding each particle's springs to its
+// batch's forces and running the integrator on to the next stage. The same
+// integrator code runs both paths.
 //
 // With a task system (set_task_system, core/task_system.hpp) the batches
 // are split across workers, and the particles come out bit-identical for any
@@ -17569,194 +17569,6 @@ struct gravity {
 
 #include <tuple>
 
-// ---- begin impulse/core/detail/pooled_state.hpp ----
-// impulse/core/detail/pooled_state.hpp — a whole system's state as one
-// integrator state, with temporaries drawn from a pool.
-//
-// Some systems cannot be stepped one element at a time: springs between
-// particles or between bodies couple arbitrary elements, so every integrator
-// stage needs every element's stage state before any force can be
-// evaluated. The integrators are written once, over any ode_state
-// (integrators/ode_state.hpp), so these systems hand them a state holding
-// every element, with + and × as loops. The temporaries an integrator makes
-// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
-// the first step and reused on every later one, so a step allocates nothing
-// once warm.
-//
-// A buffer is `segments` runs of `stride` elements of which the first `used`
-// are live: the particle system keeps its x, y and z columns (3 segments of
-// scalars), a world without collision one run of poses or momenta.
-
-
-
-namespace impulse::detail {
-
-template <class E>
-class buffer_pool {
- public:
-  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
-    if (segments != segments_ || stride != stride_) {
-      buffers_.clear();
-      free_.clear();
-      segments_ = segments;
-      stride_ = stride;
-    }
-    used_ = used;
-  }
-  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
-  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
-  [[nodiscard]] std::size_t used() const noexcept { return used_; }
-  /// Workers to split the states' arithmetic across, or null for this thread.
-  void set_tasks(const task_system* tasks) noexcept { tasks_ = tasks; }
-  [[nodiscard]] const task_system* tasks() const noexcept { return tasks_; }
-
-  std::size_t acquire() {
-    if (free_.empty()) {
-      buffers_.emplace_back(segments_ * stride_);
-      return buffers_.size() - 1;
-    }
-    const std::size_t slot = free_.back();
-    free_.pop_back();
-    return slot;
-  }
-  void release(std::size_t slot) { free_.push_back(slot); }
-  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
-
- private:
-  // aligned_array's move keeps its pointer, so growing this vector never
-  // invalidates an E* handed out before.
-  std::vector<aligned_array<E>> buffers_;
-  std::vector<std::size_t> free_;
-  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
-  const task_system* tasks_ = nullptr;
-};
-
-template <class E, class S>
-class scaled_state;
-
-/// E needs E + E and E * S for the scalar S the integrator steps with.
-template <class E>
-class pooled_state {
- public:
-  /// A buffer from the pool, its contents as its last user left them.
-  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
-  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
-    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
-  }
-  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
-  pooled_state& operator=(pooled_state other) noexcept {
-    std::swap(pool_, other.pool_);
-    std::swap(slot_, other.slot_);
-    return *this;
-  }
-  ~pooled_state() {
-    if (slot_ != none) pool_->release(slot_);
-  }
-
-  E* data() noexcept { return pool_->data(slot_); }
-  const E* data() const noexcept { return pool_->data(slot_); }
-  E& operator[](std::size_t i) noexcept { return data()[i]; }
-  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
-  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
-
-  /// Calls f(i) for the index of every live element of every segment,
-  /// split across the pool's workers when it has them: each element's
-  /// result is the same whoever computes it.
-  template <class F>
-  void for_each(F&& f) const {
-    const std::size_t segments = pool_->segments(), stride = pool_->stride();
-    auto range = [&](std::size_t begin, std::size_t end, std::uint32_t) {
-      for (std::size_t s = 0; s < segments; ++s)
-        for (std::size_t i = s * stride + begin; i < s * stride + end; ++i) f(i);
-    };
-    if (const task_system* tasks = pool_->tasks()) parallel_for(*tasks, std::uint32_t(pool_->used()), 4096, range);
-    else range(0, pool_->used(), 0);
-  }
-
-  // An rvalue operand lends its buffer to the result, and a product by a
-  // scalar is not worked out on its own but where it is summed: `a + b * h`
-  // is one pass over the state into one buffer, not two. On a large system
-  // each pass is a trip through memory and, across workers, a wait for the
-  // slowest: RK4's stages are mostly this, and it took 28 passes a step
-  // where it now takes 16.
-  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
-    return std::move(a);
-  }
-  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
-  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
-  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) {
-    pooled_state sum(*a.pool_);
-    sum.for_each([&](std::size_t i) { sum.data()[i] = a.data()[i] + b.data()[i]; });
-    return sum;
-  }
-  template <class S>
-  friend scaled_state<E, S> operator*(const pooled_state& a, S h) {
-    return {a, h};
-  }
-  template <class S>
-  friend scaled_state<E, S> operator*(pooled_state&& a, S h) {
-    return {std::move(a), h};
-  }
-
- private:
-  template <class, class>
-  friend class scaled_state;
-  static constexpr std::size_t none = ~std::size_t(0);
-  buffer_pool<E>* pool_;
-  std::size_t slot_;
-};
-
-/// A state times a scalar, worked out where it is used: summed into a
-/// state (one pass: a[i] + b[i]·h), or made a state of its own. It holds
-/// the state it scales by reference, or, scaling a temporary, holds that
-/// temporary and reuses its buffer. Made only by pooled_state's operator*
-/// and used in the same expression.
-template <class E, class S>
-class scaled_state {
- public:
-  scaled_state(const pooled_state<E>& source, S h) : source_(&source), h_(h) {}
-  scaled_state(pooled_state<E>&& source, S h) : owned_(std::move(source)), source_(&*owned_), h_(h) {}
-  scaled_state(const scaled_state&) = delete;
-  scaled_state& operator=(const scaled_state&) = delete;
-
-  operator pooled_state<E>() && {
-    const E* b = source_->data();
-    pooled_state<E> result = take_buffer();
-    result.for_each([&](std::size_t i) { result.data()[i] = b[i] * h_; });
-    return result;
-  }
-
-  friend pooled_state<E> operator+(pooled_state<E>&& a, scaled_state&& b) {
-    const E* s = b.source_->data();
-    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + s[i] * b.h_; });
-    return std::move(a);
-  }
-  friend pooled_state<E> operator+(const pooled_state<E>& a, scaled_state&& b) {
-    const E* s = b.source_->data();
-    pooled_state<E> result = b.take_buffer();
-    result.for_each([&](std::size_t i) { result.data()[i] = a.data()[i] + s[i] * b.h_; });
-    return result;
-  }
-  friend pooled_state<E> operator+(scaled_state&& a, const pooled_state<E>& b) { return b + std::move(a); }
-  friend pooled_state<E> operator+(scaled_state&& a, pooled_state<E>&& b) { return std::move(b) + std::move(a); }
-
- private:
-  /// The held temporary's buffer (each element is read before it is
-  /// written, so the result may overwrite it), or a fresh one. The
-  /// source's data must be read first: the held temporary is moved out.
-  pooled_state<E> take_buffer() {
-    if (owned_) return std::move(*owned_);
-    return pooled_state<E>(*source_->pool_);
-  }
-
-  std::optional<pooled_state<E>> owned_;
-  const pooled_state<E>* source_;
-  S h_;
-};
-
-}  // namespace impulse::detail
-// ---- end impulse/core/detail/pooled_state.hpp ----
 // ---- begin impulse/particles/plane_collider.hpp ----
 // impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
 //
@@ -17992,6 +17804,51 @@ void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x
   plane_response(-plane.restitution, T(1) - plane.friction, hit, n_side, v);
 }
 
+/// Lanes that the half-spaces' projections left behind one of them: those
+/// in a crease of two (crease[a * planes + b]: not parallel) onto the line
+/// where the two meet, and any still behind one back to where they started
+/// the step (x0, which was inside), stopped.
+template <class T, int W>
+void settle_creases(std::span<const plane_collider<T>> planes, const unsigned char* crease,
+                    const vec3_batch<T, W>& x0, vec3_batch<T, W>& x, vec3_batch<T, W>& v) noexcept {
+  using lanes = batch<T, W>;
+  // Projecting onto one half-space can push a particle back behind another
+  // that meets it at an acute angle (a crease). Cyclic projection would
+  // converge there only geometrically, by cos² of the angle per sweep, so
+  // a lane still behind plane a while on or behind plane b is moved
+  // straight onto the line where the two meet.
+  bool residual = false;
+  for (std::size_t a = 0; a < planes.size(); ++a) {
+    if (planes[a].finite) continue;
+    batch_mask<T, W> behind_a = behind_half_space(planes[a], x);
+    if (none(behind_a)) continue;
+    residual = true;
+    for (std::size_t b = 0; b < planes.size() && any(behind_a); ++b) {
+      if (b == a || planes[b].finite || !crease[a * planes.size() + b]) continue;
+      const batch_mask<T, W> on_b = !(distance(planes[b], x) > rounding_at(planes[b], x));
+      const batch_mask<T, W> in_crease = behind_a & on_b;
+      if (none(in_crease)) continue;
+      project_onto_crease(planes[a], planes[b], in_crease, x);
+      behind_a = behind_a & !in_crease;
+    }
+  }
+  if (!residual) return;  // the common case: one sweep settled every lane
+  // Three or more planes meeting at a corner can still leave a lane
+  // behind one: it goes back to where it started the step, which was
+  // inside, and stops there. "No particle behind a plane" holds always.
+  const lanes zero = lanes::broadcast(T(0));
+  batch_mask<T, W> behind = zero < zero, was_behind = behind;
+  for (const plane_collider<T>& plane : planes)
+    if (!plane.finite) {
+      behind = behind | behind_half_space(plane, x);
+      was_behind = was_behind | behind_half_space(plane, x0);
+    }
+  const batch_mask<T, W> revert = behind & !was_behind;
+  if (none(revert)) return;
+  x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
+  v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
+}
+
 }  // namespace detail
 }  // namespace impulse::particles
 // ---- end impulse/particles/plane_collider.hpp ----
@@ -18045,8 +17902,8 @@ class particle_system {
   static constexpr bool has_masses = particle_masses_of<Config>;
   /// The most particles a system may be created for: 2^26, about 6.7e7.
   /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
-  /// double), allocated and zeroed when the system is made, so this many is
-  /// 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
+  /// double; springs add 3 to 18 for the stages), allocated and zeroed when
+  /// the system is made, so this many is 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
   /// at the 38–57 GB/s memory roof of docs/particles_benchmark.md, far past
   /// real time. A larger capacity is a slip of zeros (1e9 would be 40 GB),
   /// refused before anything is allocated. It also keeps every index well
@@ -18091,7 +17948,8 @@ class particle_system {
         variation_(needs_variation ? stride_ : 0),
         age_(has_lifetime ? stride_ : 0),
         lifetime_(has_lifetime ? stride_ : 0),
-        died_(has_lifetime ? stride_ / width : 0) {}
+        died_(has_lifetime ? stride_ / width : 0),
+        staged_(has_pairwise ? staged_columns * stride_ : 0) {}
 
   // ---- particles --------------------------------------------------------------
 
@@ -18384,47 +18242,8 @@ class particle_system {
   [[gnu::noinline]] void settle_creases(std::size_t first, parked& p) const noexcept {
     const state x0 = start_of_step(first);
     state x = p.position(), v = p.velocity();
-    settle_creases(x0, x, v);
+    detail::settle_creases(std::span<const plane_collider<T>>(planes_), crease_.data(), x0, x, v);
     p.put(x, v);
-  }
-
-  [[gnu::always_inline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
-    // Projecting onto one half-space can push a particle back behind another
-    // that meets it at an acute angle (a crease). Cyclic projection would
-    // converge there only geometrically, by cos² of the angle per sweep, so
-    // a lane still behind plane a while on or behind plane b is moved
-    // straight onto the line where the two meet.
-    bool residual = false;
-    for (std::size_t a = 0; a < planes_.size(); ++a) {
-      if (planes_[a].finite) continue;
-      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
-      if (none(behind_a)) continue;
-      residual = true;
-      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
-        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
-        const batch_mask<T, width> on_b =
-            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
-        const batch_mask<T, width> in_crease = behind_a & on_b;
-        if (none(in_crease)) continue;
-        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
-        behind_a = behind_a & !in_crease;
-      }
-    }
-    if (!residual) return;  // the common case: one sweep settled every lane
-    // Three or more planes meeting at a corner can still leave a lane
-    // behind one: it goes back to where it started the step, which was
-    // inside, and stops there. "No particle behind a plane" holds always.
-    const lanes zero = lanes::broadcast(T(0));
-    batch_mask<T, width> behind = zero < zero, was_behind = behind;
-    for (const plane_collider<T>& plane : planes_)
-      if (!plane.finite) {
-        behind = behind | detail::behind_half_space(plane, x);
-        was_behind = was_behind | detail::behind_half_space(plane, x0);
-      }
-    const batch_mask<T, width> revert = behind & !was_behind;
-    if (none(revert)) return;
-    x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
-    v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
   }
 
   /// Batches per range of a parallel loop: 64 batches of the standard
@@ -18464,60 +18283,96 @@ class particle_system {
     }
   }
 
+  // ---- the staged step, for springs ------------------------------------------------
+
+  /// A spring pulls with both its ends at the same stage of the step, so
+  /// each of the integrator's stages is two loops over the system with a
+  /// barrier between: the springs' forces, from every particle's state at
+  /// that stage, then, batch by batch, its acceleration at that stage and
+  /// the integrator run on to the next stage's state (or to the end of the
+  /// step, at the last). Each batch runs the integrator from the start of
+  /// the step and is handed back the accelerations of the stages before,
+  /// as stored, so any integrator works unchanged (it must call the
+  /// acceleration exactly `stages` times, as its policy states) and a step
+  /// is 2 × stages loops: Euler's 2, RK4's 8.
+  static constexpr int stages = integrator::stages;
+  /// staged_: the next stage's positions and velocities (6 columns, when
+  /// there is a next stage), then each stage's accelerations (3 each).
+  static constexpr std::size_t staged_columns = (stages > 1 ? 6 : 0) + 3 * std::size_t(stages);
+
   // Not `requires has_pairwise`: clang 14 compiles a constrained member in
   // an explicit instantiation (IMPULSE_INSTANTIATE_PARTICLE_SYSTEM) even
   // when the constraint is false; the discarded branch it does not.
   void step_staged(T dt) {
-    if constexpr (has_pairwise) {
-      const std::size_t used = padded(size_);
-      pool_.resize(3, stride_, used);
-      pool_.set_tasks(tasks_.parallel() ? &tasks_ : nullptr);
-      using whole = impulse::detail::pooled_state<T>;
-      whole x(pool_), v(pool_);
-      for_batches([&](std::size_t begin, std::size_t end) {
-        copy_columns(x.data(), x_, y_, z_, begin, end);
-        copy_columns(v.data(), vx_, vy_, vz_, begin, end);
-      });
-      auto& pairwise = std::get<pairwise_index()>(forces_);
-      const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
-      integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
-        whole a(pool_);
-        auto spring_forces = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-          pairwise.compute_forces(begin, end, xs.data(), vs.data(), stride_);
-        };
-        impulse::detail::parallel_for(tasks_, std::uint32_t(pairwise.groups()), min_batches, spring_forces);
-        for_batches([&](std::size_t begin, std::size_t end) {
-          const columns_start c = start_of_columns();
-          for (std::size_t first = begin; first < end; first += width) {
-            const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-            acceleration(forces_, xb, vb, load_inverse_mass(c, first), load_lanes(c, first)).store(a.data() + first,
-                a.data() + stride_ + first, a.data() + 2 * stride_ + first);
-          }
-          pairwise.add_forces(begin, end, inverse_mass, stride_, a.data());
-        });
+    if constexpr (has_pairwise)
+      [&]<int... S>(std::integer_sequence<int, S...>) {
+        (stage<S>(dt), ...);
+      }(std::make_integer_sequence<int, stages>{});
+  }
+
+  template <int S>
+  void stage(T dt) {
+    auto& pairwise = std::get<pairwise_index()>(forces_);
+    const columns_start c = start_of_columns();
+    const T* next = staged_.data();
+    using columns3 = std::array<const T*, 3>;
+    const columns3 x = S == 0 ? columns3{c.x, c.y, c.z} : columns3{next, next + stride_, next + 2 * stride_};
+    const columns3 v = S == 0 ? columns3{c.vx, c.vy, c.vz}
+                              : columns3{next + 3 * stride_, next + 4 * stride_, next + 5 * stride_};
+    auto spring_forces = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      pairwise.compute_forces(begin, end, x, v);
+    };
+    impulse::detail::parallel_for(tasks_, std::uint32_t(pairwise.groups()), min_batches, spring_forces);
+    constexpr std::size_t block = std::tuple_element_t<pairwise_index(), decltype(forces_)>::block;
+    for_batches([&](std::size_t begin, std::size_t end) {
+      for (std::size_t low = begin, high; low < end; low = high) {
+        high = std::min(end, (low / block + 1) * block);
+        pairwise.set_accelerations(low, high, has_masses ? c.inverse_mass : nullptr, stride_, accelerations(S));
+        for (std::size_t first = low; first < high; first += width) run_stage<S>(c, x, v, first, dt);
+      }
+    });
+  }
+
+  T* accelerations(int stage) noexcept {
+    return staged_.data() + ((stages > 1 ? 6 : 0) + 3 * std::size_t(stage)) * stride_;
+  }
+
+  /// A batch's integrator from the start of the step up to stage S: the
+  /// stages before are handed their stored accelerations; stage S's is
+  /// worked out here from its state (x, v) and the springs' part of it
+  /// already in its columns; the next stage's state is stored for the
+  /// springs, or, at the last stage, the step finished.
+  template <int S>
+  [[gnu::always_inline]] void run_stage(const columns_start& c, const std::array<const T*, 3>& x,
+                                        const std::array<const T*, 3>& v, std::size_t first, T dt) {
+    state xb = state::load(c.x + first, c.y + first, c.z + first);
+    state vb = state::load(c.vx + first, c.vy + first, c.vz + first);
+    int call = 0;
+    integrator::step(xb, vb, dt, [&](const state& xs, const state& vs) __attribute__((always_inline)) {
+      const int j = call++;
+      if (j < S) return load_from(accelerations(j), first);
+      if (j == S) {
+        const state at = state::load(x[0] + first, x[1] + first, x[2] + first);
+        const state moving = state::load(v[0] + first, v[1] + first, v[2] + first);
+        const state a = acceleration(forces_, at, moving, load_inverse_mass(c, first), load_lanes(c, first)) +
+                        load_from(accelerations(S), first);
+        if constexpr (S + 1 < stages) a.store(accelerations(S) + first, accelerations(S) + stride_ + first,
+                                              accelerations(S) + 2 * stride_ + first);
         return a;
-      });
-      for_batches([&](std::size_t begin, std::size_t end) {
-        const columns_start c = start_of_columns();
-        for (std::size_t first = begin; first < end; first += width) {
-          state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-          finish_batch(c, first, xb, vb, dt);
-        }
-      });
-    }
+      }
+      if (j == S + 1) {
+        T* next = staged_.data();
+        xs.store(next + first, next + stride_ + first, next + 2 * stride_ + first);
+        vs.store(next + 3 * stride_ + first, next + 4 * stride_ + first, next + 5 * stride_ + first);
+      }
+      return state::broadcast({});
+    });
+    IMPULSE_ASSERT(S + 1 < stages || call == stages);  // the policy's `stages` is its evaluations
+    if constexpr (S + 1 == stages) finish_batch(c, first, xb, vb, dt);
   }
 
   state load_from(const T* columns, std::size_t first) const noexcept {
     return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
-  }
-  /// Particles [begin, end) of columns a, b and c into the state's three
-  /// segments: one copy per column (a loop over the three at once stayed
-  /// scalar, the compiler unable to rule out that `to` overlaps them).
-  void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
-                    std::size_t begin, std::size_t end) const noexcept {
-    std::copy(a.data() + begin, a.data() + end, to + begin);
-    std::copy(b.data() + begin, b.data() + end, to + stride_ + begin);
-    std::copy(c.data() + begin, c.data() + end, to + 2 * stride_ + begin);
   }
 
   static constexpr std::size_t pairwise_index() {
@@ -18702,7 +18557,7 @@ class particle_system {
   std::array<aligned_array<T>*, 10> columns_{};
   std::vector<std::uint32_t> origin_, remap_;
   std::size_t removed_from_ = 0;
-  impulse::detail::buffer_pool<T> pool_;
+  aligned_array<T> staged_;
   std::uint32_t serial_ = 0;
   double time_ = 0;
 };
@@ -19041,10 +18896,19 @@ class springs {
   /// How many springs of the last prepare() are in runs' groups.
   [[nodiscard]] std::size_t springs_in_runs() const noexcept { return run_slots_; }
 
+  /// Particles per block of the second pass: the runs that reach a block
+  /// are listed with it, and its sums are kept on the stack. A range of
+  /// the second pass best starts and ends on a block.
+  static constexpr std::size_t block = 128;
+  static_assert(block % width == 0);
+  /// A state's three columns (x, y, z), for the first pass to read.
+  using columns3 = std::array<const T*, 3>;
+
   /// Pass one: the forces of groups [begin, end) of `width` springs, each
-  /// spring's into its own slot.
-  void compute_forces(std::size_t begin, std::size_t end, const T* position, const T* velocity,
-                      std::size_t stride) noexcept {
+  /// spring's into its own slot, from the particles' positions and
+  /// velocities.
+  void compute_forces(std::size_t begin, std::size_t end, const columns3& position,
+                      const columns3& velocity) noexcept {
     const std::size_t n = slots_;
     T* fx = force_.data();
     for (std::size_t g = begin; g < end; ++g) {
@@ -19052,28 +18916,35 @@ class springs {
       vec3_batch<T> d, dv;
       if (g < run_slots_ / width) {
         const std::uint32_t a = group_ends_[2 * g], b = group_ends_[2 * g + 1];
-        d = row(position, stride, a) - row(position, stride, b);
-        dv = row(velocity, stride, a) - row(velocity, stride, b);
+        d = row(position, a) - row(position, b);
+        dv = row(velocity, a) - row(velocity, b);
       } else {
         const std::uint32_t *a = loose_a_.data() + (first - run_slots_), *b = loose_b_.data() + (first - run_slots_);
-        d = ends(position, stride, a) - ends(position, stride, b);
-        dv = ends(velocity, stride, a) - ends(velocity, stride, b);
+        d = ends(position, a) - ends(position, b);
+        dv = ends(velocity, a) - ends(velocity, b);
       }
       force(first, d, dv).store(fx + first, fx + n + first, fx + 2 * n + first);
     }
   }
 
-  /// Pass two: adds to particles [begin, end) their springs' forces (of the
-  /// last compute_forces()) divided by their masses.
-  void add_forces(std::size_t begin, std::size_t end, const T* inverse_mass, std::size_t stride,
-                  T* acc) const noexcept {
-    const std::size_t n = slots_;
+  /// Pass two: the forces of their springs (of the last compute_forces()),
+  /// divided by their masses, on particles [begin, end) into the three
+  /// columns at `acc`, `stride` apart (zero for particles past the last
+  /// prepare()).
+  void set_accelerations(std::size_t begin, std::size_t end, const T* inverse_mass, std::size_t stride,
+                         T* acc) const noexcept {
+    const std::size_t n = slots_, asked = end;
     const T* f[3] = {force_.data(), force_.data() + n, force_.data() + 2 * n};
     if (end > first_of_.size() - 1) end = first_of_.size() - 1;
-    alignas(64) T sum[3][block];
+    // The sums go straight into the accelerations, or with masses to
+    // divide by, on the stack first.
+    alignas(64) T stack[3][block];
+    const bool direct = !inverse_mass;
     for (std::size_t low = begin; low < end;) {
       const std::size_t at = low / block, high = std::min(end, (at + 1) * block), count = high - low;
-      for (auto& column : sum) std::fill(column, column + count, T(0));
+      T* const sum[3] = {direct ? acc + low : stack[0], direct ? acc + stride + low : stack[1],
+                         direct ? acc + 2 * stride + low : stack[2]};
+      for (T* column : sum) std::fill(column, column + count, T(0));
       for (std::uint32_t e = block_first_[at]; e < block_first_[at + 1]; ++e) {
         const run& r = runs_[spans_[e] >> 1];
         const bool b_end = (spans_[e] & 1) != 0;
@@ -19093,14 +18964,11 @@ class springs {
             else sum[j][i - low] += f[j][k];
           }
         }
-      for (int j = 0; j < 3; ++j) {
-        T* to = acc + j * stride + low;
-        if (!inverse_mass) accumulate<false>(to, sum[j], count);
-        else
-          for (std::size_t i = 0; i < count; ++i) to[i] += sum[j][i] * inverse_mass[low + i];
-      }
+      for (int j = 0; j < 3 && !direct; ++j)
+        for (std::size_t i = 0; i < count; ++i) acc[j * stride + low + i] = sum[j][i] * inverse_mass[low + i];
       low = high;
     }
+    for (int j = 0; j < 3; ++j) std::fill(acc + j * stride + std::max(begin, end), acc + j * stride + asked, T(0));
   }
 
   /// After particles were moved (index i now at remap[i], or no_object when
@@ -19135,13 +19003,12 @@ class springs {
     const vec3_batch<T> f = u * -magnitude;
     return {select(apart, f.x, zero), select(apart, f.y, zero), select(apart, f.z, zero)};
   }
-  static vec3_batch<T> ends(const T* p, std::size_t stride, const std::uint32_t* index) noexcept {
-    return {detail::gather<T>(p, index), detail::gather<T>(p + stride, index),
-            detail::gather<T>(p + 2 * stride, index)};
+  static vec3_batch<T> ends(const columns3& p, const std::uint32_t* index) noexcept {
+    return {detail::gather<T>(p[0], index), detail::gather<T>(p[1], index), detail::gather<T>(p[2], index)};
   }
   /// Particles [i, i + width): a run's ends, plain loads.
-  static vec3_batch<T> row(const T* p, std::size_t stride, std::uint32_t i) noexcept {
-    return vec3_batch<T>::load(p + i, p + stride + i, p + 2 * stride + i);
+  static vec3_batch<T> row(const columns3& p, std::uint32_t i) noexcept {
+    return vec3_batch<T>::load(p[0] + i, p[1] + i, p[2] + i);
   }
   /// to[i] ∓= from[i] for i < count, `width` at a time.
   template <bool subtract>
@@ -19279,10 +19146,6 @@ class springs {
   static constexpr std::size_t max_springs = (std::size_t(1) << 31) - 64;
   /// Springs per range of the ends' scan: about 20 µs of work.
   static constexpr std::uint32_t scan_range = 16384;
-  /// Particles per block of the second pass: the runs that reach a block
-  /// are listed with it, and its sums are kept on the stack.
-  static constexpr std::size_t block = 128;
-  static_assert(block % width == 0);
   /// Springs from particle a + 1 looked at for the next in a run of a
   /// spring from a: a hub's thousand springs are not searched a thousand
   /// times.
@@ -19821,6 +19684,194 @@ struct world_settings : detail::world_settings_base<T> {
 // allocates nothing.
 
 
+// ---- begin impulse/core/detail/pooled_state.hpp ----
+// impulse/core/detail/pooled_state.hpp — a whole system's state as one
+// integrator state, with temporaries drawn from a pool.
+//
+// Some systems cannot be stepped one element at a time: springs between
+// particles or between bodies couple arbitrary elements, so every integrator
+// stage needs every element's stage state before any force can be
+// evaluated. The integrators are written once, over any ode_state
+// (integrators/ode_state.hpp), so these systems hand them a state holding
+// every element, with + and × as loops. The temporaries an integrator makes
+// (RK4 keeps about a dozen alive) come from a pool of buffers allocated on
+// the first step and reused on every later one, so a step allocates nothing
+// once warm.
+//
+// A buffer is `segments` runs of `stride` elements of which the first `used`
+// are live: the particle system keeps its x, y and z columns (3 segments of
+// scalars), a world without collision one run of poses or momenta.
+
+
+
+namespace impulse::detail {
+
+template <class E>
+class buffer_pool {
+ public:
+  void resize(std::size_t segments, std::size_t stride, std::size_t used) {
+    if (segments != segments_ || stride != stride_) {
+      buffers_.clear();
+      free_.clear();
+      segments_ = segments;
+      stride_ = stride;
+    }
+    used_ = used;
+  }
+  [[nodiscard]] std::size_t segments() const noexcept { return segments_; }
+  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
+  [[nodiscard]] std::size_t used() const noexcept { return used_; }
+  /// Workers to split the states' arithmetic across, or null for this thread.
+  void set_tasks(const task_system* tasks) noexcept { tasks_ = tasks; }
+  [[nodiscard]] const task_system* tasks() const noexcept { return tasks_; }
+
+  std::size_t acquire() {
+    if (free_.empty()) {
+      buffers_.emplace_back(segments_ * stride_);
+      return buffers_.size() - 1;
+    }
+    const std::size_t slot = free_.back();
+    free_.pop_back();
+    return slot;
+  }
+  void release(std::size_t slot) { free_.push_back(slot); }
+  E* data(std::size_t slot) noexcept { return buffers_[slot].data(); }
+
+ private:
+  // aligned_array's move keeps its pointer, so growing this vector never
+  // invalidates an E* handed out before.
+  std::vector<aligned_array<E>> buffers_;
+  std::vector<std::size_t> free_;
+  std::size_t segments_ = 0, stride_ = 0, used_ = 0;
+  const task_system* tasks_ = nullptr;
+};
+
+template <class E, class S>
+class scaled_state;
+
+/// E needs E + E and E * S for the scalar S the integrator steps with.
+template <class E>
+class pooled_state {
+ public:
+  /// A buffer from the pool, its contents as its last user left them.
+  explicit pooled_state(buffer_pool<E>& pool) : pool_(&pool), slot_(pool.acquire()) {}
+  pooled_state(const pooled_state& other) : pooled_state(*other.pool_) {
+    for_each([&](std::size_t i) { data()[i] = other.data()[i]; });
+  }
+  pooled_state(pooled_state&& other) noexcept : pool_(other.pool_), slot_(std::exchange(other.slot_, none)) {}
+  pooled_state& operator=(pooled_state other) noexcept {
+    std::swap(pool_, other.pool_);
+    std::swap(slot_, other.slot_);
+    return *this;
+  }
+  ~pooled_state() {
+    if (slot_ != none) pool_->release(slot_);
+  }
+
+  E* data() noexcept { return pool_->data(slot_); }
+  const E* data() const noexcept { return pool_->data(slot_); }
+  E& operator[](std::size_t i) noexcept { return data()[i]; }
+  const E& operator[](std::size_t i) const noexcept { return data()[i]; }
+  [[nodiscard]] std::size_t stride() const noexcept { return pool_->stride(); }
+
+  /// Calls f(i) for the index of every live element of every segment,
+  /// split across the pool's workers when it has them: each element's
+  /// result is the same whoever computes it.
+  template <class F>
+  void for_each(F&& f) const {
+    const std::size_t segments = pool_->segments(), stride = pool_->stride();
+    auto range = [&](std::size_t begin, std::size_t end, std::uint32_t) {
+      for (std::size_t s = 0; s < segments; ++s)
+        for (std::size_t i = s * stride + begin; i < s * stride + end; ++i) f(i);
+    };
+    if (const task_system* tasks = pool_->tasks()) parallel_for(*tasks, std::uint32_t(pool_->used()), 4096, range);
+    else range(0, pool_->used(), 0);
+  }
+
+  // An rvalue operand lends its buffer to the result, and a product by a
+  // scalar is not worked out on its own but where it is summed: `a + b * h`
+  // is one pass over the state into one buffer, not two. On a large system
+  // each pass is a trip through memory and, across workers, a wait for the
+  // slowest: RK4's stages are mostly this, and it took 28 passes a step
+  // where it now takes 16.
+  friend pooled_state operator+(pooled_state&& a, const pooled_state& b) {
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + b.data()[i]; });
+    return std::move(a);
+  }
+  friend pooled_state operator+(const pooled_state& a, pooled_state&& b) { return std::move(b) + a; }
+  friend pooled_state operator+(pooled_state&& a, pooled_state&& b) { return std::move(a) + b; }
+  friend pooled_state operator+(const pooled_state& a, const pooled_state& b) {
+    pooled_state sum(*a.pool_);
+    sum.for_each([&](std::size_t i) { sum.data()[i] = a.data()[i] + b.data()[i]; });
+    return sum;
+  }
+  template <class S>
+  friend scaled_state<E, S> operator*(const pooled_state& a, S h) {
+    return {a, h};
+  }
+  template <class S>
+  friend scaled_state<E, S> operator*(pooled_state&& a, S h) {
+    return {std::move(a), h};
+  }
+
+ private:
+  template <class, class>
+  friend class scaled_state;
+  static constexpr std::size_t none = ~std::size_t(0);
+  buffer_pool<E>* pool_;
+  std::size_t slot_;
+};
+
+/// A state times a scalar, worked out where it is used: summed into a
+/// state (one pass: a[i] + b[i]·h), or made a state of its own. It holds
+/// the state it scales by reference, or, scaling a temporary, holds that
+/// temporary and reuses its buffer. Made only by pooled_state's operator*
+/// and used in the same expression.
+template <class E, class S>
+class scaled_state {
+ public:
+  scaled_state(const pooled_state<E>& source, S h) : source_(&source), h_(h) {}
+  scaled_state(pooled_state<E>&& source, S h) : owned_(std::move(source)), source_(&*owned_), h_(h) {}
+  scaled_state(const scaled_state&) = delete;
+  scaled_state& operator=(const scaled_state&) = delete;
+
+  operator pooled_state<E>() && {
+    const E* b = source_->data();
+    pooled_state<E> result = take_buffer();
+    result.for_each([&](std::size_t i) { result.data()[i] = b[i] * h_; });
+    return result;
+  }
+
+  friend pooled_state<E> operator+(pooled_state<E>&& a, scaled_state&& b) {
+    const E* s = b.source_->data();
+    a.for_each([&](std::size_t i) { a.data()[i] = a.data()[i] + s[i] * b.h_; });
+    return std::move(a);
+  }
+  friend pooled_state<E> operator+(const pooled_state<E>& a, scaled_state&& b) {
+    const E* s = b.source_->data();
+    pooled_state<E> result = b.take_buffer();
+    result.for_each([&](std::size_t i) { result.data()[i] = a.data()[i] + s[i] * b.h_; });
+    return result;
+  }
+  friend pooled_state<E> operator+(scaled_state&& a, const pooled_state<E>& b) { return b + std::move(a); }
+  friend pooled_state<E> operator+(scaled_state&& a, pooled_state<E>&& b) { return std::move(b) + std::move(a); }
+
+ private:
+  /// The held temporary's buffer (each element is read before it is
+  /// written, so the result may overwrite it), or a fresh one. The
+  /// source's data must be read first: the held temporary is moved out.
+  pooled_state<E> take_buffer() {
+    if (owned_) return std::move(*owned_);
+    return pooled_state<E>(*source_->pool_);
+  }
+
+  std::optional<pooled_state<E>> owned_;
+  const pooled_state<E>* source_;
+  S h_;
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/core/detail/pooled_state.hpp ----
 // ---- begin impulse/core/detail/stopwatch.hpp ----
 // impulse/core/detail/stopwatch.hpp — the time between laps, for the
 // world's step profile (world_events.hpp, step_profile).

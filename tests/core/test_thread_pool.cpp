@@ -117,34 +117,34 @@ TEST_CASE("with two workers, both take ranges of a long loop") {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   };
   impulse::detail::parallel_for(tasks, 64, 1, body);
-  CHECK(seen[0].load() + seen[1].load() == 8);  // 4 ranges per worker
+  CHECK(seen[0].load() + seen[1].load() == 32);  // 16 ranges per worker
   CHECK(seen[1].load() > 0);
 }
 
 TEST_CASE("with two workers, each starts on its own half of a loop and takes the other's from its far end") {
   // Loops over the same items back to back then give each worker the items
-  // it had in the loop before. Eight ranges: the caller's half is 0-3, the
-  // other worker's 4-7. Whatever the timing, a worker's first range is the
+  // it had in the loop before. 32 ranges of 2 items: the caller's half is
+  // 0-15, the other worker's 16-31. Whatever the timing, a worker's first range is the
   // front of its own half, and a range taken from the other half is taken
   // from its back.
   impulse::thread_pool pool{2};
   const impulse::task_system tasks = pool.tasks();
   std::vector<std::uint32_t> order[2];
   auto body = [&](std::uint32_t begin, std::uint32_t, std::uint32_t worker) {
-    order[worker].push_back(begin / 8);
+    order[worker].push_back(begin / 2);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   };
   impulse::detail::parallel_for(tasks, 64, 1, body);
-  REQUIRE(order[0].size() + order[1].size() == 8);
+  REQUIRE(order[0].size() + order[1].size() == 32);
   if (!order[0].empty()) CHECK(order[0].front() == 0);
-  if (!order[1].empty()) CHECK(order[1].front() == 4);
+  if (!order[1].empty()) CHECK(order[1].front() == 16);
   for (std::uint32_t w = 0; w < 2; ++w) {
     CAPTURE(w);
     // Its own half in rising order, then the other's in falling order.
     std::size_t k = 0;
-    while (k + 1 < order[w].size() && order[w][k + 1] == order[w][k] + 1 && order[w][k + 1] / 4 == w) ++k;
+    while (k + 1 < order[w].size() && order[w][k + 1] == order[w][k] + 1 && order[w][k + 1] / 16 == w) ++k;
     for (++k; k < order[w].size(); ++k) {
-      CHECK(order[w][k] / 4 != w);
+      CHECK(order[w][k] / 16 != w);
       if (k + 1 < order[w].size()) CHECK(order[w][k + 1] + 1 == order[w][k]);
     }
   }

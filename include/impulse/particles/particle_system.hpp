@@ -16,10 +16,10 @@
 // once per step whatever the integrator, so RK4 moves the bytes Euler moves.
 //
 // Springs couple particles across batches, so a force list that contains them
-// is stepped in stages instead (core/detail/pooled_state.hpp): each integrator
-// stage computes every spring's force, then sweeps all batches, adding each
-// particle's springs to its batch's forces. The same integrator code runs
-// both paths.
+// is stepped in stages instead: each integrator stage computes every spring's
+// force, then sweeps all batches, adding each particle's springs to its
+// batch's forces and running the integrator on to the next stage. The same
+// integrator code runs both paths.
 //
 // With a task system (set_task_system, core/task_system.hpp) the batches
 // are split across workers, and the particles come out bit-identical for any
@@ -45,11 +45,11 @@
 #include <vector>
 
 #include "../core/aligned_array.hpp"
+#include "../core/detail/assert.hpp"
 #include "../core/policy.hpp"
 #include "../core/random.hpp"
 #include "../core/task_system.hpp"
 #include "../integrators/ode_state.hpp"
-#include "../core/detail/pooled_state.hpp"
 #include "emitter.hpp"
 #include "force.hpp"
 #include "plane_collider.hpp"
@@ -103,8 +103,8 @@ class particle_system {
   static constexpr bool has_masses = particle_masses_of<Config>;
   /// The most particles a system may be created for: 2^26, about 6.7e7.
   /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
-  /// double), allocated and zeroed when the system is made, so this many is
-  /// 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
+  /// double; springs add 3 to 18 for the stages), allocated and zeroed when
+  /// the system is made, so this many is 2.7 GB of float columns; a step moves 52 bytes a particle, about 90 ms
   /// at the 38–57 GB/s memory roof of docs/particles_benchmark.md, far past
   /// real time. A larger capacity is a slip of zeros (1e9 would be 40 GB),
   /// refused before anything is allocated. It also keeps every index well
@@ -149,7 +149,8 @@ class particle_system {
         variation_(needs_variation ? stride_ : 0),
         age_(has_lifetime ? stride_ : 0),
         lifetime_(has_lifetime ? stride_ : 0),
-        died_(has_lifetime ? stride_ / width : 0) {}
+        died_(has_lifetime ? stride_ / width : 0),
+        staged_(has_pairwise ? staged_columns * stride_ : 0) {}
 
   // ---- particles --------------------------------------------------------------
 
@@ -442,47 +443,8 @@ class particle_system {
   [[gnu::noinline]] void settle_creases(std::size_t first, parked& p) const noexcept {
     const state x0 = start_of_step(first);
     state x = p.position(), v = p.velocity();
-    settle_creases(x0, x, v);
+    detail::settle_creases(std::span<const plane_collider<T>>(planes_), crease_.data(), x0, x, v);
     p.put(x, v);
-  }
-
-  [[gnu::always_inline]] void settle_creases(const state& x0, state& x, state& v) const noexcept {
-    // Projecting onto one half-space can push a particle back behind another
-    // that meets it at an acute angle (a crease). Cyclic projection would
-    // converge there only geometrically, by cos² of the angle per sweep, so
-    // a lane still behind plane a while on or behind plane b is moved
-    // straight onto the line where the two meet.
-    bool residual = false;
-    for (std::size_t a = 0; a < planes_.size(); ++a) {
-      if (planes_[a].finite) continue;
-      batch_mask<T, width> behind_a = detail::behind_half_space(planes_[a], x);
-      if (none(behind_a)) continue;
-      residual = true;
-      for (std::size_t b = 0; b < planes_.size() && any(behind_a); ++b) {
-        if (b == a || planes_[b].finite || !crease_[a * planes_.size() + b]) continue;
-        const batch_mask<T, width> on_b =
-            !(detail::distance(planes_[b], x) > detail::rounding_at(planes_[b], x));
-        const batch_mask<T, width> in_crease = behind_a & on_b;
-        if (none(in_crease)) continue;
-        detail::project_onto_crease(planes_[a], planes_[b], in_crease, x);
-        behind_a = behind_a & !in_crease;
-      }
-    }
-    if (!residual) return;  // the common case: one sweep settled every lane
-    // Three or more planes meeting at a corner can still leave a lane
-    // behind one: it goes back to where it started the step, which was
-    // inside, and stops there. "No particle behind a plane" holds always.
-    const lanes zero = lanes::broadcast(T(0));
-    batch_mask<T, width> behind = zero < zero, was_behind = behind;
-    for (const plane_collider<T>& plane : planes_)
-      if (!plane.finite) {
-        behind = behind | detail::behind_half_space(plane, x);
-        was_behind = was_behind | detail::behind_half_space(plane, x0);
-      }
-    const batch_mask<T, width> revert = behind & !was_behind;
-    if (none(revert)) return;
-    x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
-    v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
   }
 
   /// Batches per range of a parallel loop: 64 batches of the standard
@@ -522,60 +484,96 @@ class particle_system {
     }
   }
 
+  // ---- the staged step, for springs ------------------------------------------------
+
+  /// A spring pulls with both its ends at the same stage of the step, so
+  /// each of the integrator's stages is two loops over the system with a
+  /// barrier between: the springs' forces, from every particle's state at
+  /// that stage, then, batch by batch, its acceleration at that stage and
+  /// the integrator run on to the next stage's state (or to the end of the
+  /// step, at the last). Each batch runs the integrator from the start of
+  /// the step and is handed back the accelerations of the stages before,
+  /// as stored, so any integrator works unchanged (it must call the
+  /// acceleration exactly `stages` times, as its policy states) and a step
+  /// is 2 × stages loops: Euler's 2, RK4's 8.
+  static constexpr int stages = integrator::stages;
+  /// staged_: the next stage's positions and velocities (6 columns, when
+  /// there is a next stage), then each stage's accelerations (3 each).
+  static constexpr std::size_t staged_columns = (stages > 1 ? 6 : 0) + 3 * std::size_t(stages);
+
   // Not `requires has_pairwise`: clang 14 compiles a constrained member in
   // an explicit instantiation (IMPULSE_INSTANTIATE_PARTICLE_SYSTEM) even
   // when the constraint is false; the discarded branch it does not.
   void step_staged(T dt) {
-    if constexpr (has_pairwise) {
-      const std::size_t used = padded(size_);
-      pool_.resize(3, stride_, used);
-      pool_.set_tasks(tasks_.parallel() ? &tasks_ : nullptr);
-      using whole = impulse::detail::pooled_state<T>;
-      whole x(pool_), v(pool_);
-      for_batches([&](std::size_t begin, std::size_t end) {
-        copy_columns(x.data(), x_, y_, z_, begin, end);
-        copy_columns(v.data(), vx_, vy_, vz_, begin, end);
-      });
-      auto& pairwise = std::get<pairwise_index()>(forces_);
-      const T* inverse_mass = has_masses ? inverse_mass_.data() : nullptr;
-      integrator::step(x, v, dt, [&](const whole& xs, const whole& vs) {
-        whole a(pool_);
-        auto spring_forces = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-          pairwise.compute_forces(begin, end, xs.data(), vs.data(), stride_);
-        };
-        impulse::detail::parallel_for(tasks_, std::uint32_t(pairwise.groups()), min_batches, spring_forces);
-        for_batches([&](std::size_t begin, std::size_t end) {
-          const columns_start c = start_of_columns();
-          for (std::size_t first = begin; first < end; first += width) {
-            const state xb = load_from(xs.data(), first), vb = load_from(vs.data(), first);
-            acceleration(forces_, xb, vb, load_inverse_mass(c, first), load_lanes(c, first)).store(a.data() + first,
-                a.data() + stride_ + first, a.data() + 2 * stride_ + first);
-          }
-          pairwise.add_forces(begin, end, inverse_mass, stride_, a.data());
-        });
+    if constexpr (has_pairwise)
+      [&]<int... S>(std::integer_sequence<int, S...>) {
+        (stage<S>(dt), ...);
+      }(std::make_integer_sequence<int, stages>{});
+  }
+
+  template <int S>
+  void stage(T dt) {
+    auto& pairwise = std::get<pairwise_index()>(forces_);
+    const columns_start c = start_of_columns();
+    const T* next = staged_.data();
+    using columns3 = std::array<const T*, 3>;
+    const columns3 x = S == 0 ? columns3{c.x, c.y, c.z} : columns3{next, next + stride_, next + 2 * stride_};
+    const columns3 v = S == 0 ? columns3{c.vx, c.vy, c.vz}
+                              : columns3{next + 3 * stride_, next + 4 * stride_, next + 5 * stride_};
+    auto spring_forces = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      pairwise.compute_forces(begin, end, x, v);
+    };
+    impulse::detail::parallel_for(tasks_, std::uint32_t(pairwise.groups()), min_batches, spring_forces);
+    constexpr std::size_t block = std::tuple_element_t<pairwise_index(), decltype(forces_)>::block;
+    for_batches([&](std::size_t begin, std::size_t end) {
+      for (std::size_t low = begin, high; low < end; low = high) {
+        high = std::min(end, (low / block + 1) * block);
+        pairwise.set_accelerations(low, high, has_masses ? c.inverse_mass : nullptr, stride_, accelerations(S));
+        for (std::size_t first = low; first < high; first += width) run_stage<S>(c, x, v, first, dt);
+      }
+    });
+  }
+
+  T* accelerations(int stage) noexcept {
+    return staged_.data() + ((stages > 1 ? 6 : 0) + 3 * std::size_t(stage)) * stride_;
+  }
+
+  /// A batch's integrator from the start of the step up to stage S: the
+  /// stages before are handed their stored accelerations; stage S's is
+  /// worked out here from its state (x, v) and the springs' part of it
+  /// already in its columns; the next stage's state is stored for the
+  /// springs, or, at the last stage, the step finished.
+  template <int S>
+  [[gnu::always_inline]] void run_stage(const columns_start& c, const std::array<const T*, 3>& x,
+                                        const std::array<const T*, 3>& v, std::size_t first, T dt) {
+    state xb = state::load(c.x + first, c.y + first, c.z + first);
+    state vb = state::load(c.vx + first, c.vy + first, c.vz + first);
+    int call = 0;
+    integrator::step(xb, vb, dt, [&](const state& xs, const state& vs) __attribute__((always_inline)) {
+      const int j = call++;
+      if (j < S) return load_from(accelerations(j), first);
+      if (j == S) {
+        const state at = state::load(x[0] + first, x[1] + first, x[2] + first);
+        const state moving = state::load(v[0] + first, v[1] + first, v[2] + first);
+        const state a = acceleration(forces_, at, moving, load_inverse_mass(c, first), load_lanes(c, first)) +
+                        load_from(accelerations(S), first);
+        if constexpr (S + 1 < stages) a.store(accelerations(S) + first, accelerations(S) + stride_ + first,
+                                              accelerations(S) + 2 * stride_ + first);
         return a;
-      });
-      for_batches([&](std::size_t begin, std::size_t end) {
-        const columns_start c = start_of_columns();
-        for (std::size_t first = begin; first < end; first += width) {
-          state xb = load_from(x.data(), first), vb = load_from(v.data(), first);
-          finish_batch(c, first, xb, vb, dt);
-        }
-      });
-    }
+      }
+      if (j == S + 1) {
+        T* next = staged_.data();
+        xs.store(next + first, next + stride_ + first, next + 2 * stride_ + first);
+        vs.store(next + 3 * stride_ + first, next + 4 * stride_ + first, next + 5 * stride_ + first);
+      }
+      return state::broadcast({});
+    });
+    IMPULSE_ASSERT(S + 1 < stages || call == stages);  // the policy's `stages` is its evaluations
+    if constexpr (S + 1 == stages) finish_batch(c, first, xb, vb, dt);
   }
 
   state load_from(const T* columns, std::size_t first) const noexcept {
     return state::load(columns + first, columns + stride_ + first, columns + 2 * stride_ + first);
-  }
-  /// Particles [begin, end) of columns a, b and c into the state's three
-  /// segments: one copy per column (a loop over the three at once stayed
-  /// scalar, the compiler unable to rule out that `to` overlaps them).
-  void copy_columns(T* to, const aligned_array<T>& a, const aligned_array<T>& b, const aligned_array<T>& c,
-                    std::size_t begin, std::size_t end) const noexcept {
-    std::copy(a.data() + begin, a.data() + end, to + begin);
-    std::copy(b.data() + begin, b.data() + end, to + stride_ + begin);
-    std::copy(c.data() + begin, c.data() + end, to + 2 * stride_ + begin);
   }
 
   static constexpr std::size_t pairwise_index() {
@@ -760,7 +758,7 @@ class particle_system {
   std::array<aligned_array<T>*, 10> columns_{};
   std::vector<std::uint32_t> origin_, remap_;
   std::size_t removed_from_ = 0;
-  impulse::detail::buffer_pool<T> pool_;
+  aligned_array<T> staged_;
   std::uint32_t serial_ = 0;
   double time_ = 0;
 };

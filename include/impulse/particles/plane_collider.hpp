@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 #include "../math/scalar_traits.hpp"
 #include "force.hpp"
@@ -235,6 +236,51 @@ void collide_rectangle(const plane_collider<T>& plane, const vec3_batch<T, W>& x
   const vec3_batch<T, W> placed = p + n_side * skin;
   x = {select(hit, placed.x, x.x), select(hit, placed.y, x.y), select(hit, placed.z, x.z)};
   plane_response(-plane.restitution, T(1) - plane.friction, hit, n_side, v);
+}
+
+/// Lanes that the half-spaces' projections left behind one of them: those
+/// in a crease of two (crease[a * planes + b]: not parallel) onto the line
+/// where the two meet, and any still behind one back to where they started
+/// the step (x0, which was inside), stopped.
+template <class T, int W>
+void settle_creases(std::span<const plane_collider<T>> planes, const unsigned char* crease,
+                    const vec3_batch<T, W>& x0, vec3_batch<T, W>& x, vec3_batch<T, W>& v) noexcept {
+  using lanes = batch<T, W>;
+  // Projecting onto one half-space can push a particle back behind another
+  // that meets it at an acute angle (a crease). Cyclic projection would
+  // converge there only geometrically, by cos² of the angle per sweep, so
+  // a lane still behind plane a while on or behind plane b is moved
+  // straight onto the line where the two meet.
+  bool residual = false;
+  for (std::size_t a = 0; a < planes.size(); ++a) {
+    if (planes[a].finite) continue;
+    batch_mask<T, W> behind_a = behind_half_space(planes[a], x);
+    if (none(behind_a)) continue;
+    residual = true;
+    for (std::size_t b = 0; b < planes.size() && any(behind_a); ++b) {
+      if (b == a || planes[b].finite || !crease[a * planes.size() + b]) continue;
+      const batch_mask<T, W> on_b = !(distance(planes[b], x) > rounding_at(planes[b], x));
+      const batch_mask<T, W> in_crease = behind_a & on_b;
+      if (none(in_crease)) continue;
+      project_onto_crease(planes[a], planes[b], in_crease, x);
+      behind_a = behind_a & !in_crease;
+    }
+  }
+  if (!residual) return;  // the common case: one sweep settled every lane
+  // Three or more planes meeting at a corner can still leave a lane
+  // behind one: it goes back to where it started the step, which was
+  // inside, and stops there. "No particle behind a plane" holds always.
+  const lanes zero = lanes::broadcast(T(0));
+  batch_mask<T, W> behind = zero < zero, was_behind = behind;
+  for (const plane_collider<T>& plane : planes)
+    if (!plane.finite) {
+      behind = behind | behind_half_space(plane, x);
+      was_behind = was_behind | behind_half_space(plane, x0);
+    }
+  const batch_mask<T, W> revert = behind & !was_behind;
+  if (none(revert)) return;
+  x = {select(revert, x0.x, x.x), select(revert, x0.y, x.y), select(revert, x0.z, x.z)};
+  v = {select(revert, zero, v.x), select(revert, zero, v.y), select(revert, zero, v.z)};
 }
 
 }  // namespace detail

@@ -35,6 +35,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -189,10 +190,19 @@ class springs {
   /// How many springs of the last prepare() are in runs' groups.
   [[nodiscard]] std::size_t springs_in_runs() const noexcept { return run_slots_; }
 
+  /// Particles per block of the second pass: the runs that reach a block
+  /// are listed with it, and its sums are kept on the stack. A range of
+  /// the second pass best starts and ends on a block.
+  static constexpr std::size_t block = 128;
+  static_assert(block % width == 0);
+  /// A state's three columns (x, y, z), for the first pass to read.
+  using columns3 = std::array<const T*, 3>;
+
   /// Pass one: the forces of groups [begin, end) of `width` springs, each
-  /// spring's into its own slot.
-  void compute_forces(std::size_t begin, std::size_t end, const T* position, const T* velocity,
-                      std::size_t stride) noexcept {
+  /// spring's into its own slot, from the particles' positions and
+  /// velocities.
+  void compute_forces(std::size_t begin, std::size_t end, const columns3& position,
+                      const columns3& velocity) noexcept {
     const std::size_t n = slots_;
     T* fx = force_.data();
     for (std::size_t g = begin; g < end; ++g) {
@@ -200,28 +210,35 @@ class springs {
       vec3_batch<T> d, dv;
       if (g < run_slots_ / width) {
         const std::uint32_t a = group_ends_[2 * g], b = group_ends_[2 * g + 1];
-        d = row(position, stride, a) - row(position, stride, b);
-        dv = row(velocity, stride, a) - row(velocity, stride, b);
+        d = row(position, a) - row(position, b);
+        dv = row(velocity, a) - row(velocity, b);
       } else {
         const std::uint32_t *a = loose_a_.data() + (first - run_slots_), *b = loose_b_.data() + (first - run_slots_);
-        d = ends(position, stride, a) - ends(position, stride, b);
-        dv = ends(velocity, stride, a) - ends(velocity, stride, b);
+        d = ends(position, a) - ends(position, b);
+        dv = ends(velocity, a) - ends(velocity, b);
       }
       force(first, d, dv).store(fx + first, fx + n + first, fx + 2 * n + first);
     }
   }
 
-  /// Pass two: adds to particles [begin, end) their springs' forces (of the
-  /// last compute_forces()) divided by their masses.
-  void add_forces(std::size_t begin, std::size_t end, const T* inverse_mass, std::size_t stride,
-                  T* acc) const noexcept {
-    const std::size_t n = slots_;
+  /// Pass two: the forces of their springs (of the last compute_forces()),
+  /// divided by their masses, on particles [begin, end) into the three
+  /// columns at `acc`, `stride` apart (zero for particles past the last
+  /// prepare()).
+  void set_accelerations(std::size_t begin, std::size_t end, const T* inverse_mass, std::size_t stride,
+                         T* acc) const noexcept {
+    const std::size_t n = slots_, asked = end;
     const T* f[3] = {force_.data(), force_.data() + n, force_.data() + 2 * n};
     if (end > first_of_.size() - 1) end = first_of_.size() - 1;
-    alignas(64) T sum[3][block];
+    // The sums go straight into the accelerations, or with masses to
+    // divide by, on the stack first.
+    alignas(64) T stack[3][block];
+    const bool direct = !inverse_mass;
     for (std::size_t low = begin; low < end;) {
       const std::size_t at = low / block, high = std::min(end, (at + 1) * block), count = high - low;
-      for (auto& column : sum) std::fill(column, column + count, T(0));
+      T* const sum[3] = {direct ? acc + low : stack[0], direct ? acc + stride + low : stack[1],
+                         direct ? acc + 2 * stride + low : stack[2]};
+      for (T* column : sum) std::fill(column, column + count, T(0));
       for (std::uint32_t e = block_first_[at]; e < block_first_[at + 1]; ++e) {
         const run& r = runs_[spans_[e] >> 1];
         const bool b_end = (spans_[e] & 1) != 0;
@@ -241,14 +258,11 @@ class springs {
             else sum[j][i - low] += f[j][k];
           }
         }
-      for (int j = 0; j < 3; ++j) {
-        T* to = acc + j * stride + low;
-        if (!inverse_mass) accumulate<false>(to, sum[j], count);
-        else
-          for (std::size_t i = 0; i < count; ++i) to[i] += sum[j][i] * inverse_mass[low + i];
-      }
+      for (int j = 0; j < 3 && !direct; ++j)
+        for (std::size_t i = 0; i < count; ++i) acc[j * stride + low + i] = sum[j][i] * inverse_mass[low + i];
       low = high;
     }
+    for (int j = 0; j < 3; ++j) std::fill(acc + j * stride + std::max(begin, end), acc + j * stride + asked, T(0));
   }
 
   /// After particles were moved (index i now at remap[i], or no_object when
@@ -283,13 +297,12 @@ class springs {
     const vec3_batch<T> f = u * -magnitude;
     return {select(apart, f.x, zero), select(apart, f.y, zero), select(apart, f.z, zero)};
   }
-  static vec3_batch<T> ends(const T* p, std::size_t stride, const std::uint32_t* index) noexcept {
-    return {detail::gather<T>(p, index), detail::gather<T>(p + stride, index),
-            detail::gather<T>(p + 2 * stride, index)};
+  static vec3_batch<T> ends(const columns3& p, const std::uint32_t* index) noexcept {
+    return {detail::gather<T>(p[0], index), detail::gather<T>(p[1], index), detail::gather<T>(p[2], index)};
   }
   /// Particles [i, i + width): a run's ends, plain loads.
-  static vec3_batch<T> row(const T* p, std::size_t stride, std::uint32_t i) noexcept {
-    return vec3_batch<T>::load(p + i, p + stride + i, p + 2 * stride + i);
+  static vec3_batch<T> row(const columns3& p, std::uint32_t i) noexcept {
+    return vec3_batch<T>::load(p[0] + i, p[1] + i, p[2] + i);
   }
   /// to[i] ∓= from[i] for i < count, `width` at a time.
   template <bool subtract>
@@ -427,10 +440,6 @@ class springs {
   static constexpr std::size_t max_springs = (std::size_t(1) << 31) - 64;
   /// Springs per range of the ends' scan: about 20 µs of work.
   static constexpr std::uint32_t scan_range = 16384;
-  /// Particles per block of the second pass: the runs that reach a block
-  /// are listed with it, and its sums are kept on the stack.
-  static constexpr std::size_t block = 128;
-  static_assert(block % width == 0);
   /// Springs from particle a + 1 looked at for the next in a run of a
   /// spring from a: a hub's thousand springs are not searched a thousand
   /// times.
