@@ -15,6 +15,8 @@ Five headers, each a layer over one before it:
                      system include, found on the include path.
   impulse_thread_pool.hpp  #include "impulse.hpp", then impulse/thread_pool.hpp:
                      a std::thread pool implementing the task hook.
+  impulse_character.hpp  #include "impulse.hpp", then impulse/character.hpp:
+                     the character controller.
   instantiate.hpp    #include "impulse.hpp", then impulse/instantiate.hpp: the
                      default configurations compiled in the one .cpp file of a
                      program built with IMPULSE_EXTERN_TEMPLATES=1.
@@ -87,6 +89,13 @@ LAYERS = [
         "Includes impulse.hpp, which must sit beside this file. Kept out of",
         "impulse.hpp so that a program that brings its own scheduler, or runs on",
         "one thread, never parses <thread>, <mutex> and <condition_variable>.",
+    ]),
+    ("impulse_character.hpp", "impulse.hpp", ["impulse/character.hpp"], [
+        "impulse::character, a character controller: an upright capsule that walks,",
+        "slides, climbs steps and walkable slopes, falls, rides platforms, pushes",
+        "bodies and crouches, moved by the world's shape casts. Includes",
+        "impulse.hpp, which must sit beside this file. Kept out of impulse.hpp so",
+        "that a program without a character does not parse it.",
     ]),
     ("instantiate.hpp", "impulse.hpp", ["impulse/instantiate.hpp"], [
         "Compiles the default configurations' world, rigid-body system and particle",

@@ -8112,7 +8112,9 @@ class constraint_graph {
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
   /// The colors that have contacts; color q's batches are
   /// [first_batch(q), first_batch(q + 1)), and share no moving body.
-  [[nodiscard]] std::size_t color_count() const noexcept { return color_starts_.size() - 1; }
+  [[nodiscard]] std::size_t color_count() const noexcept {
+    return color_starts_.empty() ? 0 : color_starts_.size() - 1;
+  }
   [[nodiscard]] std::uint32_t first_batch(std::size_t q) const noexcept { return color_starts_[q]; }
   /// The contacts of batch k, by their place in the contact array.
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {
@@ -10782,6 +10784,14 @@ class basic_sequential_impulse {
   /// each solved whole on one (detail/contact_groups.hpp); 0 when its
   /// colors were shared instead, or it ran on one thread.
   [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
+  /// The colors of the last solve's contacts: the most any group of
+  /// islands took, when it went by groups.
+  [[nodiscard]] std::size_t color_count() const noexcept {
+    std::size_t most = 0;
+    const std::size_t used = std::min<std::size_t>(sets_.size(), std::max<std::size_t>(solved_groups_, 1));
+    for (std::size_t g = 0; g < used; ++g) most = std::max(most, sets_[g].graph.color_count());
+    return most;
+  }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 
@@ -11321,6 +11331,8 @@ class basic_soft_step {
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
                       const settings_type& settings);
+  /// The colors of the last solve's contacts.
+  [[nodiscard]] std::size_t color_count() const noexcept { return graph_.color_count(); }
 
  private:
   static constexpr int width = detail::contact_lanes<T>;
@@ -19309,6 +19321,63 @@ template <scalar_type T> struct mass_properties;
 // velocities, material and mass, as world::create_body takes them.
 
 
+// ---- begin impulse/world/collision_filter.hpp ----
+// impulse/world/collision_filter.hpp — which bodies may touch: each body's
+// categories, the categories it collides with and its group; a world-wide
+// predicate for what bits cannot say; and what a query sees.
+
+
+
+namespace impulse {
+
+/// Every category bit set.
+inline constexpr std::uint32_t all_categories = 0xffffffffu;
+
+/// A body's collision filter (body_def::filter, world::set_filter).
+///
+/// Two bodies of the same nonzero group decide by the group alone: a
+/// positive group always collides, a negative one never (the parts of one
+/// ragdoll, say). Otherwise they collide when each one's mask has a bit of
+/// the other's category. The defaults collide with everything.
+struct collision_filter {
+  std::uint32_t category = 1;           ///< the categories the body is in (bits)
+  std::uint32_t mask = all_categories;  ///< the categories it collides with (bits)
+  std::int32_t group = 0;               ///< 0: none
+  friend constexpr bool operator==(const collision_filter&, const collision_filter&) = default;
+};
+
+/// Whether bodies of filters a and b may touch, as collision_filter says.
+[[nodiscard]] constexpr bool should_collide(const collision_filter& a, const collision_filter& b) noexcept {
+  if (a.group != 0 && a.group == b.group) return a.group > 0;
+  return (a.mask & b.category) != 0 && (b.mask & a.category) != 0;
+}
+
+/// A user's rule for the pairs the bits let through (world::set_pair_filter):
+/// test(a, b, context) returns false to keep the two apart. It is asked
+/// when a pair's boxes begin to overlap (and may be asked again while they
+/// do), and by continuous collision, from the task system's workers at
+/// once: it must only read, and give the same answer for a pair until
+/// world::refilter says otherwise. No test: every pair the bits let through.
+struct pair_filter {
+  bool (*test)(body_id a, body_id b, void* context) = nullptr;
+  void* context = nullptr;
+};
+
+/// What a world query (ray_cast, overlap) sees: the bodies with a
+/// category bit in mask, less those of a nonzero skip_group (a character's
+/// own parts, say), and sensors only if asked. The defaults see every body
+/// but the sensors.
+struct query_filter {
+  std::uint32_t mask = all_categories;
+  std::int32_t skip_group = 0;
+  bool sensors = false;
+  [[nodiscard]] constexpr bool sees(const collision_filter& body, bool sensor) const noexcept {
+    return (body.category & mask) != 0 && (skip_group == 0 || body.group != skip_group) && (sensors || !sensor);
+  }
+};
+
+}  // namespace impulse
+// ---- end impulse/world/collision_filter.hpp ----
 
 namespace impulse {
 
@@ -19338,6 +19407,13 @@ struct body_def {
   /// body it could meet, dynamic ones too (a projectile). Other bodies are
   /// swept only when fast, and only against static and kinematic ones.
   bool bullet = false;
+  /// Which bodies it may touch (collision_filter.hpp): by default, all.
+  collision_filter filter{};
+  /// A sensor makes no contacts: it reports the bodies its shape overlaps
+  /// (world::sensor_overlaps, sensor events), those its filter lets
+  /// through, of every type, asleep or not, but no other sensor. Queries
+  /// see it only when their filter asks for sensors.
+  bool sensor = false;
   std::uint64_t user_data = 0;
 };
 
@@ -19361,6 +19437,15 @@ struct debug_color {
 
 /// What world::draw shows.
 struct debug_draw_flags {
+  /// Each body's shape as a wireframe, in its body's colour (detail/
+  /// debug_drawing.hpp): a sphere's three great circles, a box's and a
+  /// hull's edges, a capsule's rings, caps and sides, a mesh's triangles,
+  /// a plane's 10 m square and normal; sensors in yellow.
+  bool shapes = true;
+  /// Each joint: its anchors on A and B, lines from each body's center to
+  /// its anchor, a hinge's or slider's axis, and its limits (a hinge's
+  /// arc, a slider's span along its axis).
+  bool joints = true;
   bool aabbs = false;       ///< each body's bounding box (as the broad phase has it, before the speculative margin)
   bool contacts = true;     ///< contact points
   bool normals = true;      ///< contact normals, 0.2 m long
@@ -19418,7 +19503,91 @@ template <class Config = default_config> class world;
 // function of the state (no clocks, no addresses, containers iterated in
 // id order), so the same state stepped twice gives the same bits.
 
+#include <exception>
 
+// ---- begin impulse/world/contact_hooks.hpp ----
+// impulse/world/contact_hooks.hpp — the user's say in the solve: a hook
+// before it that can switch a contact off or change its friction,
+// restitution and surface speed (one-way platforms, conveyor belts), and a
+// hook after it that reports the impulses each contact applied.
+
+
+
+namespace impulse {
+
+/// What a pre-solve hook may change of one touching manifold, for this
+/// step. It starts as the pair's own: enabled, the materials' combined
+/// friction and restitution, no surface velocity.
+template <scalar_type T>
+struct contact_settings {
+  /// false: the manifold is left out of this step's solve, and its
+  /// impulses are dropped (a body passing up through a one-way platform).
+  bool enabled = true;
+  T friction = T(0);     ///< ≥ 0, finite
+  T restitution = T(0);  ///< in [0, 1]
+  /// m/s, world: the velocity friction holds B's surface at, relative to
+  /// A's, at the contact (only its part across the normal counts): a
+  /// conveyor belt as body A gives its belt speed, as body B the opposite.
+  vec3<T> surface_velocity{};
+};
+
+/// Called on the thread that steps, before the solve, for each touching
+/// manifold the solve would take (one of its bodies awake and dynamic), in
+/// a fixed order: the pair's bodies (the manifold's normal points from a
+/// into b), the manifold, and the settings to change. It may read the
+/// world; a change to it from inside is refused, as inside any callback.
+/// Settings out of range are replaced by the pair's own. What a hook
+/// throws, or the settings it got wrong, the step reports once it has
+/// finished, the world whole: no hook is called again in that step.
+template <scalar_type T>
+struct pre_solve_hook {
+  void (*call)(body_id a, body_id b, const contact_manifold<T>& manifold, contact_settings<T>& settings,
+               void* context) = nullptr;
+  void* context = nullptr;
+};
+
+/// Called on the thread that steps, after the solve, for each manifold it
+/// solved, in the same order, with the impulses the manifold applied over
+/// the step: normal per point (N·s), friction at the patch, twist (N·m·s).
+/// A solver that takes the step in parts reports its last part's scaled
+/// to the whole step, a force held over it, as world::joint_force does.
+template <scalar_type T>
+struct post_solve_hook {
+  void (*call)(body_id a, body_id b, const contact_manifold<T>& manifold, const manifold_impulse<T>& impulse,
+               void* context) = nullptr;
+  void* context = nullptr;
+};
+
+namespace detail {
+
+/// Calls a hook, f(), so that what it throws waits for the end of the step
+/// (a refusal of a change from inside it, say): the first exception is
+/// kept in `caught`, and no hook is called again in the step.
+template <class F>
+void call_hook(std::exception_ptr& caught, F&& f) {
+  if (caught) return;
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS)
+  try {
+    f();
+  } catch (...) {
+    caught = std::current_exception();
+  }
+#else
+  f();
+#endif
+}
+
+}  // namespace detail
+
+/// Whether a hook's settings are ones the solver can take.
+template <scalar_type T>
+[[nodiscard]] bool valid_settings(const contact_settings<T>& s) noexcept {
+  return std::isfinite(s.friction) && s.friction >= T(0) && s.restitution >= T(0) && s.restitution <= T(1) &&
+         is_finite(s.surface_velocity);
+}
+
+}  // namespace impulse
+// ---- end impulse/world/contact_hooks.hpp ----
 // ---- begin impulse/world/world_events.hpp ----
 // impulse/world/world_events.hpp — what a step reports: contacts that began
 // or ended, joints that broke, and how much of the world it visited.
@@ -19433,6 +19602,14 @@ struct contact_event {
   body_id a;
   body_id b;
   friend constexpr bool operator==(const contact_event&, const contact_event&) = default;
+};
+
+/// A body that began or stopped overlapping a sensor (body_def::sensor) in
+/// the last step, or that lost the sensor, or the sensor it, since.
+struct sensor_event {
+  body_id sensor;
+  body_id visitor;
+  friend constexpr bool operator==(const sensor_event&, const sensor_event&) = default;
 };
 
 /// A joint that broke in the last step: the impulse it applied exceeded
@@ -19462,6 +19639,7 @@ struct step_profile {
   double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected (the first two in `solve`
                           ///< when it went by groups of islands, step_counts::solver_groups)
   double continuous = 0;  ///< continuous collision of fast bodies
+  double sensors = 0;     ///< the sensors' overlaps
   double sleep = 0;       ///< islands woken, then put to sleep
   double total = 0;       ///< the whole step, these and what lies between them
 };
@@ -19480,8 +19658,23 @@ struct step_counts {
   /// whole on one; 0 when it shared each color's batches instead, or ran
   /// on one thread (docs/world.md, "Across workers").
   std::size_t solver_groups = 0;
+  std::size_t colors = 0;   ///< colors of the solver's contact graph (its batches of one color share no moving body)
+  std::size_t islands = 0;  ///< awake islands, with sleeping on (0 with it off: the step makes none)
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
+};
+
+/// The last step at a glance (world::profile): its stage times and counts,
+/// and what the world holds after it.
+struct world_profile {
+  step_profile times;
+  step_counts counts;
+  std::size_t bodies = 0;
+  std::size_t pairs = 0;     ///< the broad phase's: bodies whose boxes overlap
+  std::size_t contacts = 0;  ///< contact records: pairs that may touch
+  std::size_t touching = 0;  ///< of those, touching
+  std::size_t joints = 0;
+  std::size_t sensors = 0;
 };
 
 }  // namespace impulse
@@ -19493,7 +19686,7 @@ struct step_counts {
 
 namespace impulse {
 
-/// The nearest body a ray meets.
+/// The nearest body a ray, or a cast shape (world::shape_cast), meets.
 template <scalar_type T>
 struct world_ray_hit {
   body_id body;
@@ -20300,6 +20493,8 @@ struct body_record {
   bool awake = true;
   std::uint32_t sleep_set = no_sleep_set;  ///< asleep: its island (world_state::sleep_sets)
   std::uint64_t user_data = 0;
+  collision_filter filter{};
+  bool sensor = false;  ///< reports overlaps, makes no contacts (body_def::sensor)
   target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
   bool bullet = false;
   T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
@@ -20308,6 +20503,13 @@ struct body_record {
   /// solver's max_speculative_distance (world_state::set_reach).
   vec3<T> reach_path{};
   T reach_turn = T(0);
+};
+
+/// A sensor body and the bodies its shape overlapped at the end of the
+/// last step, ascending by index (sensors.hpp).
+struct sensor_record {
+  body_id sensor;
+  std::vector<body_id> inside;
 };
 
 /// One manifold of a touching pair: where it touches, the impulses the
@@ -20471,6 +20673,8 @@ struct world_state {
   std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
   std::size_t pairs_over_limit = 0;          ///< in the last step: see world::pairs_over_limit
   std::vector<contact_event> begun, ended;
+  std::vector<sensor_record> sensors;  ///< in the order they were made
+  std::vector<sensor_event> sensor_begun, sensor_ended;
   step_counts counts{};  ///< the last step's
   T time = T(0), accumulator = T(0), last_dt = T(0);
   std::uint64_t step_count = 0;
@@ -20705,6 +20909,12 @@ struct world_state {
   [[nodiscard]] bool joined_apart(body_id a, body_id b) const noexcept {
     return !joined.empty() && std::binary_search(joined.begin(), joined.end(), pair_key(a, b));
   }
+  /// Whether two bodies may make contact, the types apart: no joint keeps
+  /// them apart, their filters let them touch, and so does the user's rule.
+  [[nodiscard]] bool may_collide(body_id a, body_id b, const pair_filter& rule) const {
+    return !joined_apart(a, b) && should_collide(bodies[a].filter, bodies[b].filter) &&
+           (rule.test == nullptr || rule.test(a, b, rule.context));
+  }
   /// Lets the joint's bodies collide again (if it had stopped them).
   void unjoin(const joint_record<T>& r) {
     if (r.def.collide_connected) return;
@@ -20790,6 +21000,16 @@ struct step_scratch {
   solver_type solver{};
   /// The workers a step may spread over (world::set_task_system).
   task_system tasks{};
+  /// The user's rule for pairs (world::set_pair_filter); like the tasks,
+  /// the world's, not its state's.
+  pair_filter pair_rule{};
+  pre_solve_hook<T> pre_solve{};    ///< world::set_pre_solve; the world's, as the tasks
+  post_solve_hook<T> post_solve{};  ///< world::set_post_solve
+  /// Per solved manifold, what the pre-solve hook left (solve.hpp), when there is one.
+  std::vector<contact_settings<T>> source_settings;
+  /// The first pair a pre-solve hook gave settings out of range in this step.
+  body_id refused_settings{};
+  std::exception_ptr hook_error;  ///< what a hook threw in this step (contact_hooks.hpp, call_hook)
   step_profile profile;  ///< the last step's (world::last_step_profile)
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
@@ -20829,6 +21049,7 @@ struct step_scratch {
   // awake body, whether it left its broad-phase box; the bodies that did.
   std::vector<std::uint8_t> sweep_seen, sweep_left;
   std::vector<std::uint32_t> sweep_movers;
+  std::vector<std::vector<body_id>> sensor_next;  ///< per sensor: what it overlaps now (sensors.hpp)
 
   /// A world without collision's (force_motion.hpp).
   struct motion_scratch {
@@ -21063,12 +21284,14 @@ struct contact_update {
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
-  /// dynamic, and no joint between them keeps them apart.
+  /// dynamic, neither is a sensor, no joint between them keeps them apart, and the filters let
+  /// them touch (world_state::may_collide).
   bool may_touch(const proxy_pair& pair) const {
     const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
     const body_record<T>& ra = state.bodies[a];
     const body_record<T>& rb = state.bodies[b];
-    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !state.joined_apart(a, b);
+    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !ra.sensor && !rb.sensor &&
+           state.may_collide(a, b, scratch.pair_rule);
   }
 
   /// Whether the broad phase's pairs, less those that cannot touch, are
@@ -21378,13 +21601,15 @@ struct continuous_collision {
   /// motion over the step meets, if any.
   void sweep_back(std::uint32_t i) {
     body_record<T>& r = state.bodies.values()[i];
+    if (r.sensor) return;  // meets nothing
     const body_id id = state.bodies.ids()[i];
     const narrowphase::sweep<T> path = path_of(r);
     const aabb<T> swept = swept_box(r, path);
     T first = T(1);
     const auto meet = [&](body_id other) {
-      if (other == id || state.joined_apart(id, other)) return;
+      if (other == id || !state.may_collide(id, other, scratch.pair_rule)) return;
       const body_record<T>& o = state.bodies[other];
+      if (o.sensor) return;
       // Fast bodies meet the world; bullets meet moving bodies too, but
       // not each other (each is already swept).
       if (o.body.type == body_type::dynamic && (!r.bullet || o.bullet)) return;
@@ -21509,8 +21734,9 @@ struct continuous_collision {
 // ---- end impulse/world/detail/continuous.hpp ----
 // ---- begin impulse/world/detail/debug_drawing.hpp ----
 // impulse/world/detail/debug_drawing.hpp — a world drawn through a debug_drawer
-// (debug_draw.hpp): bodies' boxes, contact points, normals, forces and
-// velocities, as world::draw's flags ask.
+// (debug_draw.hpp): shapes as wireframes, joints, bodies' boxes, contact
+// points, normals, forces and velocities, as world::draw's flags ask.
+
 
 
 namespace impulse::detail {
@@ -21529,17 +21755,140 @@ void draw_box(D& d, const aabb<T>& box, const debug_color& color) {
 }
 
 /// Grey static bodies, blue kinematic ones, green awake and dark green
-/// sleeping dynamic ones.
+/// sleeping dynamic ones; sensors yellow.
 template <scalar_type T>
 [[nodiscard]] debug_color color_of(const body_record<T>& r) noexcept {
+  if (r.sensor) return {1, 0.9f, 0.2f};
   if (r.body.type == body_type::static_body) return {0.5f, 0.5f, 0.5f};
   if (r.body.type == body_type::kinematic) return {0.5f, 0.5f, 1};
   return r.awake ? debug_color{0.3f, 1, 0.3f} : debug_color{0.2f, 0.4f, 0.2f};
 }
 
+/// Segments a circle is drawn with.
+inline constexpr int circle_segments = 16;
+
+/// An arc about `center` from `from` (a radius vector) turning about the
+/// unit `axis` by `angle`, in circle_segments·angle/2π segments (at least 1).
+template <scalar_type T, class D>
+void draw_arc(D& d, const vec3<T>& center, const vec3<T>& axis, const vec3<T>& from, T angle, const debug_color& color) {
+  const int n = std::max(1, int(std::ceil(std::abs(angle) / (T(2) * std::numbers::pi_v<T>) * T(circle_segments))));
+  vec3<T> last = center + from;
+  for (int k = 1; k <= n; ++k) {
+    const vec3<T> next = center + rotate(quat<T>::from_axis_angle(axis, angle * T(k) / T(n)), from);
+    d.line(last, next, color);
+    last = next;
+  }
+}
+
+template <scalar_type T, class D>
+void draw_shape(D& d, const sphere<T>& s, const transform<T>& pose, const debug_color& color) {
+  const vec3<T> c = pose.position;
+  for (const vec3<T>& axis : {vec3<T>{1, 0, 0}, vec3<T>{0, 1, 0}, vec3<T>{0, 0, 1}}) {
+    const vec3<T> a = rotate(pose.rotation, axis);
+    const vec3<T> across = rotate(pose.rotation, vec3<T>{axis.z, axis.x, axis.y}) * s.radius;
+    draw_arc(d, c, a, across, T(2) * std::numbers::pi_v<T>, color);
+  }
+}
+
+template <scalar_type T, class D>
+void draw_shape(D& d, const box<T>& b, const transform<T>& pose, const debug_color& color) {
+  const vec3<T>& h = b.half_extents;
+  vec3<T> c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] = apply(pose, vec3<T>{(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z});
+  for (int i = 0; i < 8; ++i)
+    for (const int bit : {1, 2, 4})
+      if ((i & bit) == 0) d.line(c[i], c[i | bit], color);
+}
+
+template <scalar_type T, class D>
+void draw_shape(D& d, const capsule<T>& s, const transform<T>& pose, const debug_color& color) {
+  const vec3<T> axis = rotate(pose.rotation, vec3<T>{0, 1, 0});
+  const vec3<T> x = rotate(pose.rotation, vec3<T>{s.radius, 0, 0}), z = rotate(pose.rotation, vec3<T>{0, 0, s.radius});
+  const vec3<T> top = pose.position + axis * s.half_height, bottom = pose.position - axis * s.half_height;
+  const T pi = std::numbers::pi_v<T>;
+  for (const vec3<T>& end : {top, bottom}) draw_arc(d, end, axis, x, T(2) * pi, color);
+  for (const vec3<T>& side : {x, z, x * T(-1), z * T(-1)}) d.line(bottom + side, top + side, color);
+  // Each cap's two half circles over its end, across x and across z.
+  const vec3<T> ax = normalize(cross(x, axis)), az = normalize(cross(z, axis));
+  draw_arc(d, top, ax, x, pi, color);
+  draw_arc(d, top, az, z, pi, color);
+  draw_arc(d, bottom, ax, x, -pi, color);
+  draw_arc(d, bottom, az, z, -pi, color);
+}
+
+template <scalar_type T, class D>
+void draw_shape(D& d, const convex_hull<T>& h, const transform<T>& pose, const debug_color& color) {
+  const std::span<const vec3<T>> v = h.vertices();
+  for (const hull_edge& e : h.edges()) d.line(apply(pose, v[e.a]), apply(pose, v[e.b]), color);
+}
+
+template <scalar_type T, class D>
+void draw_shape(D& d, const triangle_mesh<T>& m, const transform<T>& pose, const debug_color& color) {
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    vec3<T> a, b, c;
+    m.triangle(t, a, b, c);
+    a = apply(pose, a), b = apply(pose, b), c = apply(pose, c);
+    d.line(a, b, color);
+    d.line(b, c, color);
+    d.line(c, a, color);
+  }
+}
+
+/// A plane: a square 10 m across about the point nearest the origin, and
+/// its normal.
+template <scalar_type T, class D>
+void draw_shape(D& d, const plane<T>& p, const transform<T>& pose, const debug_color& color) {
+  const vec3<T> n = rotate(pose.rotation, p.normal);
+  const vec3<T> o = apply(pose, p.normal * -p.offset);
+  const vec3<T> helper = std::abs(n.x) < T(0.9) ? vec3<T>{1, 0, 0} : vec3<T>{0, 1, 0};
+  const vec3<T> u = normalize(cross(n, helper)) * T(5), w = cross(n, u);
+  const vec3<T> c[4] = {o + u + w, o - u + w, o - u - w, o + u - w};
+  for (int i = 0; i < 4; ++i) d.line(c[i], c[(i + 1) % 4], color);
+  d.arrow(o, o + n, color);
+}
+
+/// A joint's anchors, its bodies' lever lines, its axis and its limits.
+template <scalar_type T, class D>
+void draw_joint(D& d, const joint_record<T>& j, const rigid_body<T>& a, const rigid_body<T>& b) {
+  const debug_color lever{0.8f, 0.8f, 0.8f}, anchor{1, 0.4f, 1}, axis_color{0.3f, 0.9f, 1}, limit{1, 0.3f, 0.3f};
+  const joint_constraint<T>& c = j.constraint;
+  const vec3<T> pa = a.position + rotate(a.orientation, c.local_anchor_a);
+  const vec3<T> pb = b.position + rotate(b.orientation, c.local_anchor_b);
+  d.line(a.position, pa, lever);
+  d.line(b.position, pb, lever);
+  d.point(pa, anchor);
+  d.point(pb, anchor);
+  if (j.def.type == joint_type::distance) d.line(pa, pb, anchor);
+  if (j.def.type != joint_type::hinge && j.def.type != joint_type::slider) return;
+  const vec3<T> axis = rotate(a.orientation, c.local_axis_a);
+  d.arrow(pa, pa + axis * T(0.3), axis_color);
+  if (!j.def.enable_limit) return;
+  if (j.def.type == joint_type::slider) {
+    d.line(pa + axis * j.def.lower, pa + axis * j.def.upper, limit);
+    return;
+  }
+  // A hinge's limits: the arc its angle may sweep, 0.2 m out, from the
+  // direction B's anchor had from the axis at creation (or any across it).
+  const vec3<T> helper = std::abs(axis.x) < T(0.9) ? vec3<T>{1, 0, 0} : vec3<T>{0, 1, 0};
+  const vec3<T> across = normalize(cross(axis, helper)) * T(0.2);
+  draw_arc(d, pa, axis, rotate(quat<T>::from_axis_angle(axis, j.def.lower), across), j.def.upper - j.def.lower, limit);
+}
+
 template <class Config, class D>
 void draw_world(const world_state<Config>& state, D& d, const debug_draw_flags& flags) {
   using T = typename Config::scalar;
+  if (flags.shapes)
+    for (const body_record<T>& r : state.bodies.values()) {
+      const transform<T> pose = shape_pose_of(r);
+      const debug_color color = color_of(r);
+      state.shape_store.visit(r.shape, [&](const auto& s) {
+        if constexpr (requires { draw_shape(d, s, pose, color); }) draw_shape(d, s, pose, color);
+      });
+    }
+  if (flags.joints)
+    for (const joint_record<T>& j : state.joints.values())
+      if (!j.broken) draw_joint(d, j, state.bodies[j.a].body, state.bodies[j.b].body);
   if (flags.aabbs)
     for (const body_record<T>& r : state.bodies.values()) draw_box(d, state.bounds_of(r), color_of(r));
   for (const contact_record<T>& c : state.contacts) {
@@ -21925,7 +22274,9 @@ struct island_update {
       const std::uint32_t i = state.awake_bodies[p];
       body_record<T>& r = bodies[i];
       const std::uint32_t root = scratch.islands.find(p);
-      if (r.body.type != body_type::dynamic || scratch.island_timer[root] < s.sleep_time) continue;
+      if (r.body.type != body_type::dynamic) continue;
+      if (root == p) ++state.counts.islands;
+      if (scratch.island_timer[root] < s.sleep_time) continue;
       std::uint32_t& set = scratch.island_set[root];
       if (set == no_sleep_set) set = new_sleep_set();
       put_to_sleep(r, state.bodies.ids()[i], set);
@@ -22034,6 +22385,229 @@ struct island_update {
 
 }  // namespace impulse::detail
 // ---- end impulse/world/detail/islands.hpp ----
+// ---- begin impulse/world/detail/sensors.hpp ----
+// impulse/world/detail/sensors.hpp — the step's last collision stage: what
+// each sensor body overlaps at the end of the step, and the bodies that
+// came in or went out since the last, as events.
+//
+// A sensor makes no contacts (contact_update.hpp never pairs it), so it
+// costs the solver nothing. Each step it asks the broad phase for the
+// bodies whose boxes meet its shape's box, and tests each one its filters
+// let through (world_state::may_collide) with the pair test at no margin:
+// the two overlap when a point of it is at depth zero or more. Every body
+// type counts, asleep or awake; another sensor does not.
+//
+// The sensors are tested across the world's workers, each writing only its
+// own sensor's list; the events are then found on the calling thread, the
+// sensors in the order they were made and each list ascending by body
+// index. So the events are the same for any number of workers.
+//
+// The broad phase's boxes cover each body's motion over the step, except
+// one that went farther than the solver's max_speculative_distance: its
+// overlap with a sensor is then found a step late.
+
+
+
+namespace impulse::detail {
+
+/// Whether two shapes (the dispatcher's references) at their poses overlap
+/// or touch: their pair test at no margin has a point at depth zero or
+/// more. A sensor's test, and world::shape_overlap's.
+template <class Dispatcher, scalar_type T>
+[[nodiscard]] bool shapes_overlap(const typename Dispatcher::shape_ref& a, const transform<T>& pose_a,
+                                  const typename Dispatcher::shape_ref& b, const transform<T>& pose_b) {
+  std::array<contact_manifold<T>, max_manifolds> found;
+  const std::size_t n =
+      Dispatcher::collide(a, pose_a, b, pose_b, T(0), std::span<contact_manifold<T>>(found.data(), found.size()));
+  for (std::size_t m = 0; m < n; ++m)
+    for (const contact_point<T>& p : found[m].contacts())
+      if (p.depth >= T(0)) return true;
+  return false;
+}
+
+template <class Config>
+struct sensor_update {
+  using T = typename Config::scalar;
+  using dispatcher = typename world_state<Config>::dispatcher;
+  /// Sensors a worker takes at a time: a query and a few pair tests each.
+  static constexpr std::uint32_t min_sensors_per_range = 8;
+
+  world_state<Config>& state;
+  step_scratch<Config>& scratch;
+
+  void run() {
+    std::vector<sensor_record>& sensors = state.sensors;
+    if (sensors.empty()) return;
+    std::vector<std::vector<body_id>>& next = scratch.sensor_next;
+    if (next.size() < sensors.size()) next.resize(sensors.size());
+    auto gather = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) find_inside(sensors[k].sensor, next[k]);
+    };
+    parallel_for(scratch.tasks, std::uint32_t(sensors.size()), min_sensors_per_range, gather);
+    for (std::size_t k = 0; k < sensors.size(); ++k) {
+      report(sensors[k], next[k]);
+      sensors[k].inside.swap(next[k]);
+    }
+  }
+
+ private:
+  /// The bodies the sensor's shape overlaps, ascending by index.
+  void find_inside(body_id sensor, std::vector<body_id>& inside) const {
+    inside.clear();
+    const body_record<T>& rs = state.bodies[sensor];
+    const transform<T> pose = shape_pose_of(rs);
+    state.broad.query(state.bounds_of(rs), [&](proxy_id proxy) {
+      const body_id other = state.unpack(state.broad.user_data(proxy));
+      if (other == sensor) return;
+      const body_record<T>& ro = state.bodies[other];
+      if (ro.sensor || !state.may_collide(sensor, other, scratch.pair_rule)) return;
+      if (shapes_overlap<dispatcher>(state.shape_ref_of(rs), pose, state.shape_ref_of(ro), shape_pose_of(ro)))
+        inside.push_back(other);
+    });
+    std::ranges::sort(inside, {}, &body_id::index);
+  }
+
+  /// Events for the bodies in one list and not the other (both ascending).
+  void report(const sensor_record& was, const std::vector<body_id>& now) const {
+    std::size_t i = 0, j = 0;
+    const std::vector<body_id>& before = was.inside;
+    while (i < before.size() || j < now.size()) {
+      if (j == now.size() || (i < before.size() && before[i].index < now[j].index)) {
+        state.sensor_ended.push_back({was.sensor, before[i++]});
+      } else if (i == before.size() || now[j].index < before[i].index) {
+        state.sensor_begun.push_back({was.sensor, now[j++]});
+      } else {
+        // The same slot: the same body, or one made in a destroyed one's
+        // place (world::destroy_body ends the destroyed one's overlaps).
+        if (before[i] != now[j]) {
+          state.sensor_ended.push_back({was.sensor, before[i]});
+          state.sensor_begun.push_back({was.sensor, now[j]});
+        }
+        ++i, ++j;
+      }
+    }
+  }
+};
+
+}  // namespace impulse::detail
+// ---- end impulse/world/detail/sensors.hpp ----
+// ---- begin impulse/world/detail/shape_cast.hpp ----
+// impulse/world/detail/shape_cast.hpp — one convex shape swept along a
+// straight line against one body's shape: where along the line they first
+// touch, the point and the target's surface normal there. world::shape_cast
+// takes the nearest over the bodies the broad phase finds.
+//
+// A convex target is met by conservative advancement (narrowphase/
+// time_of_impact.hpp) between a quarter and a half of `cast_tolerance`
+// short of touching, never past, the point on the target's surface;
+// a triangle mesh triangle by triangle (each a convex shape of three
+// corners); a plane in closed form. A shape that starts overlapping its
+// target hits it at fraction 0, with the normal of least penetration
+// (narrowphase/epa.hpp; a plane's own normal), unless it moves out along
+// that normal; one that starts within the tolerance likewise.
+
+
+
+namespace impulse::detail {
+
+/// Where a cast shape first touches a target: the fraction of the
+/// translation, the touching point and the target's outward normal there.
+template <scalar_type T>
+struct cast_contact {
+  T fraction = T(1);
+  vec3<T> point{};
+  vec3<T> normal{};
+};
+
+/// m: how close to touching a cast ends, short of it.
+template <scalar_type T>
+inline constexpr T cast_tolerance = T(0.0005);
+
+template <class S, class T>
+concept convex_shape = requires(const S& s, const vec3<T>& d) { s.support(d); };
+
+/// `shape` at `pose` moving by `translation` against the convex `target`
+/// at rest at `target_pose`, within max_fraction.
+template <class S, class Target, scalar_type T>
+std::optional<cast_contact<T>> cast_convex(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                           const Target& target, const transform<T>& target_pose, T max_fraction) {
+  // Stopped a little short of touching, where GJK still has two points
+  // apart to give (at touching it has none).
+  narrowphase::toi_options<T> options;
+  options.target = cast_tolerance<T> / T(2);
+  options.tolerance = cast_tolerance<T> / T(2);
+  const narrowphase::sweep<T> path{pose, {pose.position + translation * max_fraction, pose.rotation}, {}};
+  const narrowphase::sweep<T> still{target_pose, target_pose, {}};
+  const narrowphase::toi_result<T> hit = narrowphase::time_of_impact(shape, path, target, still, options);
+  if (hit.state == narrowphase::toi_state::overlapping) {
+    const narrowphase::epa_result<T> deep = narrowphase::epa_penetration(shape, pose, target, target_pose);
+    if (!(dot(translation, deep.normal) > T(0))) return std::nullopt;  // on its way out
+    return cast_contact<T>{T(0), deep.on_b, -deep.normal};
+  }
+  if (hit.state == narrowphase::toi_state::separated) return std::nullopt;
+  // Within the tolerance at the start, the gap along the normal only opens
+  // if the shape does not move into it: nothing to meet (a character
+  // walking along a wall it stands a skin from).
+  // (Into it by a thousandth of the move or more: rounding tilts the
+  // normal of a shape moved exactly along a surface by about an ulp.)
+  if (hit.t == T(0) && !(dot(translation, hit.normal) > T(1e-3) * length(translation))) return std::nullopt;
+  // A hit, or out of iterations at the last time known to be short of one.
+  return cast_contact<T>{hit.t * max_fraction, hit.on_b, -hit.normal};
+}
+
+/// Against a plane's half-space: the shape's deepest point along the
+/// plane's normal reaches the surface.
+template <class S, scalar_type T>
+std::optional<cast_contact<T>> cast_plane(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                          const plane<T>& target, const transform<T>& target_pose, T max_fraction) {
+  const vec3<T> n = rotate(target_pose.rotation, target.normal);
+  const vec3<T> on_surface = apply(target_pose, target.normal * -target.offset);
+  const vec3<T> deepest = apply(pose, shape.support(inverse_rotate(pose.rotation, -n)));
+  const T gap = dot(n, deepest - on_surface);
+  const T closing = -dot(n, translation);
+  if (gap <= T(0)) {
+    if (!(closing > T(0))) return std::nullopt;  // on its way out
+    return cast_contact<T>{T(0), deepest - n * gap, n};
+  }
+  if (!(closing > T(0)) || gap > closing * max_fraction) return std::nullopt;
+  const T fraction = gap / closing;
+  return cast_contact<T>{fraction, deepest + translation * fraction, n};
+}
+
+/// Against each triangle of a mesh near the swept shape; the nearest.
+template <class S, scalar_type T>
+std::optional<cast_contact<T>> cast_mesh(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                         const triangle_mesh<T>& mesh, const transform<T>& mesh_pose, T max_fraction) {
+  const aabb<T> swept = merge(shape.world_aabb(pose),
+                              shape.world_aabb({pose.position + translation * max_fraction, pose.rotation}));
+  std::optional<cast_contact<T>> best;
+  T reach = max_fraction;
+  mesh.for_each_overlapping(transform_aabb(swept, inverse(mesh_pose)), [&](std::size_t t) {
+    narrowphase::detail::convex_triangle<T> triangle;
+    mesh.triangle(t, triangle.v[0], triangle.v[1], triangle.v[2]);
+    const std::optional<cast_contact<T>> hit = cast_convex(shape, pose, translation, triangle, mesh_pose, reach);
+    if (hit && (!best || hit->fraction < best->fraction)) best = hit, reach = hit->fraction;
+  });
+  return best;
+}
+
+/// The cast against any target shape.
+template <class S, class Target, scalar_type T>
+std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                          const Target& target, const transform<T>& target_pose, T max_fraction) {
+  if constexpr (std::is_same_v<Target, plane<T>>) {
+    return cast_plane(shape, pose, translation, target, target_pose, max_fraction);
+  } else if constexpr (std::is_same_v<Target, triangle_mesh<T>>) {
+    return cast_mesh(shape, pose, translation, target, target_pose, max_fraction);
+  } else if constexpr (convex_shape<Target, T>) {
+    return cast_convex(shape, pose, translation, target, target_pose, max_fraction);
+  } else {
+    return std::nullopt;  // a user's shape without a support function: not cast against
+  }
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/world/detail/shape_cast.hpp ----
 // ---- begin impulse/world/detail/solve.hpp ----
 // impulse/world/detail/solve.hpp — the step's solve: the awake bodies and their
 // touching contacts and joints handed to the config's solver
@@ -22114,13 +22688,19 @@ struct body_solve {
     for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
     scratch.sources.clear();
     scratch.sources.reserve(manifold_count);
+    const pre_solve_hook<T>& hook = scratch.pre_solve;
+    scratch.source_settings.clear();
+    if (hook.call != nullptr) scratch.source_settings.reserve(manifold_count);
     for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
       if (!is_solved(state.bodies[c.a]) && !is_solved(state.bodies[c.b])) continue;
       const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
       if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
-      for (int m = 0; m < c.manifold_count; ++m) scratch.sources.push_back({k, std::uint32_t(m)});
+      for (int m = 0; m < c.manifold_count; ++m) {
+        if (hook.call != nullptr && !offer(c, m, hook)) continue;
+        scratch.sources.push_back({k, std::uint32_t(m)});
+      }
     }
     // Not cleared: every constraint is written whole below, and a vector
     // that keeps its size between steps is not zeroed twice.
@@ -22141,6 +22721,11 @@ struct body_solve {
         cc.normal = manifold.normal;
         cc.friction = c.friction;
         cc.restitution = c.restitution;
+        vec3<T> surface{};  // the relative velocity friction holds the patch at, from a pre-solve hook
+        if (!scratch.source_settings.empty()) {
+          const contact_settings<T>& set = scratch.source_settings[j];
+          cc.friction = set.friction, cc.restitution = set.restitution, surface = set.surface_velocity;
+        }
         cc.count = manifold.count;
         // Friction acts at the middle of the patch, with the mean distance
         // of the points from it, times 2/3, as the lever of its twist: the
@@ -22161,7 +22746,8 @@ struct body_solve {
         cc.anchor_a = middle - half_gap - ra.body.position;
         cc.anchor_b = middle + half_gap - rb.body.position;
         // The slip at the middle of the patch chooses the tangents.
-        const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
+        const vec3<T> slip =
+            relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b) - surface;
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
         // The positions move each center in a straight line while each body
         // turns exactly, so two points that move together at the velocity
@@ -22175,8 +22761,8 @@ struct body_solve {
         const solver_body<T>& sb = scratch.solver_bodies[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
-        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
-        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
+        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2)) + dot(surface, cc.tangent1);
+        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2)) + dot(surface, cc.tangent2);
         const manifold_impulse<T>& carried = state.slot_of(c, m).impulse;
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
@@ -22254,6 +22840,7 @@ struct body_solve {
     scratch.profile.solve = lap.lap_ms();
     if constexpr (requires { scratch.solver.solved_groups(); })
       state.counts.solver_groups = scratch.solver.solved_groups();
+    if constexpr (requires { scratch.solver.color_count(); }) state.counts.colors = scratch.solver.color_count();
     keep_joint_impulses(dt);
     if (!handed) {
       auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
@@ -22268,9 +22855,46 @@ struct body_solve {
     scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
     scratch.profile.integrate = lap.lap_ms();
+    if (const post_solve_hook<T>& after = scratch.post_solve; after.call != nullptr) {
+      // A solver in parts keeps the last part's impulses: scaled to the
+      // step, as a force held over it (world::joint_force does the same).
+      const T scale = dt / solver_type::impulse_step(state.settings.solver, dt);
+      for (const auto& [k, m] : scratch.sources) {
+        const contact_record<T>& c = state.contacts[k];
+        const manifold_slot<T>& slot = state.slot_of(c, int(m));
+        manifold_impulse<T> step_impulse = slot.impulse;
+        for (T& n : step_impulse.normal) n *= scale;
+        step_impulse.friction = step_impulse.friction * scale;
+        step_impulse.twist *= scale;
+        call_hook(scratch.hook_error, [&] { after.call(c.a, c.b, slot.manifold, step_impulse, after.context); });
+      }
+    }
   }
 
  private:
+  /// Offers manifold m of record c to the pre-solve hook: whether it is
+  /// solved, and if so its settings in scratch.source_settings. A
+  /// manifold switched off loses its impulses; settings out of range are
+  /// replaced by the pair's own, and the first such pair is kept for the
+  /// step to report.
+  bool offer(const contact_record<T>& c, int m, const pre_solve_hook<T>& hook) {
+    const contact_settings<T> own{true, c.friction, c.restitution, {}};
+    contact_settings<T> set = own;
+    manifold_slot<T>& slot = state.slot_of(c, m);
+    call_hook(scratch.hook_error, [&] { hook.call(c.a, c.b, slot.manifold, set, hook.context); });
+    if (scratch.hook_error) set = own;
+    if (!valid_settings(set)) {
+      if (scratch.refused_settings.is_none()) scratch.refused_settings = c.a;
+      set = own;
+    }
+    if (!set.enabled) {
+      slot.impulse = manifold_impulse<T>{};
+      return false;
+    }
+    scratch.source_settings.push_back(set);
+    return true;
+  }
+
   /// Solver body i from the body record r (held, quietly, if its loads
   /// would take it out of finite numbers or past the speed limits).
   void gather_body(const body_record<T>& r, std::size_t i, const vec3<T>& gravity_step, T dt) {
@@ -22731,6 +23355,46 @@ class world {
     state_.wake(state_.bodies[id]);
   }
 
+  // ---- filtering (collision_filter.hpp; world_bodies.hpp) ----
+
+  [[nodiscard]] const collision_filter& filter(body_id id) const {
+    require(id, "world::filter: no such body");
+    return state_.bodies[id].filter;
+  }
+  /// Gives the body a new filter and wakes it. Its contacts with the
+  /// bodies the filter now keeps it from end at once (with end events for
+  /// those touching, and those bodies wake); the pairs it now lets through
+  /// make contact from the next step.
+  void set_filter(body_id id, const collision_filter& filter);
+  /// The world's rule for the pairs the filters let through (pair_filter);
+  /// a default pair_filter removes it. Contacts the new rule refuses end at
+  /// once, as set_filter's do. Kept apart from the state: a snapshot
+  /// neither saves nor restores it.
+  void set_pair_filter(const pair_filter& rule);
+  [[nodiscard]] const pair_filter& pair_rule() const noexcept { return scratch_.pair_rule; }
+  /// Asks the filters and the rule again about the body's pairs, after the
+  /// rule's answer for them changed; as set_filter does with the same filter.
+  void refilter(body_id id);
+
+  // ---- contact hooks (contact_hooks.hpp) ----
+
+  /// Before each solve, the hook sees each touching manifold and may switch
+  /// it off or change its friction, restitution and surface velocity for
+  /// the step: one-way platforms, conveyor belts. A default hook removes
+  /// it. Kept apart from the state, as the task system.
+  void set_pre_solve(const pre_solve_hook<T>& hook) {
+    refuse_in_callback("world::set_pre_solve: called from inside a world callback");
+    scratch_.pre_solve = hook;
+  }
+  /// After each solve, the hook sees each solved manifold with the
+  /// impulses it applied over the step.
+  void set_post_solve(const post_solve_hook<T>& hook) {
+    refuse_in_callback("world::set_post_solve: called from inside a world callback");
+    scratch_.post_solve = hook;
+  }
+  [[nodiscard]] const pre_solve_hook<T>& pre_solve() const noexcept { return scratch_.pre_solve; }
+  [[nodiscard]] const post_solve_hook<T>& post_solve() const noexcept { return scratch_.post_solve; }
+
   // ---- joints ----
 
   /// Joins two bodies as `def` says (joint.hpp). The anchors and axis are
@@ -22855,6 +23519,18 @@ class world {
   [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
   /// How long the last step took in each stage (step_profile).
   [[nodiscard]] const step_profile& last_step_profile() const noexcept { return scratch_.profile; }
+  /// The last step's times and counts, and what the world holds: worked
+  /// out when asked (a pass over the contact records), not by the step.
+  [[nodiscard]] world_profile profile() const {
+    world_profile p{scratch_.profile, state_.counts};
+    p.bodies = state_.bodies.size();
+    if constexpr (collision) p.pairs = state_.broad.pairs().size();
+    p.contacts = state_.contacts.size();
+    p.touching = touching_pair_count();
+    p.joints = state_.joints.size();
+    p.sensors = state_.sensors.size();
+    return p;
+  }
 
   // ---- events and contacts ----
 
@@ -22882,6 +23558,25 @@ class world {
       f(c.a, c.b, std::span<const contact_manifold<T>>(manifolds.data(), std::size_t(count)));
     }
   }
+  /// Bodies that began overlapping a sensor in the last step.
+  [[nodiscard]] std::span<const sensor_event> sensor_begin_events() const noexcept { return state_.sensor_begun; }
+  /// Bodies that stopped overlapping a sensor in the last step, or since:
+  /// a body destroyed inside a sensor, or a sensor destroyed with bodies
+  /// inside.
+  [[nodiscard]] std::span<const sensor_event> sensor_end_events() const noexcept { return state_.sensor_ended; }
+  /// The bodies the sensor overlapped at the end of the last step,
+  /// ascending by index. Refused: a body that is not there or not a sensor.
+  [[nodiscard]] std::span<const body_id> sensor_overlaps(body_id sensor) const {
+    require(sensor, "world::sensor_overlaps: no such body");
+    for (const detail::sensor_record& s : state_.sensors)
+      if (s.sensor == sensor) return s.inside;
+    detail::report_error(error_code::invalid_parameter, "world::sensor_overlaps: the body is not a sensor",
+                         sensor.index);
+  }
+  [[nodiscard]] bool is_sensor(body_id id) const {
+    require(id, "world::is_sensor: no such body");
+    return state_.bodies[id].sensor;
+  }
   /// Pairs whose boxes overlapped in the last step but got no contact
   /// because the world held world_settings::max_contact_pairs already: 0
   /// unless a scene heaps that many bodies together. They get their
@@ -22894,12 +23589,39 @@ class world {
 
   // ---- queries ----
 
-  /// The nearest body along the ray within max_fraction of its translation.
-  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1)) const;
+  /// The nearest body that `filter` sees along the ray, within
+  /// max_fraction of its translation.
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1),
+                                                         const query_filter& filter = {}) const;
 
-  /// f(body) for every body whose shape's bounding box overlaps `box`.
+  /// f(body) for every body that `filter` sees whose shape's bounding box
+  /// overlaps `box`.
   template <class F>
-  void overlap(const aabb<T>& box, F&& f) const;
+  void overlap(const aabb<T>& box, F&& f, const query_filter& filter = {}) const;
+
+  /// f(hit) for every body that `filter` sees along the ray, in no set
+  /// order; f returns the fraction to go on to: its hit's own to see only
+  /// nearer bodies from then on, 1 to see all, 0 to stop.
+  template <class F>
+  void ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter = {}) const;
+
+  /// The first body that `filter` sees which `shape` (a convex one: sphere,
+  /// capsule, box, hull), at `pose` and moved by `translation` without
+  /// turning, meets: the fraction of the translation it can move, the
+  /// touching point, and the body's outward normal there. It stops within
+  /// half a millimetre short of touching, never past; a shape that starts
+  /// overlapping a body meets it at fraction 0 (world_queries.hpp).
+  /// Refused: a pose or translation that is not finite, a rotation that
+  /// is not unit.
+  template <class Shape>
+  [[nodiscard]] std::optional<world_ray_hit<T>> shape_cast(const Shape& shape, const transform<T>& pose,
+                                                           const vec3<T>& translation,
+                                                           const query_filter& filter = {}) const;
+
+  /// f(body) for every body that `filter` sees whose shape overlaps
+  /// `shape` (one of the config's shapes) at `pose`: touching counts.
+  template <class Shape, class F>
+  void shape_overlap(const Shape& shape, const transform<T>& pose, F&& f, const query_filter& filter = {}) const;
 
   // ---- drawing ----
 
@@ -22972,6 +23694,14 @@ class world {
   void expire_targets();
 
   void end_contacts_between(body_id a, body_id b);
+  /// Where the ray meets the body within reach, if `filter` sees it.
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_hit_of(body_id id, const ray<T>& r, T reach,
+                                                            const query_filter& filter) const;
+  /// A body about to go: its overlaps with sensors, or as a sensor, end.
+  void end_sensor_overlaps(body_id id);
+  /// Ends the contacts of `only` (of every body if none) that may_collide
+  /// now refuses, waking their bodies, and has the next step pair anew.
+  void end_filtered_contacts(body_id only);
   /// The step's start (checks dt, clears the last step's events) and its
   /// end (the clock, and the error naming a held body).
   void begin_step(T dt);
@@ -23032,6 +23762,8 @@ void world<Config>::step(T dt) {
   p = step_profile{};
   begin_step(dt);
   if constexpr (collision) {
+    // The user's hooks and pair rule may read the world, and not change it.
+    const in_callback scope(*this);
     detail::contact_update<Config>{state_, scratch_}.run(dt);  // broad and narrow
     lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
@@ -23040,6 +23772,8 @@ void world<Config>::step(T dt) {
     lap.lap_ms();
     if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
     p.continuous = lap.lap_ms();
+    detail::sensor_update<Config>{state_, scratch_}.run();
+    p.sensors = lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
     p.sleep += lap.lap_ms();
   } else {
@@ -23059,8 +23793,12 @@ void world<Config>::begin_step(T dt) {
     detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and at most max_dt (1 s)");
   state_.begun.clear();
   state_.ended.clear();
+  state_.sensor_begun.clear();
+  state_.sensor_ended.clear();
   state_.broken.clear();
   state_.held.clear();
+  scratch_.refused_settings = body_id{};
+  scratch_.hook_error = nullptr;
   expire_targets();
 }
 
@@ -23075,6 +23813,17 @@ void world<Config>::finish_step(T dt) {
                          "max_angular_speed, or beyond max_coordinate); it was held where it was, its contacts and joints left out of the "
                          "step, and the other bodies stepped on (held_bodies() lists every one)",
                          state_.held.front().index);
+  if (scratch_.hook_error) {
+    const std::exception_ptr caught = scratch_.hook_error;
+    scratch_.hook_error = nullptr;
+    std::rethrow_exception(caught);
+  }
+  if (!scratch_.refused_settings.is_none())
+    detail::report_error(error_code::invalid_parameter,
+                         "world::step: the pre-solve hook gave a contact a friction that is negative or not finite, a "
+                         "restitution outside [0, 1] or a surface velocity that is not finite; the pair's own settings "
+                         "were used and the step completed",
+                         scratch_.refused_settings.index);
 }
 
 template <class Config>
@@ -23165,6 +23914,10 @@ auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, con
   record.center = center;
   record.awake = def.awake || def.type != body_type::dynamic;
   record.user_data = def.user_data;
+  record.filter = def.filter;
+  if (def.sensor && !collision)
+    detail::report_error(error_code::invalid_parameter, "world::create_body: a world without collision has no sensors");
+  record.sensor = def.sensor;
   record.bullet = def.bullet;
   record.previous = body.pose();
   return record;
@@ -23175,6 +23928,7 @@ body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
   if constexpr (collision) r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  if (r.sensor) state_.sensors.push_back({id, {}});
   state_.awake_stale = true;
   if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
@@ -23204,6 +23958,7 @@ void world<Config>::destroy_body(body_id id) {
     state_.wake(state_.bodies[other]);
     return true;
   });
+  end_sensor_overlaps(id);
   body_record& r = state_.bodies[id];
   if constexpr (collision) state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
@@ -23228,6 +23983,62 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
   r = moved;
   if constexpr (collision) state_.broad.move(r.proxy, box);
   state_.wake(r);
+}
+
+template <class Config>
+void world<Config>::end_sensor_overlaps(body_id id) {
+  std::erase_if(state_.sensors, [&](detail::sensor_record& s) {
+    if (s.sensor == id) {
+      for (const body_id inside : s.inside) state_.sensor_ended.push_back({id, inside});
+      return true;
+    }
+    const auto at = std::ranges::find(s.inside, id);
+    if (at != s.inside.end()) {
+      s.inside.erase(at);
+      state_.sensor_ended.push_back({s.sensor, id});
+    }
+    return false;
+  });
+}
+
+template <class Config>
+void world<Config>::set_filter(body_id id, const collision_filter& filter) {
+  refuse_in_callback("world::set_filter: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  require(id, "world::set_filter: no such body");
+  body_record& r = state_.bodies[id];
+  r.filter = filter;
+  state_.wake(r);
+  end_filtered_contacts(id);
+}
+
+template <class Config>
+void world<Config>::refilter(body_id id) {
+  set_filter(id, filter(id));
+}
+
+template <class Config>
+void world<Config>::set_pair_filter(const pair_filter& rule) {
+  refuse_in_callback("world::set_pair_filter: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  scratch_.pair_rule = rule;
+  end_filtered_contacts(body_id{});
+}
+
+template <class Config>
+void world<Config>::end_filtered_contacts(body_id only) {
+  if constexpr (collision) {
+    std::erase_if(state_.contacts, [&](const contact_record& c) {
+      if (!only.is_none() && c.a != only && c.b != only) return false;
+      if (state_.may_collide(c.a, c.b, scratch_.pair_rule)) return false;
+      state_.end_contact(c);
+      state_.wake(state_.bodies[c.a]);
+      state_.wake(state_.bodies[c.b]);
+      return true;
+    });
+    state_.pairs_stale = true;
+    state_.awake_stale = true;
+  }
 }
 
 template <class Config>
@@ -23518,18 +24329,13 @@ auto world<Config>::interpolated_pose(body_id id, T alpha) const -> transform<T>
 }
 
 template <class Config>
-auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
+auto world<Config>::ray_cast(const ray<T>& r, T max_fraction, const query_filter& filter) const
+    -> std::optional<world_ray_hit<T>> {
   std::optional<world_ray_hit<T>> best;
   T reach = max_fraction;
   const auto test = [&](body_id id) {
-    const body_record& rec = state_.bodies[id];
-    const transform<T> pose = detail::shape_pose_of(rec);
-    const narrowphase::ray_hit<T> hit =
-        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
-    if (hit.hit && hit.fraction <= reach) {
-      reach = hit.fraction;
-      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
-    }
+    const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
+    if (hit) reach = hit->fraction, best = hit;
     return reach;
   };
   if constexpr (collision) {
@@ -23543,18 +24349,116 @@ auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::opti
 
 template <class Config>
 template <class F>
-void world<Config>::overlap(const aabb<T>& box, F&& f) const {
+void world<Config>::overlap(const aabb<T>& box, F&& f, const query_filter& filter) const {
   if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
     detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
   const in_callback scope(*this);
   if constexpr (collision) {
     state_.broad.query(box, [&](proxy_id proxy) {
       const body_id id = state_.unpack(state_.broad.user_data(proxy));
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+      const body_record& rec = state_.bodies[id];
+      if (filter.sees(rec.filter, rec.sensor) && overlaps(state_.bounds_of(rec), box)) f(id);
     });
   } else {
+    for (const body_id id : state_.bodies.ids()) {
+      const body_record& rec = state_.bodies[id];
+      if (filter.sees(rec.filter, rec.sensor) && overlaps(state_.bounds_of(rec), box)) f(id);
+    }
+  }
+}
+
+template <class Config>
+auto world<Config>::ray_hit_of(body_id id, const ray<T>& r, T reach, const query_filter& filter) const
+    -> std::optional<world_ray_hit<T>> {
+  const body_record& rec = state_.bodies[id];
+  if (!filter.sees(rec.filter, rec.sensor)) return std::nullopt;
+  const transform<T> pose = detail::shape_pose_of(rec);
+  const narrowphase::ray_hit<T> hit =
+      state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
+  if (!hit.hit || hit.fraction > reach) return std::nullopt;
+  return world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
+}
+
+template <class Config>
+template <class F>
+void world<Config>::ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter) const {
+  if (!is_finite(r.origin) || !is_finite(r.translation))
+    detail::report_error(error_code::non_finite, "world::ray_cast_all: the ray is not finite");
+  const in_callback scope(*this);
+  T reach = T(1);
+  const auto test = [&](body_id id) {
+    const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
+    if (hit) reach = std::clamp(T(f(*hit)), T(0), reach);
+    return reach;
+  };
+  if constexpr (collision) {
+    state_.broad.ray_cast(r, T(1),
+                          [&](proxy_id proxy, T) { return test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
     for (const body_id id : state_.bodies.ids())
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+      if (test(id) <= T(0)) break;
+  }
+}
+
+template <class Config>
+template <class Shape>
+auto world<Config>::shape_cast(const Shape& shape, const transform<T>& pose, const vec3<T>& translation,
+                               const query_filter& filter) const -> std::optional<world_ray_hit<T>> {
+  static_assert(detail::convex_shape<Shape, T>,
+                "world::shape_cast: the cast shape must be convex (a sphere, capsule, box or hull)");
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  if (!is_finite(pose.position) || !is_finite(pose.rotation) || !is_finite(translation))
+    detail::report_error(error_code::non_finite, "world::shape_cast: the pose or translation is not finite");
+  if (!is_normalized(pose.rotation))
+    detail::report_error(error_code::not_normalized, "world::shape_cast: the rotation is not a unit quaternion");
+  std::optional<world_ray_hit<T>> best;
+  T reach = T(1);
+  const auto test = [&](body_id id) {
+    const body_record& rec = state_.bodies[id];
+    if (!filter.sees(rec.filter, rec.sensor)) return;
+    const transform<T> at = detail::shape_pose_of(rec);
+    const std::optional<detail::cast_contact<T>> hit = state_.shape_store.visit(rec.shape, [&](const auto& target) {
+      return detail::cast_shape(shape, pose, translation, target, at, reach);
+    });
+    if (hit && (!best || hit->fraction < reach)) {
+      reach = hit->fraction;
+      best = world_ray_hit<T>{id, hit->fraction, hit->point, hit->normal};
+    }
+  };
+  const aabb<T> swept = merge(shape.world_aabb(pose), shape.world_aabb({pose.position + translation, pose.rotation}));
+  if constexpr (collision) {
+    state_.broad.query(swept, [&](proxy_id proxy) { test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
+    for (const body_id id : state_.bodies.ids())
+      if (overlaps(state_.bounds_of(state_.bodies[id]), swept)) test(id);
+  }
+  return best;
+}
+
+template <class Config>
+template <class Shape, class F>
+void world<Config>::shape_overlap(const Shape& shape, const transform<T>& pose, F&& f,
+                                  const query_filter& filter) const {
+  using dispatcher = typename state_type::dispatcher;
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  if (!is_finite(pose.position) || !is_finite(pose.rotation))
+    detail::report_error(error_code::non_finite, "world::shape_overlap: the pose is not finite");
+  if (!is_normalized(pose.rotation))
+    detail::report_error(error_code::not_normalized, "world::shape_overlap: the rotation is not a unit quaternion");
+  const in_callback scope(*this);
+  const typename dispatcher::shape_ref probe = dispatcher::ref(shape);
+  const auto test = [&](body_id id) {
+    const body_record& rec = state_.bodies[id];
+    if (filter.sees(rec.filter, rec.sensor) &&
+        detail::shapes_overlap<dispatcher>(probe, pose, state_.shape_ref_of(rec), detail::shape_pose_of(rec)))
+      f(id);
+  };
+  const aabb<T> box = shape.world_aabb(pose);
+  if constexpr (collision) {
+    state_.broad.query(box, [&](proxy_id proxy) { test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
+    for (const body_id id : state_.bodies.ids())
+      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) test(id);
   }
 }
 

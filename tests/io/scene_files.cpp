@@ -123,7 +123,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(s.settings.solver.soft_step.substeps == 4);
   CHECK(s.settings.solver.soft_step.contact_hertz == 30);
   CHECK(s.settings.solver.sequential_impulse.exact_joint_trees);
-  CHECK(s.bodies.size() == 36);
+  CHECK(s.bodies.size() == 37);
   CHECK(std::holds_alternative<plane<double>>(*body("ground").shape));
   CHECK(std::get<triangle_mesh<double>>(*body("ramp").shape).triangle_count() == 2);
   CHECK(body("ball").def.material.restitution == 0.8);  // rubber
@@ -135,6 +135,10 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(std::get<convex_hull<double>>(*body("wedge").shape).vertex_count() == 6);
   CHECK(body("lift").def.type == body_type::kinematic);
   CHECK(body("bolt").def.bullet);
+  CHECK(body("post").def.filter == collision_filter{4, 3, -2});
+  CHECK(body("bolt").def.filter == collision_filter{});
+  CHECK(body("gate").def.sensor);
+  CHECK_FALSE(body("post").def.sensor);
   CHECK(length(body("wall[19]").def.pose.position - vec3<double>{4 * 0.41, 0.1 + 3 * 0.201, -3}) < 1e-12);
   CHECK(length(body("link[3]").def.pose.position - vec3<double>{0.25 + 1.5, 2, 3}) < 1e-12);  // its own -y is world +x
 
@@ -173,7 +177,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   // And it loads and runs: 120 steps of every joint, shape and kind.
   world<awake_double> w;
   const io::scene_ids ids = io::add_scene(w, s);
-  CHECK(w.body_count() == 36);
+  CHECK(w.body_count() == 37);
   CHECK(w.joint_count() == 8);
   CHECK(ids.joint("rope") == ids.joints[7]);
   for (int i = 0; i < 120; ++i) w.step(1.0 / 60);
@@ -223,6 +227,12 @@ TEST_CASE("each broken scene document is refused naming the JSON path and what w
        "/bodies/0/rotation/quaternion: expected a quaternion of non-zero length"},
       {head + R"("bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}}, {"name": "a", "shape": {"type": "sphere", "radius": 1}}]})",
        "/bodies/1/name: a second body named \"a\""},
+      {head + R"("bodies": [{"filter": {"group": 3000000000}, "shape": {"type": "sphere", "radius": 1}}]})",
+       "/bodies/0/filter/group: expected a whole number in [-2147483647, 2147483647]"},
+      {head + R"("bodies": [{"filter": {"mask": -1}, "shape": {"type": "sphere", "radius": 1}}]})",
+       "/bodies/0/filter/mask: expected a whole number in [0, 4294967295]"},
+      {head + R"("bodies": [{"filter": {"layer": 1}, "shape": {"type": "sphere", "radius": 1}}]})",
+       "/bodies/0/filter/layer: unknown key \"layer\""},
       {head + R"("bodies": [{"name": "a", "repeat": {"count": 1000000}, "shape": {"type": "sphere", "radius": 1}}]})",
        "/bodies/0/repeat/count: expected a whole number in [1, 100000]"},
       {head + R"("bodies": [{"name": "a", "repeat": {"count": [2, 2, 1]}, "shape": {"type": "sphere", "radius": 1}}]})",

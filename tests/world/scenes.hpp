@@ -34,6 +34,20 @@ struct soft_double_config : awake_double_config {
 template <class T>
 inline constexpr T step_dt = T(1) / T(60);
 
+/// check(world) in a world with sleeping off, then in one with it on:
+/// sleep can hide drift, and a case must hold either way.
+template <class Check>
+void with_sleeping_off_and_on(Check&& check) {
+  {
+    impulse::world<awake_config> w;
+    check(w);
+  }
+  {
+    impulse::world<sleeping_config> w;
+    check(w);
+  }
+}
+
 /// The standard ground: a static box of half-extents (100, 1, 100) whose
 /// top face is y = 0 (or, shifted, the plane through `origin`).
 template <class World>

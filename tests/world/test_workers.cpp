@@ -36,12 +36,17 @@ using ccd_world = world<ccd_config>;
 /// contact events of every step, their pairs in the order given (FNV-1a).
 struct outcome {
   std::uint64_t transforms = 0, events = 1469598103934665603ull;
-  std::size_t begun = 0, ended = 0;
+  std::size_t begun = 0, ended = 0, sensed = 0;
   bool operator==(const outcome&) const = default;
 
   void add(std::span<const contact_event> list, std::uint64_t kind) {
     for (const contact_event& e : list)
       for (const std::uint64_t word : {kind, std::uint64_t(e.a.index), std::uint64_t(e.b.index)})
+        events = (events ^ word) * 1099511628211ull;
+  }
+  void add(std::span<const sensor_event> list, std::uint64_t kind) {
+    for (const sensor_event& e : list)
+      for (const std::uint64_t word : {kind, std::uint64_t(e.sensor.index), std::uint64_t(e.visitor.index)})
         events = (events ^ word) * 1099511628211ull;
   }
 };
@@ -60,6 +65,9 @@ outcome run(const std::function<void(World&)>& build, int steps, const task_syst
     out.ended += w.contact_end_events().size();
     out.add(w.contact_begin_events(), 1);
     out.add(w.contact_end_events(), 2);
+    out.add(w.sensor_begin_events(), 3);
+    out.add(w.sensor_end_events(), 4);
+    out.sensed += w.sensor_begin_events().size();
   }
   out.transforms = impulse::test::transform_hash(w);
   return out;
@@ -305,6 +313,31 @@ TEST_CASE("a field of cubes falling asleep is bit-identical for 1, 2, 3 and 8 wo
   sleeping_world w;
   step_on_two_workers<sleeping_world>(w, add_field<sleeping_world>, 60);
   CHECK(w.awake_body_count() == 0);
+}
+
+TEST_CASE("sensors report the same events for 1, 2, 3 and 8 workers, over 90 steps") {
+  // 64 static sensor slabs, 1 m square and 0.2 m thick, at y = 2 on a
+  // 1.5 m grid; 400 balls dropped through them onto the ground.
+  const auto build = [](world_type& w) {
+    impulse::test::add_ground(w);
+    body_def<float> d;
+    d.type = body_type::static_body;
+    d.sensor = true;
+    for (int i = 0; i < 8; ++i)
+      for (int k = 0; k < 8; ++k) {
+        d.pose.position = {(float(i) - 3.5f) * 1.5f, 2, (float(k) - 3.5f) * 1.5f};
+        w.create_body(d, box<float>::make({0.5f, 0.1f, 0.5f}));
+      }
+    lcg32 random{11};
+    body_def<float> ball;
+    for (int n = 0; n < 400; ++n) {
+      ball.pose.position = {random.uniform<float>(-6, 6), random.uniform<float>(4, 12), random.uniform<float>(-6, 6)};
+      w.create_body(ball, sphere<float>::make(0.2f));
+    }
+  };
+  check_any_worker_count<world_type>(build, 90);
+  const outcome one = run<world_type>(build, 90, nullptr);
+  CHECK(one.sensed > 100);  // most balls pass a slab
 }
 
 TEST_CASE("a snapshot restored into a world with workers steps on as it would have on one thread") {

@@ -323,6 +323,7 @@ TEST_CASE("debug drawing shows each body's box, each contact point and normal, a
   draw_recorder r;
   debug_draw_flags flags;
   flags.aabbs = flags.velocities = true;
+  flags.shapes = flags.joints = false;  // (tests/world/test_debug_draw.cpp)
   w.draw(r, flags);
   CHECK(r.lines == 2 * 12);  // two boxes
   CHECK(r.points == 4);      // a face on the ground: four points
@@ -391,7 +392,7 @@ TEST_CASE("a step's profile times each stage once: none negative, together withi
   for (int step = 0; step < 30; ++step) {
     w.step(1.0f / 60);
     const step_profile& p = w.last_step_profile();
-    const double stages[] = {p.broad, p.narrow, p.prepare, p.solve, p.integrate, p.continuous, p.sleep};
+    const double stages[] = {p.broad, p.narrow, p.prepare, p.solve, p.integrate, p.continuous, p.sensors, p.sleep};
     double sum = 0;
     for (const double ms : stages) {
       CHECK(ms >= 0);
@@ -403,6 +404,34 @@ TEST_CASE("a step's profile times each stage once: none negative, together withi
     CHECK(p.total > 0);
     CHECK(p.solve > 0);  // the pyramid stands on its contacts
   }
+}
+
+TEST_CASE("the profile counts a stack of three and four lone cubes: pairs, touching contacts, colors and islands") {
+  const auto check = [](auto& w, bool sleeping) {
+    impulse::test::add_ground(w);
+    for (int k = 0; k < 3; ++k) impulse::test::add_cube(w, {0, 0.5f + float(k), 0});
+    for (int k = 0; k < 4; ++k) impulse::test::add_cube(w, {3 + 3 * float(k), 0.5f, 0});
+    impulse::test::run(w, 10);  // 1/6 s: all still awake
+    const world_profile p = w.profile();
+    CHECK(p.bodies == 8);
+    // The stack's two pairs and its base on the ground, and each lone cube's.
+    CHECK(p.pairs == 7);
+    CHECK(p.contacts == 7);
+    CHECK(p.touching == 7);
+    CHECK(p.counts.solved_manifolds == 7);
+    CHECK(p.counts.active_bodies == 7);
+    // The stack's contacts chain through its two lower cubes: two colors.
+    CHECK(p.counts.colors == 2);
+    // The stack and the four cubes, each an island of its own.
+    CHECK(p.counts.islands == (sleeping ? 5u : 0u));
+    CHECK(p.joints == 0);
+    CHECK(p.sensors == 0);
+    CHECK(p.times.total == w.last_step_profile().total);
+  };
+  awake_world awake;
+  check(awake, false);
+  world<impulse::test::sleeping_config> sleeping;
+  check(sleeping, true);
 }
 
 }  // namespace world_world_tests

@@ -109,6 +109,14 @@ class basic_sequential_impulse {
   /// each solved whole on one (detail/contact_groups.hpp); 0 when its
   /// colors were shared instead, or it ran on one thread.
   [[nodiscard]] std::uint32_t solved_groups() const noexcept { return solved_groups_; }
+  /// The colors of the last solve's contacts: the most any group of
+  /// islands took, when it went by groups.
+  [[nodiscard]] std::size_t color_count() const noexcept {
+    std::size_t most = 0;
+    const std::size_t used = std::min<std::size_t>(sets_.size(), std::max<std::size_t>(solved_groups_, 1));
+    for (std::size_t g = 0; g < used; ++g) most = std::max(most, sets_[g].graph.color_count());
+    return most;
+  }
 
   void prepare(std::span<const solver_body<T>> bodies, std::span<contact_constraint<T>> contacts) const noexcept;
 

@@ -99,6 +99,8 @@ class basic_soft_step {
   /// bounced on it every step and its torque read 1.1 % high.
   void project_joints(std::span<solver_body<T>> bodies, std::span<joint_constraint<T>> joints,
                       const settings_type& settings);
+  /// The colors of the last solve's contacts.
+  [[nodiscard]] std::size_t color_count() const noexcept { return graph_.color_count(); }
 
  private:
   static constexpr int width = detail::contact_lanes<T>;

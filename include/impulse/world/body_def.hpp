@@ -9,6 +9,7 @@
 #include "../dynamics/rigid_body.hpp"
 #include "../math/mat3.hpp"
 #include "../math/transform.hpp"
+#include "collision_filter.hpp"
 
 namespace impulse {
 
@@ -38,6 +39,13 @@ struct body_def {
   /// body it could meet, dynamic ones too (a projectile). Other bodies are
   /// swept only when fast, and only against static and kinematic ones.
   bool bullet = false;
+  /// Which bodies it may touch (collision_filter.hpp): by default, all.
+  collision_filter filter{};
+  /// A sensor makes no contacts: it reports the bodies its shape overlaps
+  /// (world::sensor_overlaps, sensor events), those its filter lets
+  /// through, of every type, asleep or not, but no other sensor. Queries
+  /// see it only when their filter asks for sensors.
+  bool sensor = false;
   std::uint64_t user_data = 0;
 };
 

@@ -17,6 +17,15 @@ struct debug_color {
 
 /// What world::draw shows.
 struct debug_draw_flags {
+  /// Each body's shape as a wireframe, in its body's colour (detail/
+  /// debug_drawing.hpp): a sphere's three great circles, a box's and a
+  /// hull's edges, a capsule's rings, caps and sides, a mesh's triangles,
+  /// a plane's 10 m square and normal; sensors in yellow.
+  bool shapes = true;
+  /// Each joint: its anchors on A and B, lines from each body's center to
+  /// its anchor, a hinge's or slider's axis, and its limits (a hinge's
+  /// arc, a slider's span along its axis).
+  bool joints = true;
   bool aabbs = false;       ///< each body's bounding box (as the broad phase has it, before the speculative margin)
   bool contacts = true;     ///< contact points
   bool normals = true;      ///< contact normals, 0.2 m long

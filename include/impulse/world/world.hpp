@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <span>
@@ -40,6 +41,7 @@
 #include "../narrowphase/ray_cast.hpp"
 #include "../narrowphase/time_of_impact.hpp"
 #include "body_def.hpp"
+#include "contact_hooks.hpp"
 #include "world_events.hpp"
 #include "world_ray_hit.hpp"
 #include "world_settings.hpp"
@@ -49,6 +51,8 @@
 #include "detail/force_motion.hpp"
 #include "fwd.hpp"
 #include "detail/islands.hpp"
+#include "detail/sensors.hpp"
+#include "detail/shape_cast.hpp"
 #include "detail/solve.hpp"
 #include "detail/world_state.hpp"
 
@@ -237,6 +241,46 @@ class world {
     state_.wake(state_.bodies[id]);
   }
 
+  // ---- filtering (collision_filter.hpp; world_bodies.hpp) ----
+
+  [[nodiscard]] const collision_filter& filter(body_id id) const {
+    require(id, "world::filter: no such body");
+    return state_.bodies[id].filter;
+  }
+  /// Gives the body a new filter and wakes it. Its contacts with the
+  /// bodies the filter now keeps it from end at once (with end events for
+  /// those touching, and those bodies wake); the pairs it now lets through
+  /// make contact from the next step.
+  void set_filter(body_id id, const collision_filter& filter);
+  /// The world's rule for the pairs the filters let through (pair_filter);
+  /// a default pair_filter removes it. Contacts the new rule refuses end at
+  /// once, as set_filter's do. Kept apart from the state: a snapshot
+  /// neither saves nor restores it.
+  void set_pair_filter(const pair_filter& rule);
+  [[nodiscard]] const pair_filter& pair_rule() const noexcept { return scratch_.pair_rule; }
+  /// Asks the filters and the rule again about the body's pairs, after the
+  /// rule's answer for them changed; as set_filter does with the same filter.
+  void refilter(body_id id);
+
+  // ---- contact hooks (contact_hooks.hpp) ----
+
+  /// Before each solve, the hook sees each touching manifold and may switch
+  /// it off or change its friction, restitution and surface velocity for
+  /// the step: one-way platforms, conveyor belts. A default hook removes
+  /// it. Kept apart from the state, as the task system.
+  void set_pre_solve(const pre_solve_hook<T>& hook) {
+    refuse_in_callback("world::set_pre_solve: called from inside a world callback");
+    scratch_.pre_solve = hook;
+  }
+  /// After each solve, the hook sees each solved manifold with the
+  /// impulses it applied over the step.
+  void set_post_solve(const post_solve_hook<T>& hook) {
+    refuse_in_callback("world::set_post_solve: called from inside a world callback");
+    scratch_.post_solve = hook;
+  }
+  [[nodiscard]] const pre_solve_hook<T>& pre_solve() const noexcept { return scratch_.pre_solve; }
+  [[nodiscard]] const post_solve_hook<T>& post_solve() const noexcept { return scratch_.post_solve; }
+
   // ---- joints ----
 
   /// Joins two bodies as `def` says (joint.hpp). The anchors and axis are
@@ -361,6 +405,18 @@ class world {
   [[nodiscard]] const step_counts& last_step_counts() const noexcept { return state_.counts; }
   /// How long the last step took in each stage (step_profile).
   [[nodiscard]] const step_profile& last_step_profile() const noexcept { return scratch_.profile; }
+  /// The last step's times and counts, and what the world holds: worked
+  /// out when asked (a pass over the contact records), not by the step.
+  [[nodiscard]] world_profile profile() const {
+    world_profile p{scratch_.profile, state_.counts};
+    p.bodies = state_.bodies.size();
+    if constexpr (collision) p.pairs = state_.broad.pairs().size();
+    p.contacts = state_.contacts.size();
+    p.touching = touching_pair_count();
+    p.joints = state_.joints.size();
+    p.sensors = state_.sensors.size();
+    return p;
+  }
 
   // ---- events and contacts ----
 
@@ -388,6 +444,25 @@ class world {
       f(c.a, c.b, std::span<const contact_manifold<T>>(manifolds.data(), std::size_t(count)));
     }
   }
+  /// Bodies that began overlapping a sensor in the last step.
+  [[nodiscard]] std::span<const sensor_event> sensor_begin_events() const noexcept { return state_.sensor_begun; }
+  /// Bodies that stopped overlapping a sensor in the last step, or since:
+  /// a body destroyed inside a sensor, or a sensor destroyed with bodies
+  /// inside.
+  [[nodiscard]] std::span<const sensor_event> sensor_end_events() const noexcept { return state_.sensor_ended; }
+  /// The bodies the sensor overlapped at the end of the last step,
+  /// ascending by index. Refused: a body that is not there or not a sensor.
+  [[nodiscard]] std::span<const body_id> sensor_overlaps(body_id sensor) const {
+    require(sensor, "world::sensor_overlaps: no such body");
+    for (const detail::sensor_record& s : state_.sensors)
+      if (s.sensor == sensor) return s.inside;
+    detail::report_error(error_code::invalid_parameter, "world::sensor_overlaps: the body is not a sensor",
+                         sensor.index);
+  }
+  [[nodiscard]] bool is_sensor(body_id id) const {
+    require(id, "world::is_sensor: no such body");
+    return state_.bodies[id].sensor;
+  }
   /// Pairs whose boxes overlapped in the last step but got no contact
   /// because the world held world_settings::max_contact_pairs already: 0
   /// unless a scene heaps that many bodies together. They get their
@@ -400,12 +475,39 @@ class world {
 
   // ---- queries ----
 
-  /// The nearest body along the ray within max_fraction of its translation.
-  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1)) const;
+  /// The nearest body that `filter` sees along the ray, within
+  /// max_fraction of its translation.
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_cast(const ray<T>& r, T max_fraction = T(1),
+                                                         const query_filter& filter = {}) const;
 
-  /// f(body) for every body whose shape's bounding box overlaps `box`.
+  /// f(body) for every body that `filter` sees whose shape's bounding box
+  /// overlaps `box`.
   template <class F>
-  void overlap(const aabb<T>& box, F&& f) const;
+  void overlap(const aabb<T>& box, F&& f, const query_filter& filter = {}) const;
+
+  /// f(hit) for every body that `filter` sees along the ray, in no set
+  /// order; f returns the fraction to go on to: its hit's own to see only
+  /// nearer bodies from then on, 1 to see all, 0 to stop.
+  template <class F>
+  void ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter = {}) const;
+
+  /// The first body that `filter` sees which `shape` (a convex one: sphere,
+  /// capsule, box, hull), at `pose` and moved by `translation` without
+  /// turning, meets: the fraction of the translation it can move, the
+  /// touching point, and the body's outward normal there. It stops within
+  /// half a millimetre short of touching, never past; a shape that starts
+  /// overlapping a body meets it at fraction 0 (world_queries.hpp).
+  /// Refused: a pose or translation that is not finite, a rotation that
+  /// is not unit.
+  template <class Shape>
+  [[nodiscard]] std::optional<world_ray_hit<T>> shape_cast(const Shape& shape, const transform<T>& pose,
+                                                           const vec3<T>& translation,
+                                                           const query_filter& filter = {}) const;
+
+  /// f(body) for every body that `filter` sees whose shape overlaps
+  /// `shape` (one of the config's shapes) at `pose`: touching counts.
+  template <class Shape, class F>
+  void shape_overlap(const Shape& shape, const transform<T>& pose, F&& f, const query_filter& filter = {}) const;
 
   // ---- drawing ----
 
@@ -478,6 +580,14 @@ class world {
   void expire_targets();
 
   void end_contacts_between(body_id a, body_id b);
+  /// Where the ray meets the body within reach, if `filter` sees it.
+  [[nodiscard]] std::optional<world_ray_hit<T>> ray_hit_of(body_id id, const ray<T>& r, T reach,
+                                                            const query_filter& filter) const;
+  /// A body about to go: its overlaps with sensors, or as a sensor, end.
+  void end_sensor_overlaps(body_id id);
+  /// Ends the contacts of `only` (of every body if none) that may_collide
+  /// now refuses, waking their bodies, and has the next step pair anew.
+  void end_filtered_contacts(body_id only);
   /// The step's start (checks dt, clears the last step's events) and its
   /// end (the clock, and the error naming a held body).
   void begin_step(T dt);
@@ -538,6 +648,8 @@ void world<Config>::step(T dt) {
   p = step_profile{};
   begin_step(dt);
   if constexpr (collision) {
+    // The user's hooks and pair rule may read the world, and not change it.
+    const in_callback scope(*this);
     detail::contact_update<Config>{state_, scratch_}.run(dt);  // broad and narrow
     lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.wake();
@@ -546,6 +658,8 @@ void world<Config>::step(T dt) {
     lap.lap_ms();
     if constexpr (ccd) detail::continuous_collision<Config>{state_, scratch_}.run();
     p.continuous = lap.lap_ms();
+    detail::sensor_update<Config>{state_, scratch_}.run();
+    p.sensors = lap.lap_ms();
     if constexpr (sleeping) detail::island_update<Config>{state_, scratch_}.sleep(dt);
     p.sleep += lap.lap_ms();
   } else {
@@ -565,8 +679,12 @@ void world<Config>::begin_step(T dt) {
     detail::report_error(error_code::invalid_parameter, "world::step: dt must be positive and at most max_dt (1 s)");
   state_.begun.clear();
   state_.ended.clear();
+  state_.sensor_begun.clear();
+  state_.sensor_ended.clear();
   state_.broken.clear();
   state_.held.clear();
+  scratch_.refused_settings = body_id{};
+  scratch_.hook_error = nullptr;
   expire_targets();
 }
 
@@ -581,6 +699,17 @@ void world<Config>::finish_step(T dt) {
                          "max_angular_speed, or beyond max_coordinate); it was held where it was, its contacts and joints left out of the "
                          "step, and the other bodies stepped on (held_bodies() lists every one)",
                          state_.held.front().index);
+  if (scratch_.hook_error) {
+    const std::exception_ptr caught = scratch_.hook_error;
+    scratch_.hook_error = nullptr;
+    std::rethrow_exception(caught);
+  }
+  if (!scratch_.refused_settings.is_none())
+    detail::report_error(error_code::invalid_parameter,
+                         "world::step: the pre-solve hook gave a contact a friction that is negative or not finite, a "
+                         "restitution outside [0, 1] or a surface velocity that is not finite; the pair's own settings "
+                         "were used and the step completed",
+                         scratch_.refused_settings.index);
 }
 
 template <class Config>

@@ -55,6 +55,10 @@ auto world<Config>::prepare_body(const body_def<T>& def, rigid_body<T> body, con
   record.center = center;
   record.awake = def.awake || def.type != body_type::dynamic;
   record.user_data = def.user_data;
+  record.filter = def.filter;
+  if (def.sensor && !collision)
+    detail::report_error(error_code::invalid_parameter, "world::create_body: a world without collision has no sensors");
+  record.sensor = def.sensor;
   record.bullet = def.bullet;
   record.previous = body.pose();
   return record;
@@ -65,6 +69,7 @@ body_id world<Config>::insert_body(const body_record& record) {
   const body_id id = state_.bodies.insert(record);
   body_record& r = state_.bodies[id];
   if constexpr (collision) r.proxy = state_.broad.create(state_.proxy_box(r), detail::pack(id));
+  if (r.sensor) state_.sensors.push_back({id, {}});
   state_.awake_stale = true;
   if (r.body.type == body_type::dynamic && !r.awake) state_.ungrouped_sleepers = true;
   return id;
@@ -94,6 +99,7 @@ void world<Config>::destroy_body(body_id id) {
     state_.wake(state_.bodies[other]);
     return true;
   });
+  end_sensor_overlaps(id);
   body_record& r = state_.bodies[id];
   if constexpr (collision) state_.broad.destroy(r.proxy);
   state_.shape_store.remove(r.shape);
@@ -118,6 +124,62 @@ void world<Config>::set_pose(body_id id, const transform<T>& pose) {
   r = moved;
   if constexpr (collision) state_.broad.move(r.proxy, box);
   state_.wake(r);
+}
+
+template <class Config>
+void world<Config>::end_sensor_overlaps(body_id id) {
+  std::erase_if(state_.sensors, [&](detail::sensor_record& s) {
+    if (s.sensor == id) {
+      for (const body_id inside : s.inside) state_.sensor_ended.push_back({id, inside});
+      return true;
+    }
+    const auto at = std::ranges::find(s.inside, id);
+    if (at != s.inside.end()) {
+      s.inside.erase(at);
+      state_.sensor_ended.push_back({s.sensor, id});
+    }
+    return false;
+  });
+}
+
+template <class Config>
+void world<Config>::set_filter(body_id id, const collision_filter& filter) {
+  refuse_in_callback("world::set_filter: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  require(id, "world::set_filter: no such body");
+  body_record& r = state_.bodies[id];
+  r.filter = filter;
+  state_.wake(r);
+  end_filtered_contacts(id);
+}
+
+template <class Config>
+void world<Config>::refilter(body_id id) {
+  set_filter(id, filter(id));
+}
+
+template <class Config>
+void world<Config>::set_pair_filter(const pair_filter& rule) {
+  refuse_in_callback("world::set_pair_filter: called from inside a world callback (for_each_contact, overlap, "
+                     "visit_shape, draw); make the change after it returns");
+  scratch_.pair_rule = rule;
+  end_filtered_contacts(body_id{});
+}
+
+template <class Config>
+void world<Config>::end_filtered_contacts(body_id only) {
+  if constexpr (collision) {
+    std::erase_if(state_.contacts, [&](const contact_record& c) {
+      if (!only.is_none() && c.a != only && c.b != only) return false;
+      if (state_.may_collide(c.a, c.b, scratch_.pair_rule)) return false;
+      state_.end_contact(c);
+      state_.wake(state_.bodies[c.a]);
+      state_.wake(state_.bodies[c.b]);
+      return true;
+    });
+    state_.pairs_stale = true;
+    state_.awake_stale = true;
+  }
 }
 
 template <class Config>

@@ -16,6 +16,14 @@ struct contact_event {
   friend constexpr bool operator==(const contact_event&, const contact_event&) = default;
 };
 
+/// A body that began or stopped overlapping a sensor (body_def::sensor) in
+/// the last step, or that lost the sensor, or the sensor it, since.
+struct sensor_event {
+  body_id sensor;
+  body_id visitor;
+  friend constexpr bool operator==(const sensor_event&, const sensor_event&) = default;
+};
+
 /// A joint that broke in the last step: the impulse it applied exceeded
 /// its break_force or break_torque times the step.
 template <scalar_type T>
@@ -43,6 +51,7 @@ struct step_profile {
   double integrate = 0;   ///< impulses kept, bodies moved (or held), joints projected (the first two in `solve`
                           ///< when it went by groups of islands, step_counts::solver_groups)
   double continuous = 0;  ///< continuous collision of fast bodies
+  double sensors = 0;     ///< the sensors' overlaps
   double sleep = 0;       ///< islands woken, then put to sleep
   double total = 0;       ///< the whole step, these and what lies between them
 };
@@ -61,8 +70,23 @@ struct step_counts {
   /// whole on one; 0 when it shared each color's batches instead, or ran
   /// on one thread (docs/world.md, "Across workers").
   std::size_t solver_groups = 0;
+  std::size_t colors = 0;   ///< colors of the solver's contact graph (its batches of one color share no moving body)
+  std::size_t islands = 0;  ///< awake islands, with sleeping on (0 with it off: the step makes none)
   bool pairs_merged = false;  ///< a pair began or ended, and the records were merged with the broad phase's pairs
   friend constexpr bool operator==(const step_counts&, const step_counts&) = default;
+};
+
+/// The last step at a glance (world::profile): its stage times and counts,
+/// and what the world holds after it.
+struct world_profile {
+  step_profile times;
+  step_counts counts;
+  std::size_t bodies = 0;
+  std::size_t pairs = 0;     ///< the broad phase's: bodies whose boxes overlap
+  std::size_t contacts = 0;  ///< contact records: pairs that may touch
+  std::size_t touching = 0;  ///< of those, touching
+  std::size_t joints = 0;
+  std::size_t sensors = 0;
 };
 
 }  // namespace impulse

@@ -29,18 +29,13 @@ auto world<Config>::interpolated_pose(body_id id, T alpha) const -> transform<T>
 }
 
 template <class Config>
-auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::optional<world_ray_hit<T>> {
+auto world<Config>::ray_cast(const ray<T>& r, T max_fraction, const query_filter& filter) const
+    -> std::optional<world_ray_hit<T>> {
   std::optional<world_ray_hit<T>> best;
   T reach = max_fraction;
   const auto test = [&](body_id id) {
-    const body_record& rec = state_.bodies[id];
-    const transform<T> pose = detail::shape_pose_of(rec);
-    const narrowphase::ray_hit<T> hit =
-        state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
-    if (hit.hit && hit.fraction <= reach) {
-      reach = hit.fraction;
-      best = world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
-    }
+    const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
+    if (hit) reach = hit->fraction, best = hit;
     return reach;
   };
   if constexpr (collision) {
@@ -54,18 +49,116 @@ auto world<Config>::ray_cast(const ray<T>& r, T max_fraction) const -> std::opti
 
 template <class Config>
 template <class F>
-void world<Config>::overlap(const aabb<T>& box, F&& f) const {
+void world<Config>::overlap(const aabb<T>& box, F&& f, const query_filter& filter) const {
   if (!is_finite(box.lower) || !is_finite(box.upper) || !is_valid(box))
     detail::report_error(error_code::invalid_parameter, "world::overlap: the box is not finite and ordered");
   const in_callback scope(*this);
   if constexpr (collision) {
     state_.broad.query(box, [&](proxy_id proxy) {
       const body_id id = state_.unpack(state_.broad.user_data(proxy));
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+      const body_record& rec = state_.bodies[id];
+      if (filter.sees(rec.filter, rec.sensor) && overlaps(state_.bounds_of(rec), box)) f(id);
     });
   } else {
+    for (const body_id id : state_.bodies.ids()) {
+      const body_record& rec = state_.bodies[id];
+      if (filter.sees(rec.filter, rec.sensor) && overlaps(state_.bounds_of(rec), box)) f(id);
+    }
+  }
+}
+
+template <class Config>
+auto world<Config>::ray_hit_of(body_id id, const ray<T>& r, T reach, const query_filter& filter) const
+    -> std::optional<world_ray_hit<T>> {
+  const body_record& rec = state_.bodies[id];
+  if (!filter.sees(rec.filter, rec.sensor)) return std::nullopt;
+  const transform<T> pose = detail::shape_pose_of(rec);
+  const narrowphase::ray_hit<T> hit =
+      state_.shape_store.visit(rec.shape, [&](const auto& s) { return narrowphase::ray_cast(r, s, pose, reach); });
+  if (!hit.hit || hit.fraction > reach) return std::nullopt;
+  return world_ray_hit<T>{id, hit.fraction, hit.point, hit.normal};
+}
+
+template <class Config>
+template <class F>
+void world<Config>::ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter) const {
+  if (!is_finite(r.origin) || !is_finite(r.translation))
+    detail::report_error(error_code::non_finite, "world::ray_cast_all: the ray is not finite");
+  const in_callback scope(*this);
+  T reach = T(1);
+  const auto test = [&](body_id id) {
+    const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
+    if (hit) reach = std::clamp(T(f(*hit)), T(0), reach);
+    return reach;
+  };
+  if constexpr (collision) {
+    state_.broad.ray_cast(r, T(1),
+                          [&](proxy_id proxy, T) { return test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
     for (const body_id id : state_.bodies.ids())
-      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) f(id);
+      if (test(id) <= T(0)) break;
+  }
+}
+
+template <class Config>
+template <class Shape>
+auto world<Config>::shape_cast(const Shape& shape, const transform<T>& pose, const vec3<T>& translation,
+                               const query_filter& filter) const -> std::optional<world_ray_hit<T>> {
+  static_assert(detail::convex_shape<Shape, T>,
+                "world::shape_cast: the cast shape must be convex (a sphere, capsule, box or hull)");
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  if (!is_finite(pose.position) || !is_finite(pose.rotation) || !is_finite(translation))
+    detail::report_error(error_code::non_finite, "world::shape_cast: the pose or translation is not finite");
+  if (!is_normalized(pose.rotation))
+    detail::report_error(error_code::not_normalized, "world::shape_cast: the rotation is not a unit quaternion");
+  std::optional<world_ray_hit<T>> best;
+  T reach = T(1);
+  const auto test = [&](body_id id) {
+    const body_record& rec = state_.bodies[id];
+    if (!filter.sees(rec.filter, rec.sensor)) return;
+    const transform<T> at = detail::shape_pose_of(rec);
+    const std::optional<detail::cast_contact<T>> hit = state_.shape_store.visit(rec.shape, [&](const auto& target) {
+      return detail::cast_shape(shape, pose, translation, target, at, reach);
+    });
+    if (hit && (!best || hit->fraction < reach)) {
+      reach = hit->fraction;
+      best = world_ray_hit<T>{id, hit->fraction, hit->point, hit->normal};
+    }
+  };
+  const aabb<T> swept = merge(shape.world_aabb(pose), shape.world_aabb({pose.position + translation, pose.rotation}));
+  if constexpr (collision) {
+    state_.broad.query(swept, [&](proxy_id proxy) { test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
+    for (const body_id id : state_.bodies.ids())
+      if (overlaps(state_.bounds_of(state_.bodies[id]), swept)) test(id);
+  }
+  return best;
+}
+
+template <class Config>
+template <class Shape, class F>
+void world<Config>::shape_overlap(const Shape& shape, const transform<T>& pose, F&& f,
+                                  const query_filter& filter) const {
+  using dispatcher = typename state_type::dispatcher;
+  if constexpr (requires { shape.validate(); }) shape.validate();
+  if (!is_finite(pose.position) || !is_finite(pose.rotation))
+    detail::report_error(error_code::non_finite, "world::shape_overlap: the pose is not finite");
+  if (!is_normalized(pose.rotation))
+    detail::report_error(error_code::not_normalized, "world::shape_overlap: the rotation is not a unit quaternion");
+  const in_callback scope(*this);
+  const typename dispatcher::shape_ref probe = dispatcher::ref(shape);
+  const auto test = [&](body_id id) {
+    const body_record& rec = state_.bodies[id];
+    if (filter.sees(rec.filter, rec.sensor) &&
+        detail::shapes_overlap<dispatcher>(probe, pose, state_.shape_ref_of(rec), detail::shape_pose_of(rec)))
+      f(id);
+  };
+  const aabb<T> box = shape.world_aabb(pose);
+  if constexpr (collision) {
+    state_.broad.query(box, [&](proxy_id proxy) { test(state_.unpack(state_.broad.user_data(proxy))); });
+  } else {
+    for (const body_id id : state_.bodies.ids())
+      if (overlaps(state_.bounds_of(state_.bodies[id]), box)) test(id);
   }
 }
 

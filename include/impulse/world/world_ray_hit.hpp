@@ -7,7 +7,7 @@
 
 namespace impulse {
 
-/// The nearest body a ray meets.
+/// The nearest body a ray, or a cast shape (world::shape_cast), meets.
 template <scalar_type T>
 struct world_ray_hit {
   body_id body;

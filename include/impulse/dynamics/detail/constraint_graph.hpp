@@ -57,7 +57,9 @@ class constraint_graph {
   [[nodiscard]] std::size_t batch_count() const noexcept { return batch_starts_.size() - 1; }
   /// The colors that have contacts; color q's batches are
   /// [first_batch(q), first_batch(q + 1)), and share no moving body.
-  [[nodiscard]] std::size_t color_count() const noexcept { return color_starts_.size() - 1; }
+  [[nodiscard]] std::size_t color_count() const noexcept {
+    return color_starts_.empty() ? 0 : color_starts_.size() - 1;
+  }
   [[nodiscard]] std::uint32_t first_batch(std::size_t q) const noexcept { return color_starts_[q]; }
   /// The contacts of batch k, by their place in the contact array.
   [[nodiscard]] std::span<const std::uint32_t> batch(std::size_t k) const noexcept {

@@ -358,7 +358,7 @@ class scene_parser {
 
   void body(const json_at& at) {
     r_.object(at, {"name", "type", "shape", "position", "rotation", "velocity", "angular_velocity", "material",
-                   "mass", "awake", "bullet", "repeat"});
+                   "mass", "awake", "bullet", "filter", "sensor", "repeat"});
     body_def<T> def;
     if (at.has("type")) {
       const std::string& type = r_.string(at["type"]);
@@ -376,6 +376,15 @@ class scene_parser {
     if (at.has("mass")) def.mass = r_.positive(at["mass"]);
     if (at.has("awake")) def.awake = r_.boolean(at["awake"]);
     if (at.has("bullet")) def.bullet = r_.boolean(at["bullet"]);
+    if (at.has("sensor")) def.sensor = r_.boolean(at["sensor"]);
+    if (at.has("filter")) {
+      const json_at f = at["filter"];
+      r_.object(f, {"category", "mask", "group"});
+      constexpr std::int64_t bits = 0xffffffff, group = 0x7fffffff;
+      if (f.has("category")) def.filter.category = std::uint32_t(r_.integer(f["category"], 0, bits));
+      if (f.has("mask")) def.filter.mask = std::uint32_t(r_.integer(f["mask"], 0, bits));
+      if (f.has("group")) def.filter.group = std::int32_t(r_.integer(f["group"], -group, group));
+    }
     if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
       r_.fail(at, "a static body cannot move: give it no velocity, or make it \"kinematic\"");
     if (def.type == body_type::dynamic &&

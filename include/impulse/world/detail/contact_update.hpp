@@ -219,12 +219,14 @@ struct contact_update {
   }
 
   /// Whether a pair of proxies can make contact: one of its bodies is
-  /// dynamic, and no joint between them keeps them apart.
+  /// dynamic, neither is a sensor, no joint between them keeps them apart, and the filters let
+  /// them touch (world_state::may_collide).
   bool may_touch(const proxy_pair& pair) const {
     const body_id a = state.unpack(state.broad.user_data(pair.a)), b = state.unpack(state.broad.user_data(pair.b));
     const body_record<T>& ra = state.bodies[a];
     const body_record<T>& rb = state.bodies[b];
-    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !state.joined_apart(a, b);
+    return (ra.body.type == body_type::dynamic || rb.body.type == body_type::dynamic) && !ra.sensor && !rb.sensor &&
+           state.may_collide(a, b, scratch.pair_rule);
   }
 
   /// Whether the broad phase's pairs, less those that cannot touch, are

@@ -125,13 +125,15 @@ struct continuous_collision {
   /// motion over the step meets, if any.
   void sweep_back(std::uint32_t i) {
     body_record<T>& r = state.bodies.values()[i];
+    if (r.sensor) return;  // meets nothing
     const body_id id = state.bodies.ids()[i];
     const narrowphase::sweep<T> path = path_of(r);
     const aabb<T> swept = swept_box(r, path);
     T first = T(1);
     const auto meet = [&](body_id other) {
-      if (other == id || state.joined_apart(id, other)) return;
+      if (other == id || !state.may_collide(id, other, scratch.pair_rule)) return;
       const body_record<T>& o = state.bodies[other];
+      if (o.sensor) return;
       // Fast bodies meet the world; bullets meet moving bodies too, but
       // not each other (each is already swept).
       if (o.body.type == body_type::dynamic && (!r.bullet || o.bullet)) return;

@@ -97,7 +97,9 @@ struct island_update {
       const std::uint32_t i = state.awake_bodies[p];
       body_record<T>& r = bodies[i];
       const std::uint32_t root = scratch.islands.find(p);
-      if (r.body.type != body_type::dynamic || scratch.island_timer[root] < s.sleep_time) continue;
+      if (r.body.type != body_type::dynamic) continue;
+      if (root == p) ++state.counts.islands;
+      if (scratch.island_timer[root] < s.sleep_time) continue;
       std::uint32_t& set = scratch.island_set[root];
       if (set == no_sleep_set) set = new_sleep_set();
       put_to_sleep(r, state.bodies.ids()[i], set);

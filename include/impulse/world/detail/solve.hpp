@@ -86,13 +86,19 @@ struct body_solve {
     for (const std::uint32_t k : state.awake_contacts) manifold_count += state.contacts[k].manifold_count;
     scratch.sources.clear();
     scratch.sources.reserve(manifold_count);
+    const pre_solve_hook<T>& hook = scratch.pre_solve;
+    scratch.source_settings.clear();
+    if (hook.call != nullptr) scratch.source_settings.reserve(manifold_count);
     for (const std::uint32_t k : state.awake_contacts) {
       const contact_record<T>& c = state.contacts[k];
       if (!c.touching) continue;
       if (!is_solved(state.bodies[c.a]) && !is_solved(state.bodies[c.b])) continue;
       const std::uint32_t ia = scratch.solver_place[state.dense(c.a)], ib = scratch.solver_place[state.dense(c.b)];
       if (scratch.is_held(ia) || scratch.is_held(ib)) continue;
-      for (int m = 0; m < c.manifold_count; ++m) scratch.sources.push_back({k, std::uint32_t(m)});
+      for (int m = 0; m < c.manifold_count; ++m) {
+        if (hook.call != nullptr && !offer(c, m, hook)) continue;
+        scratch.sources.push_back({k, std::uint32_t(m)});
+      }
     }
     // Not cleared: every constraint is written whole below, and a vector
     // that keeps its size between steps is not zeroed twice.
@@ -113,6 +119,11 @@ struct body_solve {
         cc.normal = manifold.normal;
         cc.friction = c.friction;
         cc.restitution = c.restitution;
+        vec3<T> surface{};  // the relative velocity friction holds the patch at, from a pre-solve hook
+        if (!scratch.source_settings.empty()) {
+          const contact_settings<T>& set = scratch.source_settings[j];
+          cc.friction = set.friction, cc.restitution = set.restitution, surface = set.surface_velocity;
+        }
         cc.count = manifold.count;
         // Friction acts at the middle of the patch, with the mean distance
         // of the points from it, times 2/3, as the lever of its twist: the
@@ -133,7 +144,8 @@ struct body_solve {
         cc.anchor_a = middle - half_gap - ra.body.position;
         cc.anchor_b = middle + half_gap - rb.body.position;
         // The slip at the middle of the patch chooses the tangents.
-        const vec3<T> slip = relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b);
+        const vec3<T> slip =
+            relative_velocity(scratch.solver_bodies[ia], scratch.solver_bodies[ib], cc.anchor_a, cc.anchor_b) - surface;
         slip_tangents(cc.normal, slip, state.settings.solver.rest_slip_speed, cc.tangent1, cc.tangent2);
         // The positions move each center in a straight line while each body
         // turns exactly, so two points that move together at the velocity
@@ -147,8 +159,8 @@ struct body_solve {
         const solver_body<T>& sb = scratch.solver_bodies[ib];
         const vec3<T> curving = cross(sb.angular_velocity, cross(sb.angular_velocity, cc.anchor_b)) -
                                 cross(sa.angular_velocity, cross(sa.angular_velocity, cc.anchor_a));
-        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2));
-        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2));
+        cc.slip_target1 = dot(curving, cc.tangent1) * (-move_dt / T(2)) + dot(surface, cc.tangent1);
+        cc.slip_target2 = dot(curving, cc.tangent2) * (-move_dt / T(2)) + dot(surface, cc.tangent2);
         const manifold_impulse<T>& carried = state.slot_of(c, m).impulse;
         cc.tangent_impulse1 = dot(carried.friction, cc.tangent1);
         cc.tangent_impulse2 = dot(carried.friction, cc.tangent2);
@@ -226,6 +238,7 @@ struct body_solve {
     scratch.profile.solve = lap.lap_ms();
     if constexpr (requires { scratch.solver.solved_groups(); })
       state.counts.solver_groups = scratch.solver.solved_groups();
+    if constexpr (requires { scratch.solver.color_count(); }) state.counts.colors = scratch.solver.color_count();
     keep_joint_impulses(dt);
     if (!handed) {
       auto keep = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
@@ -240,9 +253,46 @@ struct body_solve {
     scratch.report_holds(state);
     if (!scratch.joints.empty()) project_joints();
     scratch.profile.integrate = lap.lap_ms();
+    if (const post_solve_hook<T>& after = scratch.post_solve; after.call != nullptr) {
+      // A solver in parts keeps the last part's impulses: scaled to the
+      // step, as a force held over it (world::joint_force does the same).
+      const T scale = dt / solver_type::impulse_step(state.settings.solver, dt);
+      for (const auto& [k, m] : scratch.sources) {
+        const contact_record<T>& c = state.contacts[k];
+        const manifold_slot<T>& slot = state.slot_of(c, int(m));
+        manifold_impulse<T> step_impulse = slot.impulse;
+        for (T& n : step_impulse.normal) n *= scale;
+        step_impulse.friction = step_impulse.friction * scale;
+        step_impulse.twist *= scale;
+        call_hook(scratch.hook_error, [&] { after.call(c.a, c.b, slot.manifold, step_impulse, after.context); });
+      }
+    }
   }
 
  private:
+  /// Offers manifold m of record c to the pre-solve hook: whether it is
+  /// solved, and if so its settings in scratch.source_settings. A
+  /// manifold switched off loses its impulses; settings out of range are
+  /// replaced by the pair's own, and the first such pair is kept for the
+  /// step to report.
+  bool offer(const contact_record<T>& c, int m, const pre_solve_hook<T>& hook) {
+    const contact_settings<T> own{true, c.friction, c.restitution, {}};
+    contact_settings<T> set = own;
+    manifold_slot<T>& slot = state.slot_of(c, m);
+    call_hook(scratch.hook_error, [&] { hook.call(c.a, c.b, slot.manifold, set, hook.context); });
+    if (scratch.hook_error) set = own;
+    if (!valid_settings(set)) {
+      if (scratch.refused_settings.is_none()) scratch.refused_settings = c.a;
+      set = own;
+    }
+    if (!set.enabled) {
+      slot.impulse = manifold_impulse<T>{};
+      return false;
+    }
+    scratch.source_settings.push_back(set);
+    return true;
+  }
+
   /// Solver body i from the body record r (held, quietly, if its loads
   /// would take it out of finite numbers or past the speed limits).
   void gather_body(const body_record<T>& r, std::size_t i, const vec3<T>& gravity_step, T dt) {

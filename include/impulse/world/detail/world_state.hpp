@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <span>
 #include <vector>
@@ -36,6 +37,7 @@
 #include "../../narrowphase/dispatch.hpp"
 #include "../body_def.hpp"
 #include "../world_events.hpp"
+#include "../contact_hooks.hpp"
 #include "../world_settings.hpp"
 #include "shape_store.hpp"
 #include "world_traits.hpp"
@@ -67,6 +69,8 @@ struct body_record {
   bool awake = true;
   std::uint32_t sleep_set = no_sleep_set;  ///< asleep: its island (world_state::sleep_sets)
   std::uint64_t user_data = 0;
+  collision_filter filter{};
+  bool sensor = false;  ///< reports overlaps, makes no contacts (body_def::sensor)
   target_state target = target_state::none;  ///< kinematic: moving to a set_target_pose
   bool bullet = false;
   T thinnest = T(0);  ///< m: the shape's thinnest half-extent, what a step may cross before it is swept
@@ -75,6 +79,13 @@ struct body_record {
   /// solver's max_speculative_distance (world_state::set_reach).
   vec3<T> reach_path{};
   T reach_turn = T(0);
+};
+
+/// A sensor body and the bodies its shape overlapped at the end of the
+/// last step, ascending by index (sensors.hpp).
+struct sensor_record {
+  body_id sensor;
+  std::vector<body_id> inside;
 };
 
 /// One manifold of a touching pair: where it touches, the impulses the
@@ -238,6 +249,8 @@ struct world_state {
   std::vector<std::uint32_t> free_manifolds;  ///< slots of manifolds no pair holds
   std::size_t pairs_over_limit = 0;          ///< in the last step: see world::pairs_over_limit
   std::vector<contact_event> begun, ended;
+  std::vector<sensor_record> sensors;  ///< in the order they were made
+  std::vector<sensor_event> sensor_begun, sensor_ended;
   step_counts counts{};  ///< the last step's
   T time = T(0), accumulator = T(0), last_dt = T(0);
   std::uint64_t step_count = 0;
@@ -472,6 +485,12 @@ struct world_state {
   [[nodiscard]] bool joined_apart(body_id a, body_id b) const noexcept {
     return !joined.empty() && std::binary_search(joined.begin(), joined.end(), pair_key(a, b));
   }
+  /// Whether two bodies may make contact, the types apart: no joint keeps
+  /// them apart, their filters let them touch, and so does the user's rule.
+  [[nodiscard]] bool may_collide(body_id a, body_id b, const pair_filter& rule) const {
+    return !joined_apart(a, b) && should_collide(bodies[a].filter, bodies[b].filter) &&
+           (rule.test == nullptr || rule.test(a, b, rule.context));
+  }
   /// Lets the joint's bodies collide again (if it had stopped them).
   void unjoin(const joint_record<T>& r) {
     if (r.def.collide_connected) return;
@@ -557,6 +576,16 @@ struct step_scratch {
   solver_type solver{};
   /// The workers a step may spread over (world::set_task_system).
   task_system tasks{};
+  /// The user's rule for pairs (world::set_pair_filter); like the tasks,
+  /// the world's, not its state's.
+  pair_filter pair_rule{};
+  pre_solve_hook<T> pre_solve{};    ///< world::set_pre_solve; the world's, as the tasks
+  post_solve_hook<T> post_solve{};  ///< world::set_post_solve
+  /// Per solved manifold, what the pre-solve hook left (solve.hpp), when there is one.
+  std::vector<contact_settings<T>> source_settings;
+  /// The first pair a pre-solve hook gave settings out of range in this step.
+  body_id refused_settings{};
+  std::exception_ptr hook_error;  ///< what a hook threw in this step (contact_hooks.hpp, call_hook)
   step_profile profile;  ///< the last step's (world::last_step_profile)
   std::vector<contact_record<T>> next_contacts;
   std::vector<worker_pairs<T>> pair_work;  ///< one per worker (contact_update.hpp)
@@ -596,6 +625,7 @@ struct step_scratch {
   // awake body, whether it left its broad-phase box; the bodies that did.
   std::vector<std::uint8_t> sweep_seen, sweep_left;
   std::vector<std::uint32_t> sweep_movers;
+  std::vector<std::vector<body_id>> sensor_next;  ///< per sensor: what it overlaps now (sensors.hpp)
 
   /// A world without collision's (force_motion.hpp).
   struct motion_scratch {
