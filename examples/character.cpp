@@ -1,5 +1,5 @@
 // character — a character controller (impulse/character.hpp) walks a
-// course: over rolling ground (a triangle mesh), up a flight of stairs and
+// course: over rolling ground (a heightfield), up a flight of stairs and
 // down the far side, onto a turning platform that carries it half round,
 // and into a row of crates it pushes aside. Prints each leg as it is done
 // and checks where the character is; writes out/character.glb (the
@@ -9,6 +9,7 @@
 //   build/native/examples/character [out.glb]
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -29,25 +30,21 @@ namespace {
 
 constexpr T dt = T(1) / T(60);
 
+/// The ground's height under (x, z).
+T ground_height(T x, T z) { return T(0.25) * std::sin(x / 2) * std::sin(z / 2); }
+
 /// Rolling ground: y = 0.25·sin(x/2)·sin(z/2) over x, z in [−20, 40]
-/// (at most 0.125 of slope, 7°), as a triangle mesh on a 1 m grid.
+/// (at most 0.125 of slope, 7°), as a heightfield of 0.5 m cells.
 impulse::body_id add_rolling_ground(world_type& w) {
-  std::vector<vec3<T>> points;
-  std::vector<std::uint32_t> triangles;
-  const int n = 60;
-  for (int i = 0; i <= n; ++i)
-    for (int k = 0; k <= n; ++k) {
-      const T x = T(-20 + i), z = T(-20 + k);
-      points.push_back({x, T(0.25) * std::sin(x / 2) * std::sin(z / 2), z});
-    }
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < n; ++k) {
-      const auto at = [&](int a, int b) { return std::uint32_t(a * (n + 1) + b); };
-      triangles.insert(triangles.end(), {at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i, k), at(i + 1, k + 1), at(i + 1, k)});
-    }
+  const std::size_t n = 121;
+  std::vector<T> heights(n * n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t i = 0; i < n; ++i)
+      heights[k * n + i] = ground_height(T(-20) + T(0.5) * T(i), T(-20) + T(0.5) * T(k));
   impulse::body_def<T> d;
   d.type = impulse::body_type::static_body;
-  return w.create_body(d, impulse::triangle_mesh<T>::make(points, triangles));
+  d.pose.position = {-20, 0, -20};
+  return w.create_body(d, impulse::heightfield<T>::make(n, n, T(0.5), T(0.5), heights));
 }
 
 impulse::body_id add_box(world_type& w, vec3<T> at, vec3<T> half, impulse::body_type type, T mass = 0) {
@@ -58,8 +55,6 @@ impulse::body_id add_box(world_type& w, vec3<T> at, vec3<T> half, impulse::body_
   return w.create_body(d, impulse::box<T>::make(half));
 }
 
-/// The ground's height under (x, z), as the mesh's formula gives it.
-T ground_height(T x, T z) { return T(0.25) * std::sin(x / 2) * std::sin(z / 2); }
 
 }  // namespace
 
@@ -153,7 +148,7 @@ int main(int argc, char** argv) {
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   const bool saved = recording.save(out_file.c_str());
   const std::string picture = out_file.substr(0, out_file.rfind('.')) + ".png";
-  const impulse::io::camera<T> eye{.position = {4, 7, 15}, .target = {15, 0, 4}};
+  const impulse::io::camera<T> eye{.position = {2, 8, 24}, .target = {16, 0, 6}};
   const bool drawn = impulse::io::save_png(impulse::io::render(world, eye), picture);
   std::printf("  wrote %s and %s\n", out_file.c_str(), picture.c_str());
   return ok && saved && drawn ? 0 : 1;

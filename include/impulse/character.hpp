@@ -96,7 +96,8 @@ class character {
     up_ = length_squared(g) > T(0) ? normalize(-g) : vec3<T>{T(0), T(1), T(0)};
     const vec3<T> y{T(0), T(1), T(0)};
     const vec3<T> axis = cross(y, up_);
-    upright_ = length(axis) > T(1e-6) ? quat<T>::from_axis_angle(normalize(axis), std::acos(std::clamp(dot(y, up_), T(-1), T(1))))
+    const T turn = std::acos(std::clamp(dot(y, up_), T(-1), T(1)));
+    upright_ = length(axis) > T(1e-6) ? quat<T>::from_axis_angle(normalize(axis), turn)
                : dot(y, up_) > T(0)   ? quat<T>::identity()
                                       : quat<T>::from_axis_angle({T(1), T(0), T(0)}, T(3.14159265358979));
   }
@@ -107,7 +108,8 @@ class character {
   /// not positive.
   void move(const vec3<T>& velocity, T dt) {
     if (!is_finite(velocity)) detail::report_error(error_code::non_finite, "character::move: velocity is not finite");
-    if (!(dt > T(0) && dt <= T(1))) detail::report_error(error_code::invalid_parameter, "character::move: dt must be in (0, 1]");
+    if (!(dt > T(0) && dt <= T(1)))
+      detail::report_error(error_code::invalid_parameter, "character::move: dt must be in (0, 1]");
     const vec3<T> start = feet_;
     const bool was_grounded = ground_.has_value();
     vec3<T> along = across(velocity) * dt + carried();
@@ -120,7 +122,8 @@ class character {
     if (vertical + up_part != T(0)) {
       const T moved = slide(up_ * (vertical + up_part));
       apply_pushes();
-      if (moved < std::abs(vertical + up_part) - T(1e-6) && vertical_speed_ > T(0)) vertical_speed_ = T(0);  // a ceiling
+      // A ceiling stops a rise.
+      if (moved < std::abs(vertical + up_part) - T(1e-6) && vertical_speed_ > T(0)) vertical_speed_ = T(0);
     }
     find_ground(was_grounded && vertical_speed_ <= T(0));
     if (ground_) vertical_speed_ = T(0);
@@ -170,7 +173,9 @@ class character {
  private:
   static constexpr int max_slides = 4;
 
-  [[nodiscard]] capsule<T> shape_at(T height) const { return capsule<T>::make(def_.radius, height / T(2) - def_.radius); }
+  [[nodiscard]] capsule<T> shape_at(T height) const {
+    return capsule<T>::make(def_.radius, height / T(2) - def_.radius);
+  }
   /// What the casts sweep: the capsule grown by the skin all round.
   [[nodiscard]] capsule<T> probe() const {
     return capsule<T>::make(def_.radius + def_.skin, height_ / T(2) - def_.radius);

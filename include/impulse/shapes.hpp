@@ -9,4 +9,5 @@
 #include "shapes/mass_properties.hpp"
 #include "shapes/plane.hpp"
 #include "shapes/sphere.hpp"
+#include "shapes/heightfield.hpp"
 #include "shapes/triangle_mesh.hpp"

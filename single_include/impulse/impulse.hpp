@@ -4892,7 +4892,7 @@ struct sweep_and_prune {
 //
 // Most of a world's compiled code depends on its scalar alone: the narrow
 // phase's pair tests of the default shapes (sphere, box, capsule,
-// convex_hull, plane, triangle_mesh), each pair's time of impact and a
+// convex_hull, plane, triangle_mesh, heightfield), each pair's time of impact and a
 // ball's sweep against each convex shape. IMPULSE_EXTERN_TEMPLATES=1
 // declares them extern for float and double as well
 // (IMPULSE_DECLARE_NARROW_PHASE), and impulse/instantiate.hpp compiles them
@@ -4952,6 +4952,7 @@ struct sweep_and_prune {
   IMPULSE_DETAIL_COLLIDE_ROW(how, convex_hull, T);                                                         \
   IMPULSE_DETAIL_COLLIDE_ROW(how, plane, T);                                                               \
   IMPULSE_DETAIL_COLLIDE_ROW(how, triangle_mesh, T);                                                       \
+  IMPULSE_DETAIL_COLLIDE_ROW(how, heightfield, T);                                                         \
   IMPULSE_DETAIL_IMPACT_ROW(how, sphere, T);                                                               \
   IMPULSE_DETAIL_IMPACT_ROW(how, box, T);                                                                  \
   IMPULSE_DETAIL_IMPACT_ROW(how, capsule, T);                                                              \
@@ -4970,7 +4971,8 @@ struct sweep_and_prune {
   IMPULSE_DETAIL_COLLIDE(how, A, capsule, T);                                                              \
   IMPULSE_DETAIL_COLLIDE(how, A, convex_hull, T);                                                          \
   IMPULSE_DETAIL_COLLIDE(how, A, plane, T);                                                                \
-  IMPULSE_DETAIL_COLLIDE(how, A, triangle_mesh, T)
+  IMPULSE_DETAIL_COLLIDE(how, A, triangle_mesh, T);                                                        \
+  IMPULSE_DETAIL_COLLIDE(how, A, heightfield, T)
 #define IMPULSE_DETAIL_IMPACT(how, A, B, T)                                                                 \
   how impulse::narrowphase::toi_result<T> impulse::narrowphase::time_of_impact<impulse::A<T>, impulse::B<T>, T>( \
       const impulse::A<T>&, const impulse::narrowphase::sweep<T>&, const impulse::B<T>&,                    \
@@ -14939,6 +14941,246 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 // out` last, returning how many it wrote.
 
 
+// ---- begin impulse/shapes/heightfield.hpp ----
+// impulse/shapes/heightfield.hpp — static terrain: a grid of heights.
+//
+// `columns` × `rows` samples, sample (i, k) at x = i·spacing_x,
+// z = k·spacing_z, y = its height, in the shape's frame. Each cell between
+// four samples is two triangles split along the diagonal from (i, k) to
+// (i + 1, k + 1), counter-clockwise seen from above (+y is the free side),
+// unless the cell is a hole. Static only, as a triangle mesh: no volume,
+// no mass properties.
+//
+// The narrow phase treats it as the mesh it stands for (narrowphase/
+// mesh.hpp: the same per-triangle tests, the same merging, one-sided from
+// above), with what a mesh keeps in a tree found from the grid: the cells
+// under a box are a range of columns and rows, and their triangles are
+// made from the heights when asked. Active edges are decided as a mesh's
+// are (shapes/detail/active_edges.hpp): an edge is active at the grid's
+// border, beside a hole, and where its two triangles meet convex by more
+// than 5°; a flat or concave edge is internal, so that nothing snags on
+// the seams of flat ground.
+//
+// Memory: a height a sample (4 bytes in float), a byte of active edges a
+// triangle and a byte a cell for holes: about 8 bytes a sample, where the
+// same terrain as a triangle_mesh takes about 90 (its vertices, indices,
+// edge bits and tree nodes; docs/narrowphase.md, "Heightfields").
+
+
+// ---- begin impulse/shapes/detail/active_edges.hpp ----
+// impulse/shapes/detail/active_edges.hpp — whether an edge two triangles
+// share is one something can rest against (active), or an internal seam
+// the narrow phase looks past (triangle_mesh.hpp says why; heightfield.hpp
+// asks the same of its grid).
+
+
+namespace impulse::detail {
+
+/// Triangles (a1, b1, c1) and (a2, b2, c2), wound the same way round, share
+/// an edge through p; `far` is the second's corner off it. The edge is
+/// active where they lie back to back (a sheet folded onto itself) or meet
+/// convex with normals further apart than flat_cosine; flat or concave, it
+/// is internal.
+template <scalar_type T>
+[[nodiscard]] bool shared_edge_active(const vec3<T>& a1, const vec3<T>& b1, const vec3<T>& c1, const vec3<T>& a2,
+                                      const vec3<T>& b2, const vec3<T>& c2, const vec3<T>& p, const vec3<T>& far,
+                                      T flat_cosine) noexcept {
+  const vec3<T> n1 = normalize_or(cross(b1 - a1, c1 - a1), vec3<T>::unit_y());
+  const vec3<T> n2 = normalize_or(cross(b2 - a2, c2 - a2), vec3<T>::unit_y());
+  const T cosine = dot(n1, n2);
+  if (cosine < T(-0.999)) return true;
+  // Concave (the second rises above the first's plane) or flat: internal.
+  if (dot(n1, far - p) >= T(0)) return false;
+  return cosine < flat_cosine;
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/shapes/detail/active_edges.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+class heightfield {
+ public:
+  static constexpr policy_kind kind = policy_kind::shape;
+  /// Bits of active_edges(t), as triangle_mesh's: edge ab, bc, ca.
+  static constexpr std::uint8_t edge_ab = 1, edge_bc = 2, edge_ca = 4;
+  /// As triangle_mesh::flat_edge_cosine: 5°.
+  static constexpr T flat_edge_cosine = T(0.9961946980917455);
+
+  /// Checks and copies the grid: at least 2 × 2 samples, positive finite
+  /// spacings, finite heights (row k's columns at heights[k·columns + i]),
+  /// and either no holes or one flag a cell (cell (i, k) at
+  /// holes[k·(columns − 1) + i], nonzero for a hole).
+  static heightfield make(std::size_t columns, std::size_t rows, T spacing_x, T spacing_z,
+                          std::span<const T> heights, std::span<const std::uint8_t> holes = {}) {
+    if (columns < 2 || rows < 2)
+      detail::report_error(error_code::degenerate_shape, "heightfield: needs at least 2 x 2 samples");
+    if (columns > 65536 || rows > 65536)
+      detail::report_error(error_code::capacity_exceeded, "heightfield: at most 65536 samples a side");
+    if (!std::isfinite(spacing_x) || !std::isfinite(spacing_z) || !(spacing_x > T(0)) || !(spacing_z > T(0)))
+      detail::report_error(error_code::invalid_parameter, "heightfield: spacings must be positive and finite");
+    if (heights.size() != columns * rows)
+      detail::report_error(error_code::invalid_parameter, "heightfield: needs columns x rows heights");
+    const std::size_t cells = (columns - 1) * (rows - 1);
+    if (!holes.empty() && holes.size() != cells)
+      detail::report_error(error_code::invalid_parameter, "heightfield: needs no holes or one flag per cell");
+    heightfield h;
+    h.columns_ = columns, h.rows_ = rows, h.dx_ = spacing_x, h.dz_ = spacing_z;
+    h.heights_.assign(heights.begin(), heights.end());
+    T low = heights[0], high = heights[0];
+    for (const T y : heights) {
+      if (!std::isfinite(y)) detail::report_error(error_code::non_finite, "heightfield: a height is not finite");
+      low = std::min(low, y), high = std::max(high, y);
+    }
+    h.holes_.assign(cells, std::uint8_t(0));
+    for (std::size_t c = 0; c < holes.size(); ++c) h.holes_[c] = holes[c] != 0;
+    h.bounds_ = {{T(0), low, T(0)}, {T(columns - 1) * spacing_x, high, T(rows - 1) * spacing_z}};
+    h.find_active_edges();
+    return h;
+  }
+
+  /// Refuses an empty field (default-constructed or moved from).
+  void validate() const {
+    if (heights_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "heightfield: the field is empty (default-constructed or moved from); use make()");
+  }
+
+  [[nodiscard]] std::size_t columns() const noexcept { return columns_; }
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] T spacing_x() const noexcept { return dx_; }
+  [[nodiscard]] T spacing_z() const noexcept { return dz_; }
+  [[nodiscard]] T height(std::size_t i, std::size_t k) const noexcept { return heights_[k * columns_ + i]; }
+  [[nodiscard]] bool hole(std::size_t i, std::size_t k) const noexcept { return holes_[k * (columns_ - 1) + i] != 0; }
+  /// Bytes the field holds: heights, holes and edge bits.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return heights_.capacity() * sizeof(T) + holes_.capacity() + active_.capacity();
+  }
+  /// Two a cell, holes included (they have no triangles to give).
+  [[nodiscard]] std::size_t triangle_count() const noexcept { return 2 * holes_.size(); }
+
+  /// Triangle t's corners: cell t / 2, the half by t % 2.
+  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
+    const std::size_t cell = t / 2, i = cell % (columns_ - 1), k = cell / (columns_ - 1);
+    const vec3<T> p00 = sample(i, k), p11 = sample(i + 1, k + 1);
+    a = p00;
+    if (t % 2 == 0) b = sample(i, k + 1), c = p11;
+    else b = p11, c = sample(i + 1, k);
+  }
+  [[nodiscard]] std::uint8_t active_edges(std::size_t t) const noexcept { return active_[t]; }
+
+  /// f(t) for each triangle of a cell under `box` (shape frame) whose
+  /// heights reach it; holes give none.
+  template <class F>
+  void for_each_overlapping(const aabb<T>& box, F&& f) const {
+    std::size_t i0, i1, k0, k1;
+    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
+    for (std::size_t k = k0; k <= k1; ++k)
+      for (std::size_t i = i0; i <= i1; ++i) {
+        if (hole(i, k)) continue;
+        const T a = height(i, k), b = height(i + 1, k), c = height(i, k + 1), d = height(i + 1, k + 1);
+        if (std::max({a, b, c, d}) < box.lower.y || std::min({a, b, c, d}) > box.upper.y) continue;
+        const std::size_t cell = k * (columns_ - 1) + i;
+        f(2 * cell);
+        f(2 * cell + 1);
+      }
+  }
+
+  /// f(t, clip) for the triangles of the cells under the segment from
+  /// origin over translation·max_fraction (shape frame); f returns the
+  /// fraction to go on to. Cells are visited in rows, not along the ray.
+  template <class F>
+  void for_each_along_ray(const vec3<T>& origin, const vec3<T>& translation, T max_fraction, F&& f) const {
+    const vec3<T> end = origin + translation * max_fraction;
+    const aabb<T> box{min(origin, end), max(origin, end)};
+    std::size_t i0, i1, k0, k1;
+    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
+    T clip = max_fraction;
+    for (std::size_t k = k0; k <= k1; ++k)
+      for (std::size_t i = i0; i <= i1; ++i) {
+        if (hole(i, k)) continue;
+        const std::size_t cell = k * (columns_ - 1) + i;
+        clip = f(2 * cell, clip);
+        clip = f(2 * cell + 1, clip);
+      }
+  }
+
+  aabb<T> local_aabb() const noexcept { return bounds_; }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(bounds_, pose); }
+
+ private:
+  [[nodiscard]] vec3<T> sample(std::size_t i, std::size_t k) const noexcept {
+    return {T(i) * dx_, height(i, k), T(k) * dz_};
+  }
+
+  /// The columns and rows of cells under [x0, x1] × [z0, z1]; false if none.
+  bool cells_under(T x0, T x1, T z0, T z1, std::size_t& i0, std::size_t& i1, std::size_t& k0,
+                   std::size_t& k1) const noexcept {
+    const T cx = T(columns_ - 1), cz = T(rows_ - 1);
+    const T a = std::floor(x0 / dx_), b = std::floor(x1 / dx_), c = std::floor(z0 / dz_), d = std::floor(z1 / dz_);
+    if (!(b >= T(0) && a < cx && d >= T(0) && c < cz)) return false;  // also refuses NaN
+    i0 = std::size_t(std::max(a, T(0))), i1 = std::size_t(std::min(b, cx - T(1)));
+    k0 = std::size_t(std::max(c, T(0))), k1 = std::size_t(std::min(d, cz - T(1)));
+    return true;
+  }
+
+  /// Each triangle's edges: active at the border, beside a hole, and where
+  /// its neighbour meets it convex by more than 5° (see the top).
+  void find_active_edges() {
+    active_.assign(triangle_count(), std::uint8_t(0));
+    const std::size_t cx = columns_ - 1, cz = rows_ - 1;
+    // The triangle across each edge: (cell offset, half), or none.
+    const auto neighbour = [&](std::size_t i, std::size_t k, int di, int dk, int half, std::size_t& t) {
+      const long ni = long(i) + di, nk = long(k) + dk;
+      if (ni < 0 || nk < 0 || ni >= long(cx) || nk >= long(cz) || hole(std::size_t(ni), std::size_t(nk))) return false;
+      t = 2 * (std::size_t(nk) * cx + std::size_t(ni)) + std::size_t(half);
+      return true;
+    };
+    for (std::size_t k = 0; k < cz; ++k)
+      for (std::size_t i = 0; i < cx; ++i) {
+        if (hole(i, k)) continue;
+        const std::size_t t0 = 2 * (k * cx + i), t1 = t0 + 1;
+        // Triangle 0 (p00, p01, p11): ab the cell's x-side at i (across:
+        // the left cell's triangle 1), bc its far z-side (the next row's
+        // triangle 1), ca the diagonal (this cell's triangle 1).
+        // Triangle 1 (p00, p11, p10): ab the diagonal, bc the x-side at
+        // i + 1 (the right cell's triangle 0), ca the near z-side (the row
+        // before's triangle 0).
+        const struct {
+          std::size_t t;
+          std::uint8_t bit;
+          int di, dk, half;
+        } edges[] = {{t0, edge_ab, -1, 0, 1}, {t0, edge_bc, 0, 1, 1}, {t0, edge_ca, 0, 0, 1},
+                     {t1, edge_ab, 0, 0, 0},  {t1, edge_bc, 1, 0, 0}, {t1, edge_ca, 0, -1, 0}};
+        for (const auto& e : edges) {
+          std::size_t other;
+          if (!neighbour(i, k, e.di, e.dk, e.half, other) || crease_is_active(e.t, e.bit, other))
+            active_[e.t] |= e.bit;
+        }
+      }
+  }
+
+  /// Whether the edge `bit` of triangle t, shared with triangle u, is active.
+  bool crease_is_active(std::size_t t, std::uint8_t bit, std::size_t u) const noexcept {
+    vec3<T> a, b, c, d, e, f;
+    triangle(t, a, b, c);
+    triangle(u, d, e, f);
+    const vec3<T> p = bit == edge_ab ? a : bit == edge_bc ? b : c, q = bit == edge_ab ? b : bit == edge_bc ? c : a;
+    const vec3<T> far = (d != p && d != q) ? d : (e != p && e != q) ? e : f;
+    return detail::shared_edge_active(a, b, c, d, e, f, p, far, flat_edge_cosine);
+  }
+
+  std::size_t columns_ = 0, rows_ = 0;
+  T dx_ = T(1), dz_ = T(1);
+  std::vector<T> heights_;
+  std::vector<std::uint8_t> holes_;
+  std::vector<std::uint8_t> active_;
+  aabb<T> bounds_{};
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/heightfield.hpp ----
 // ---- begin impulse/shapes/triangle_mesh.hpp ----
 // impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
 //
@@ -15018,6 +15260,10 @@ class triangle_bvh {
   [[nodiscard]] std::span<const node> nodes() const noexcept { return nodes_; }
   /// The triangle indices in leaf order.
   [[nodiscard]] std::span<const std::uint32_t> order() const noexcept { return order_; }
+  /// Bytes the tree holds: its nodes and the leaf order.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return nodes_.capacity() * sizeof(node) + order_.capacity() * sizeof(std::uint32_t);
+  }
 
   /// Calls leaf(first, count) for every leaf whose box overlaps `box`
   /// (closed boxes: touching counts); the leaf's triangles are
@@ -15251,6 +15497,11 @@ class triangle_mesh {
 
   /// The tree itself, for inspection and tests.
   [[nodiscard]] const detail::triangle_bvh<T>& tree() const noexcept { return tree_; }
+  /// Bytes the mesh holds: vertices, indices, edge bits and its tree.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return vertices_.capacity() * sizeof(vec3<T>) + indices_.capacity() * sizeof(std::uint32_t) + active_.capacity() +
+           tree_.memory_bytes();
+  }
 
   aabb<T> local_aabb() const noexcept { return bounds_; }
   aabb<T> world_aabb(const transform<T>& pose) const noexcept {
@@ -15315,17 +15566,11 @@ class triangle_mesh {
     vec3<T> a1, b1, c1, a2, b2, c2;
     triangle(t1, a1, b1, c1);
     triangle(t2, a2, b2, c2);
-    const vec3<T> n1 = normalize_or(cross(b1 - a1, c1 - a1), vec3<T>::unit_y());
-    const vec3<T> n2 = normalize_or(cross(b2 - a2, c2 - a2), vec3<T>::unit_y());
-    const T cosine = dot(n1, n2);
-    if (cosine < T(-0.999)) return true;  // back to back: a sheet folded onto itself
     // t2's corner off the edge, by position (either copy of a shared
     // corner is at the same place).
     const vec3<T> p = k == 0 ? a1 : k == 1 ? b1 : c1, q = k == 0 ? b1 : k == 1 ? c1 : a1;
     const vec3<T> far = (a2 != p && a2 != q) ? a2 : (b2 != p && b2 != q) ? b2 : c2;
-    // Concave (t2 rises above t1's plane) or flat: internal.
-    if (dot(n1, far - p) >= T(0)) return false;
-    return cosine < flat_edge_cosine;
+    return detail::shared_edge_active(a1, b1, c1, a2, b2, c2, p, far, flat_edge_cosine);
   }
 
   std::vector<vec3<T>> vertices_;
@@ -16528,8 +16773,8 @@ struct mesh_frame {
 /// Calls test(triangle, manifold) for every triangle near `local_box` (the
 /// shape's box in the working frame, grown by the margin), then merges and
 /// writes the manifolds.
-template <scalar_type T, class Test>
-std::size_t collide_mesh(const triangle_mesh<T>& mesh, const mesh_frame<T>& frame, const aabb<T>& local_box, T weld,
+template <scalar_type T, class Mesh, class Test>
+std::size_t collide_mesh(const Mesh& mesh, const mesh_frame<T>& frame, const aabb<T>& local_box, T weld,
                          bool flip, std::span<contact_manifold<T>> out, Test&& test) {
   manifold_merger<T> merger(weld);
   const aabb<T> query{local_box.lower + frame.shape_in_mesh, local_box.upper + frame.shape_in_mesh};
@@ -16549,8 +16794,8 @@ std::size_t collide_mesh(const triangle_mesh<T>& mesh, const mesh_frame<T>& fram
   return merger.write(out, frame.mesh_rotation, [&](const vec3<T>& x) { return frame.to_world(x); }, flip);
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const sphere<T>& s,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const sphere<T>& s,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const aabb<T> box = aabb<T>::from_center_half_extents({}, vec3<T>::splat(s.radius + margin));
@@ -16560,8 +16805,8 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                       });
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const capsule<T>& c,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const capsule<T>& c,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const vec3<T> half = rotate(frame.shape_rotation, vec3<T>{T(0), c.half_height, T(0)});
@@ -16572,8 +16817,8 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                       });
 }
 
-template <class Poly, scalar_type T>
-std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const Poly& poly,
+template <class Poly, scalar_type T, class Mesh>
+std::size_t collide_mesh_polyhedron(const Mesh& mesh, const transform<T>& pose_mesh, const Poly& poly,
                                     const aabb<T>& local_bounds, const transform<T>& pose_shape, T margin,
                                     std::span<contact_manifold<T>> out, bool flip) {
   using face_plane = typename convex_hull<T>::face_plane;
@@ -16594,14 +16839,14 @@ std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transfor
                       });
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const box<T>& b,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const box<T>& b,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   return collide_mesh_polyhedron(mesh, pose_mesh, box_polyhedron<T>(b), b.local_aabb(), pose_shape, margin, out, flip);
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const convex_hull<T>& h,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const convex_hull<T>& h,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   return collide_mesh_polyhedron(mesh, pose_mesh, h, h.local_aabb(), pose_shape, margin, out, flip);
 }
@@ -16617,32 +16862,43 @@ inline constexpr bool mesh_pairs_with<box<T>> = true;
 template <scalar_type T>
 inline constexpr bool mesh_pairs_with<convex_hull<T>> = true;
 
+/// The static shapes made of triangles: a triangle mesh, and a heightfield
+/// (shapes/heightfield.hpp), whose cells' triangles the same code tests,
+/// found from its grid rather than a tree.
+template <class M>
+inline constexpr bool triangle_source = false;
+template <scalar_type T>
+inline constexpr bool triangle_source<triangle_mesh<T>> = true;
+template <scalar_type T>
+inline constexpr bool triangle_source<heightfield<T>> = true;
+
 }  // namespace detail
 
-/// The contact manifolds of a static mesh and a sphere, capsule, box or
-/// convex hull: at most out.size(), deepest first; returns how many it
-/// wrote. Normals from the mesh into the shape. A shape whose pose is not
-/// finite touches nothing (0).
-template <scalar_type T, class S>
-  requires detail::mesh_pairs_with<S>
-std::size_t collide(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const S& shape,
+/// The contact manifolds of a static mesh (or heightfield) and a sphere,
+/// capsule, box or convex hull: at most out.size(), deepest first; returns
+/// how many it wrote. Normals from the mesh into the shape. A shape whose
+/// pose is not finite touches nothing (0).
+template <scalar_type T, template <class> class Mesh, class S>
+  requires detail::triangle_source<Mesh<T>> && detail::mesh_pairs_with<S>
+std::size_t collide(const Mesh<T>& mesh, const transform<T>& pose_mesh, const S& shape,
                     const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out) {
   return detail::collide_mesh_shape(mesh, pose_mesh, shape, pose_shape, margin, out, false);
 }
 
 /// The same with the shape first: normals from the shape into the mesh.
-template <scalar_type T, class S>
-  requires detail::mesh_pairs_with<S>
-std::size_t collide(const S& shape, const transform<T>& pose_shape, const triangle_mesh<T>& mesh,
+template <scalar_type T, template <class> class Mesh, class S>
+  requires detail::triangle_source<Mesh<T>> && detail::mesh_pairs_with<S>
+std::size_t collide(const S& shape, const transform<T>& pose_shape, const Mesh<T>& mesh,
                     const transform<T>& pose_mesh, T margin, std::span<contact_manifold<T>> out) {
   return detail::collide_mesh_shape(mesh, pose_mesh, shape, pose_shape, margin, out, true);
 }
 
-/// The nearest hit of the ray on the front of any of the mesh's triangles
-/// (see the top of the file). Feature: the triangle's index.
-template <scalar_type T>
-ray_hit<T> ray_cast(const ray<T>& r, const triangle_mesh<T>& mesh, const transform<T>& pose,
-                    T max_fraction = T(1)) noexcept {
+/// The nearest hit of the ray on the front of any of the mesh's (or the
+/// heightfield's) triangles (see the top of the file). Feature: the
+/// triangle's index (a heightfield's: cell · 2 + half).
+template <scalar_type T, template <class> class Mesh>
+  requires detail::triangle_source<Mesh<T>>
+ray_hit<T> ray_cast(const ray<T>& r, const Mesh<T>& mesh, const transform<T>& pose, T max_fraction = T(1)) noexcept {
   if (!is_finite(r.origin) || !is_finite(r.translation) || !(max_fraction >= T(0))) return {};
   const ray<T> local{inverse_apply(pose, r.origin), inverse_apply_direction(pose, r.translation)};
   ray_hit<T> best;
@@ -16695,6 +16951,8 @@ template <scalar_type T>
 inline constexpr bool static_only<plane<T>> = true;
 template <scalar_type T>
 inline constexpr bool static_only<triangle_mesh<T>> = true;
+template <scalar_type T>
+inline constexpr bool static_only<heightfield<T>> = true;
 
 namespace detail {
 
@@ -20333,7 +20591,7 @@ namespace impulse::detail {
 
 template <class C>
 struct world_shapes {
-  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh>;
+  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield>;
 };
 template <class C>
   requires has_shapes<C>
@@ -20633,7 +20891,7 @@ template <scalar_type T, class Shape>
     return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
-                 "world::create_body: planes and triangle meshes can only be static or kinematic");
+                 "world::create_body: planes, triangle meshes and heightfields can only be static or kinematic");
   }
 }
 /// Where a dynamic body of `shape` has its center of mass, in shape space.
@@ -21653,7 +21911,7 @@ struct continuous_collision {
         using O = std::decay_t<decltype(target)>;
         constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
         constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
-        if constexpr (convex_mover && std::is_same_v<O, triangle_mesh<T>>) {
+        if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
           return mesh_impact_time(mover, path, target, other_path);
         } else if constexpr (convex_mover && convex_target) {
           return convex_impact_time(mover, path, target, other_path);
@@ -21698,8 +21956,8 @@ struct continuous_collision {
 
   /// The earliest impact on any triangle of the mesh near the mover's
   /// sweep, each triangle a convex shape of its own.
-  template <class M>
-  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const triangle_mesh<T>& mesh,
+  template <class M, class Mesh>
+  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const Mesh& mesh,
                      const narrowphase::sweep<T>& other_path) const {
     const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
     aabb<T> near = transform_aabb(swept, inverse(other_path.start));
@@ -21770,7 +22028,8 @@ inline constexpr int circle_segments = 16;
 /// An arc about `center` from `from` (a radius vector) turning about the
 /// unit `axis` by `angle`, in circle_segments·angle/2π segments (at least 1).
 template <scalar_type T, class D>
-void draw_arc(D& d, const vec3<T>& center, const vec3<T>& axis, const vec3<T>& from, T angle, const debug_color& color) {
+void draw_arc(D& d, const vec3<T>& center, const vec3<T>& axis, const vec3<T>& from, T angle,
+              const debug_color& color) {
   const int n = std::max(1, int(std::ceil(std::abs(angle) / (T(2) * std::numbers::pi_v<T>) * T(circle_segments))));
   vec3<T> last = center + from;
   for (int k = 1; k <= n; ++k) {
@@ -21823,16 +22082,18 @@ void draw_shape(D& d, const convex_hull<T>& h, const transform<T>& pose, const d
   for (const hull_edge& e : h.edges()) d.line(apply(pose, v[e.a]), apply(pose, v[e.b]), color);
 }
 
-template <scalar_type T, class D>
-void draw_shape(D& d, const triangle_mesh<T>& m, const transform<T>& pose, const debug_color& color) {
-  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+/// A mesh's triangles; a heightfield's, less its holes.
+template <scalar_type T, class Mesh, class D>
+  requires std::same_as<Mesh, triangle_mesh<T>> || std::same_as<Mesh, heightfield<T>>
+void draw_shape(D& d, const Mesh& m, const transform<T>& pose, const debug_color& color) {
+  m.for_each_overlapping(m.local_aabb(), [&](std::size_t t) {
     vec3<T> a, b, c;
     m.triangle(t, a, b, c);
     a = apply(pose, a), b = apply(pose, b), c = apply(pose, c);
     d.line(a, b, color);
     d.line(b, c, color);
     d.line(c, a, color);
-  }
+  });
 }
 
 /// A plane: a square 10 m across about the point nearest the origin, and
@@ -22500,8 +22761,8 @@ struct sensor_update {
 // A convex target is met by conservative advancement (narrowphase/
 // time_of_impact.hpp) between a quarter and a half of `cast_tolerance`
 // short of touching, never past, the point on the target's surface;
-// a triangle mesh triangle by triangle (each a convex shape of three
-// corners); a plane in closed form. A shape that starts overlapping its
+// a triangle mesh or a heightfield triangle by triangle (each a convex
+// shape of three corners); a plane in closed form. A shape that starts overlapping its
 // target hits it at fraction 0, with the normal of least penetration
 // (narrowphase/epa.hpp; a plane's own normal), unless it moves out along
 // that normal; one that starts within the tolerance likewise.
@@ -22575,9 +22836,9 @@ std::optional<cast_contact<T>> cast_plane(const S& shape, const transform<T>& po
 }
 
 /// Against each triangle of a mesh near the swept shape; the nearest.
-template <class S, scalar_type T>
+template <class S, scalar_type T, class Mesh>
 std::optional<cast_contact<T>> cast_mesh(const S& shape, const transform<T>& pose, const vec3<T>& translation,
-                                         const triangle_mesh<T>& mesh, const transform<T>& mesh_pose, T max_fraction) {
+                                         const Mesh& mesh, const transform<T>& mesh_pose, T max_fraction) {
   const aabb<T> swept = merge(shape.world_aabb(pose),
                               shape.world_aabb({pose.position + translation * max_fraction, pose.rotation}));
   std::optional<cast_contact<T>> best;
@@ -22597,7 +22858,7 @@ std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& po
                                           const Target& target, const transform<T>& target_pose, T max_fraction) {
   if constexpr (std::is_same_v<Target, plane<T>>) {
     return cast_plane(shape, pose, translation, target, target_pose, max_fraction);
-  } else if constexpr (std::is_same_v<Target, triangle_mesh<T>>) {
+  } else if constexpr (std::is_same_v<Target, triangle_mesh<T>> || std::is_same_v<Target, heightfield<T>>) {
     return cast_mesh(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (convex_shape<Target, T>) {
     return cast_convex(shape, pose, translation, target, target_pose, max_fraction);
@@ -23601,7 +23862,7 @@ class world {
 
   /// f(hit) for every body that `filter` sees along the ray, in no set
   /// order; f returns the fraction to go on to: its hit's own to see only
-  /// nearer bodies from then on, 1 to see all, 0 to stop.
+  /// nearer bodies from then on, 1 to see all, 0 (or NaN) to stop.
   template <class F>
   void ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter = {}) const;
 
@@ -24388,7 +24649,10 @@ void world<Config>::ray_cast_all(const ray<T>& r, F&& f, const query_filter& fil
   T reach = T(1);
   const auto test = [&](body_id id) {
     const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
-    if (hit) reach = std::clamp(T(f(*hit)), T(0), reach);
+    if (hit) {
+      const T wanted = T(f(*hit));
+      reach = wanted > T(0) ? std::min(wanted, reach) : T(0);  // NaN stops, as 0 does
+    }
     return reach;
   };
   if constexpr (collision) {

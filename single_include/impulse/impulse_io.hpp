@@ -168,18 +168,30 @@ shape_mesh mesh_of(const plane<T>& p, int = 0) {
   return m;
 }
 
-template <scalar_type T>
-shape_mesh mesh_of(const triangle_mesh<T>& mesh, int = 0) {
+namespace detail {
+/// A mesh's or a heightfield's triangles (a heightfield's holes have none).
+template <scalar_type T, class Mesh>
+shape_mesh triangles_of(const Mesh& mesh) {
   shape_mesh m;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+  mesh.for_each_overlapping(mesh.local_aabb(), [&](std::size_t t) {
     vec3<T> a, b, c;
     mesh.triangle(t, a, b, c);
     const vec3<T> n = cross(b - a, c - a);
     const T area = length(n);
-    m.add_polygon({detail::to_float(a), detail::to_float(b), detail::to_float(c)},
-                  area > T(0) ? detail::to_float(n * (T(1) / area)) : vec3<float>{0, 1, 0});
-  }
+    m.add_polygon({to_float(a), to_float(b), to_float(c)},
+                  area > T(0) ? to_float(n * (T(1) / area)) : vec3<float>{0, 1, 0});
+  });
   return m;
+}
+}  // namespace detail
+
+template <scalar_type T>
+shape_mesh mesh_of(const triangle_mesh<T>& mesh, int = 0) {
+  return detail::triangles_of<T>(mesh);
+}
+template <scalar_type T>
+shape_mesh mesh_of(const heightfield<T>& field, int = 0) {
+  return detail::triangles_of<T>(field);
 }
 
 }  // namespace impulse::io

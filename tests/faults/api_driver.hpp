@@ -170,7 +170,7 @@ class api_driver {
         "create_body", "create_body", "create_body", "create_body", "destroy_body",  "create_joint",
         "destroy_joint", "set_velocity", "set_pose", "set_target_pose", "apply_force", "apply_force_at",
         "apply_torque", "apply_impulse_at", "step", "step", "step", "advance", "snapshot/restore",
-        "queries", "motor/limits", "settings", "callback re-entry", "wake"};
+        "queries", "motor/limits", "settings", "callback re-entry", "wake/set_filter"};
     return names[op % 24];
   }
 
@@ -322,7 +322,16 @@ class api_driver {
       }
       case op_settings: settings(next); break;
       case op_callback: reenter(next); break;
-      case op_wake: world_.wake(body(next)); break;
+      case op_wake: {
+        const impulse::body_id id = body(next);
+        if (next() % 2 == 0) {
+          world_.wake(id);
+        } else {
+          const impulse::collision_filter f = filter(next);
+          world_.set_filter(id, f);
+        }
+        break;
+      }
       default: break;
     }
   }
@@ -347,6 +356,8 @@ class api_driver {
     if (next() % 4 == 0) d.linear_velocity = vector(next, T(10));
     if (next() % 4 == 0) d.angular_velocity = vector(next, T(10));
     d.bullet = next() % 16 == 0;
+    d.sensor = next() % 16 == 0;
+    if (next() % 8 == 0) d.filter = filter(next);
     const T size = next() % 16 == 0 ? real(next, T(1)) : T(0.1) + T(next() % 100) / T(100);
     switch (next() % 5) {
       case 0: world_.create_body(d, impulse::sphere<T>{size}); break;
@@ -383,8 +394,36 @@ class api_driver {
     (void)world_.create_joint(d);
   }
 
+  /// A filter of random bits and a group from −2 to 2.
+  template <class Next>
+  impulse::collision_filter filter(Next& next) {
+    const std::uint32_t category = next(), mask = next();
+    const auto group = std::int32_t(next() % 5) - 2;
+    return {category, mask, group};
+  }
+
   template <class Next>
   void query(Next& next) {
+    switch (next() % 8) {
+      case 5: {
+        const impulse::transform<T> at = pose(next);
+        const impulse::vec3<T> by = vector(next, T(20));
+        (void)world_.shape_cast(impulse::sphere<T>{T(0.3)}, at, by, impulse::query_filter{next(), 0, next() % 2 == 0});
+        return;
+      }
+      case 6: {
+        const impulse::transform<T> at = pose(next);
+        world_.shape_overlap(impulse::box<T>{{T(0.5), T(0.5), T(0.5)}}, at, [](impulse::body_id) {});
+        return;
+      }
+      case 7: {
+        const impulse::ray<T> r{vector(next, T(10)), vector(next, T(20))};
+        const T stop = real(next, T(1));
+        world_.ray_cast_all(r, [&](const impulse::world_ray_hit<T>&) { return stop; });
+        return;
+      }
+      default: break;
+    }
     switch (next() % 5) {
       case 0: {
         const impulse::ray<T> r{vector(next, T(10)), vector(next, T(20))};  // a braced list is evaluated in order

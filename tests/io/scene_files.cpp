@@ -123,7 +123,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(s.settings.solver.soft_step.substeps == 4);
   CHECK(s.settings.solver.soft_step.contact_hertz == 30);
   CHECK(s.settings.solver.sequential_impulse.exact_joint_trees);
-  CHECK(s.bodies.size() == 37);
+  CHECK(s.bodies.size() == 38);
   CHECK(std::holds_alternative<plane<double>>(*body("ground").shape));
   CHECK(std::get<triangle_mesh<double>>(*body("ramp").shape).triangle_count() == 2);
   CHECK(body("ball").def.material.restitution == 0.8);  // rubber
@@ -138,6 +138,12 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(body("post").def.filter == collision_filter{4, 3, -2});
   CHECK(body("bolt").def.filter == collision_filter{});
   CHECK(body("gate").def.sensor);
+  const heightfield<double>& terrain = std::get<heightfield<double>>(*body("terrain").shape);
+  CHECK(terrain.columns() == 3);
+  CHECK(terrain.spacing_z() == 1.5);
+  CHECK(terrain.height(1, 1) == 0.3);
+  CHECK(terrain.hole(1, 1));
+  CHECK_FALSE(terrain.hole(0, 1));
   CHECK_FALSE(body("post").def.sensor);
   CHECK(length(body("wall[19]").def.pose.position - vec3<double>{4 * 0.41, 0.1 + 3 * 0.201, -3}) < 1e-12);
   CHECK(length(body("link[3]").def.pose.position - vec3<double>{0.25 + 1.5, 2, 3}) < 1e-12);  // its own -y is world +x
@@ -177,7 +183,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   // And it loads and runs: 120 steps of every joint, shape and kind.
   world<awake_double> w;
   const io::scene_ids ids = io::add_scene(w, s);
-  CHECK(w.body_count() == 37);
+  CHECK(w.body_count() == 38);
   CHECK(w.joint_count() == 8);
   CHECK(ids.joint("rope") == ids.joints[7]);
   for (int i = 0; i < 120; ++i) w.step(1.0 / 60);
@@ -209,7 +215,7 @@ TEST_CASE("each broken scene document is refused naming the JSON path and what w
       {head + R"("bodies": [{"shape": {"type": "triangle_mesh", "vertices": [[0,0,0]], "triangles": [[0,0,1]]}}]})",
        "/bodies/0/shape/triangles/0/2: expected a whole number in [0, 0]"},
       {head + R"("bodies": [{"shape": {"type": "plane", "normal": [0, 1, 0]}}]})",
-       "/bodies/0/shape: a plane or a triangle mesh has no volume"},
+       "/bodies/0/shape: a plane, a triangle mesh or a heightfield has no volume"},
       {head + R"("bodies": [{"shape": "brick"}]})", "/bodies/0/shape: no shape named \"brick\""},
       {head + R"("bodies": [{"shape": {"type": "sphere", "radius": 1e39}}]})",
        "/bodies/0/shape/radius: expected a finite number"},  // past float
@@ -227,6 +233,10 @@ TEST_CASE("each broken scene document is refused naming the JSON path and what w
        "/bodies/0/rotation/quaternion: expected a quaternion of non-zero length"},
       {head + R"("bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}}, {"name": "a", "shape": {"type": "sphere", "radius": 1}}]})",
        "/bodies/1/name: a second body named \"a\""},
+      {head + R"("bodies": [{"type": "static", "shape": {"type": "heightfield", "columns": 3, "rows": 2, "spacing": [1, 1], "heights": [0, 0, 0, 0, 0]}}]})",
+       "/bodies/0/shape/heights: expected columns x rows heights"},
+      {head + R"("bodies": [{"type": "static", "shape": {"type": "heightfield", "columns": 3, "rows": 2, "spacing": [1, 1], "heights": [0, 0, 0, 0, 0, 0], "holes": [[2, 0]]}}]})",
+       "/bodies/0/shape/holes/0/0: expected a whole number in [0, 1]"},
       {head + R"("bodies": [{"filter": {"group": 3000000000}, "shape": {"type": "sphere", "radius": 1}}]})",
        "/bodies/0/filter/group: expected a whole number in [-2147483647, 2147483647]"},
       {head + R"("bodies": [{"filter": {"mask": -1}, "shape": {"type": "sphere", "radius": 1}}]})",

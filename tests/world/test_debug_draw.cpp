@@ -126,6 +126,25 @@ TEST_CASE("a static mesh, a plane and a sensor are drawn in their colours") {
   CHECK(yellow == 12);
 }
 
+TEST_CASE("a heightfield is drawn as its triangles, less its holes") {
+  world_type w(weightless());
+  const std::vector<float> heights(16, 0.5f);
+  std::vector<std::uint8_t> holes(9, 0);
+  holes[4] = 1;  // the middle cell
+  body_def<float> d;
+  d.type = body_type::static_body;
+  d.pose.position = {-1, 0, -1};
+  w.create_body(d, heightfield<float>::make(4, 4, 1, 1, heights, holes));
+  recorder r;
+  w.draw(r, only(true, false));
+  CHECK(r.lines.size() == 8 * 2 * 3);  // 8 cells of two triangles
+  for (const segment& s : r.lines) {
+    CHECK(s.a.y == 0.5f);
+    CHECK(s.a.x >= -1);
+    CHECK(s.a.x <= 2);
+  }
+}
+
 TEST_CASE("a joint is drawn at its anchors, with a hinge's axis and the arc of its limits") {
   world_type w(weightless());
   body_def<float> d;

@@ -89,7 +89,8 @@ inline constexpr std::size_t max_particle_capacity = scene_limits{}.particles;
 inline constexpr int max_scene_depth = scene_limits{}.depth;
 
 template <scalar_type T>
-using scene_shape = std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>>;
+using scene_shape =
+    std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>, heightfield<T>>;
 
 /// A body of a scene: how to make it and where in the file it was described.
 template <scalar_type T>

@@ -32,6 +32,7 @@
 #include "../core/policy.hpp"
 #include "../math/transform.hpp"
 #include "../shapes/plane.hpp"
+#include "../shapes/heightfield.hpp"
 #include "../shapes/triangle_mesh.hpp"
 #include "analytic.hpp"
 #include "box_box.hpp"
@@ -67,6 +68,8 @@ template <scalar_type T>
 inline constexpr bool static_only<plane<T>> = true;
 template <scalar_type T>
 inline constexpr bool static_only<triangle_mesh<T>> = true;
+template <scalar_type T>
+inline constexpr bool static_only<heightfield<T>> = true;
 
 namespace detail {
 

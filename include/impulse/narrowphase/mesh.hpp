@@ -100,6 +100,7 @@
 #include "../shapes/capsule.hpp"
 #include "../shapes/convex_hull.hpp"
 #include "../shapes/sphere.hpp"
+#include "../shapes/heightfield.hpp"
 #include "../shapes/triangle_mesh.hpp"
 #include "analytic.hpp"
 #include "detail/clipping.hpp"
@@ -634,8 +635,8 @@ struct mesh_frame {
 /// Calls test(triangle, manifold) for every triangle near `local_box` (the
 /// shape's box in the working frame, grown by the margin), then merges and
 /// writes the manifolds.
-template <scalar_type T, class Test>
-std::size_t collide_mesh(const triangle_mesh<T>& mesh, const mesh_frame<T>& frame, const aabb<T>& local_box, T weld,
+template <scalar_type T, class Mesh, class Test>
+std::size_t collide_mesh(const Mesh& mesh, const mesh_frame<T>& frame, const aabb<T>& local_box, T weld,
                          bool flip, std::span<contact_manifold<T>> out, Test&& test) {
   manifold_merger<T> merger(weld);
   const aabb<T> query{local_box.lower + frame.shape_in_mesh, local_box.upper + frame.shape_in_mesh};
@@ -655,8 +656,8 @@ std::size_t collide_mesh(const triangle_mesh<T>& mesh, const mesh_frame<T>& fram
   return merger.write(out, frame.mesh_rotation, [&](const vec3<T>& x) { return frame.to_world(x); }, flip);
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const sphere<T>& s,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const sphere<T>& s,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const aabb<T> box = aabb<T>::from_center_half_extents({}, vec3<T>::splat(s.radius + margin));
@@ -666,8 +667,8 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                       });
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const capsule<T>& c,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const capsule<T>& c,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   const mesh_frame<T> frame(pose_mesh, pose_shape);
   const vec3<T> half = rotate(frame.shape_rotation, vec3<T>{T(0), c.half_height, T(0)});
@@ -678,8 +679,8 @@ std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>&
                       });
 }
 
-template <class Poly, scalar_type T>
-std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const Poly& poly,
+template <class Poly, scalar_type T, class Mesh>
+std::size_t collide_mesh_polyhedron(const Mesh& mesh, const transform<T>& pose_mesh, const Poly& poly,
                                     const aabb<T>& local_bounds, const transform<T>& pose_shape, T margin,
                                     std::span<contact_manifold<T>> out, bool flip) {
   using face_plane = typename convex_hull<T>::face_plane;
@@ -700,14 +701,14 @@ std::size_t collide_mesh_polyhedron(const triangle_mesh<T>& mesh, const transfor
                       });
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const box<T>& b,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const box<T>& b,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   return collide_mesh_polyhedron(mesh, pose_mesh, box_polyhedron<T>(b), b.local_aabb(), pose_shape, margin, out, flip);
 }
 
-template <scalar_type T>
-std::size_t collide_mesh_shape(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const convex_hull<T>& h,
+template <scalar_type T, class Mesh>
+std::size_t collide_mesh_shape(const Mesh& mesh, const transform<T>& pose_mesh, const convex_hull<T>& h,
                                const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out, bool flip) {
   return collide_mesh_polyhedron(mesh, pose_mesh, h, h.local_aabb(), pose_shape, margin, out, flip);
 }
@@ -723,32 +724,43 @@ inline constexpr bool mesh_pairs_with<box<T>> = true;
 template <scalar_type T>
 inline constexpr bool mesh_pairs_with<convex_hull<T>> = true;
 
+/// The static shapes made of triangles: a triangle mesh, and a heightfield
+/// (shapes/heightfield.hpp), whose cells' triangles the same code tests,
+/// found from its grid rather than a tree.
+template <class M>
+inline constexpr bool triangle_source = false;
+template <scalar_type T>
+inline constexpr bool triangle_source<triangle_mesh<T>> = true;
+template <scalar_type T>
+inline constexpr bool triangle_source<heightfield<T>> = true;
+
 }  // namespace detail
 
-/// The contact manifolds of a static mesh and a sphere, capsule, box or
-/// convex hull: at most out.size(), deepest first; returns how many it
-/// wrote. Normals from the mesh into the shape. A shape whose pose is not
-/// finite touches nothing (0).
-template <scalar_type T, class S>
-  requires detail::mesh_pairs_with<S>
-std::size_t collide(const triangle_mesh<T>& mesh, const transform<T>& pose_mesh, const S& shape,
+/// The contact manifolds of a static mesh (or heightfield) and a sphere,
+/// capsule, box or convex hull: at most out.size(), deepest first; returns
+/// how many it wrote. Normals from the mesh into the shape. A shape whose
+/// pose is not finite touches nothing (0).
+template <scalar_type T, template <class> class Mesh, class S>
+  requires detail::triangle_source<Mesh<T>> && detail::mesh_pairs_with<S>
+std::size_t collide(const Mesh<T>& mesh, const transform<T>& pose_mesh, const S& shape,
                     const transform<T>& pose_shape, T margin, std::span<contact_manifold<T>> out) {
   return detail::collide_mesh_shape(mesh, pose_mesh, shape, pose_shape, margin, out, false);
 }
 
 /// The same with the shape first: normals from the shape into the mesh.
-template <scalar_type T, class S>
-  requires detail::mesh_pairs_with<S>
-std::size_t collide(const S& shape, const transform<T>& pose_shape, const triangle_mesh<T>& mesh,
+template <scalar_type T, template <class> class Mesh, class S>
+  requires detail::triangle_source<Mesh<T>> && detail::mesh_pairs_with<S>
+std::size_t collide(const S& shape, const transform<T>& pose_shape, const Mesh<T>& mesh,
                     const transform<T>& pose_mesh, T margin, std::span<contact_manifold<T>> out) {
   return detail::collide_mesh_shape(mesh, pose_mesh, shape, pose_shape, margin, out, true);
 }
 
-/// The nearest hit of the ray on the front of any of the mesh's triangles
-/// (see the top of the file). Feature: the triangle's index.
-template <scalar_type T>
-ray_hit<T> ray_cast(const ray<T>& r, const triangle_mesh<T>& mesh, const transform<T>& pose,
-                    T max_fraction = T(1)) noexcept {
+/// The nearest hit of the ray on the front of any of the mesh's (or the
+/// heightfield's) triangles (see the top of the file). Feature: the
+/// triangle's index (a heightfield's: cell · 2 + half).
+template <scalar_type T, template <class> class Mesh>
+  requires detail::triangle_source<Mesh<T>>
+ray_hit<T> ray_cast(const ray<T>& r, const Mesh<T>& mesh, const transform<T>& pose, T max_fraction = T(1)) noexcept {
   if (!is_finite(r.origin) || !is_finite(r.translation) || !(max_fraction >= T(0))) return {};
   const ray<T> local{inverse_apply(pose, r.origin), inverse_apply_direction(pose, r.translation)};
   ray_hit<T> best;

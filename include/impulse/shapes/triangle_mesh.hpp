@@ -35,6 +35,7 @@
 #include "../math/aabb.hpp"
 #include "../math/scalar_traits.hpp"
 #include "../math/transform.hpp"
+#include "detail/active_edges.hpp"
 #include "detail/triangle_bvh.hpp"
 
 namespace impulse {
@@ -148,6 +149,11 @@ class triangle_mesh {
 
   /// The tree itself, for inspection and tests.
   [[nodiscard]] const detail::triangle_bvh<T>& tree() const noexcept { return tree_; }
+  /// Bytes the mesh holds: vertices, indices, edge bits and its tree.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return vertices_.capacity() * sizeof(vec3<T>) + indices_.capacity() * sizeof(std::uint32_t) + active_.capacity() +
+           tree_.memory_bytes();
+  }
 
   aabb<T> local_aabb() const noexcept { return bounds_; }
   aabb<T> world_aabb(const transform<T>& pose) const noexcept {
@@ -212,17 +218,11 @@ class triangle_mesh {
     vec3<T> a1, b1, c1, a2, b2, c2;
     triangle(t1, a1, b1, c1);
     triangle(t2, a2, b2, c2);
-    const vec3<T> n1 = normalize_or(cross(b1 - a1, c1 - a1), vec3<T>::unit_y());
-    const vec3<T> n2 = normalize_or(cross(b2 - a2, c2 - a2), vec3<T>::unit_y());
-    const T cosine = dot(n1, n2);
-    if (cosine < T(-0.999)) return true;  // back to back: a sheet folded onto itself
     // t2's corner off the edge, by position (either copy of a shared
     // corner is at the same place).
     const vec3<T> p = k == 0 ? a1 : k == 1 ? b1 : c1, q = k == 0 ? b1 : k == 1 ? c1 : a1;
     const vec3<T> far = (a2 != p && a2 != q) ? a2 : (b2 != p && b2 != q) ? b2 : c2;
-    // Concave (t2 rises above t1's plane) or flat: internal.
-    if (dot(n1, far - p) >= T(0)) return false;
-    return cosine < flat_edge_cosine;
+    return detail::shared_edge_active(a1, b1, c1, a2, b2, c2, p, far, flat_edge_cosine);
   }
 
   std::vector<vec3<T>> vertices_;

@@ -487,7 +487,7 @@ class world {
 
   /// f(hit) for every body that `filter` sees along the ray, in no set
   /// order; f returns the fraction to go on to: its hit's own to see only
-  /// nearer bodies from then on, 1 to see all, 0 to stop.
+  /// nearer bodies from then on, 1 to see all, 0 (or NaN) to stop.
   template <class F>
   void ray_cast_all(const ray<T>& r, F&& f, const query_filter& filter = {}) const;
 

@@ -88,7 +88,10 @@ void world<Config>::ray_cast_all(const ray<T>& r, F&& f, const query_filter& fil
   T reach = T(1);
   const auto test = [&](body_id id) {
     const std::optional<world_ray_hit<T>> hit = ray_hit_of(id, r, reach, filter);
-    if (hit) reach = std::clamp(T(f(*hit)), T(0), reach);
+    if (hit) {
+      const T wanted = T(f(*hit));
+      reach = wanted > T(0) ? std::min(wanted, reach) : T(0);  // NaN stops, as 0 does
+    }
     return reach;
   };
   if constexpr (collision) {

@@ -271,8 +271,47 @@ class scene_parser {
       check(at, [&] { out = std::make_shared<const scene_shape<T>>(triangle_mesh<T>::make(points, indices)); });
       return out;
     }
-    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\" or \"triangle_mesh\", got " +
-                            describe(at["type"].value));
+    if (type == "heightfield") return heightfield_shape(at);
+    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\", \"triangle_mesh\" or "
+                        "\"heightfield\", got " + describe(at["type"].value));
+  }
+
+  /// columns × rows heights (row by row, counted as the scene's vertices),
+  /// spacing [x, z], and holes as [i, k] cells.
+  std::shared_ptr<const scene_shape<T>> heightfield_shape(const json_at& at) {
+    r_.object(at, {"type", "columns", "rows", "spacing", "heights", "holes"});
+    const auto columns = std::size_t(r_.integer(at["columns"], 2, 65536));
+    const auto rows = std::size_t(r_.integer(at["rows"], 2, 65536));
+    const json_at spacing = at["spacing"];
+    if (!spacing.value.is_array() || spacing.value.size() != 2) r_.fail_expected(spacing, "[x, z] spacings");
+    const T sx = r_.positive(spacing[0]), sz = r_.positive(spacing[1]);
+    const json_at list = at["heights"];
+    r_.array(list, 4);
+    if (list.value.size() > limits_.vertices - vertices_)
+      exceeded(list, "the scene's meshes, hulls and heightfields would have more than " +
+                         std::to_string(limits_.vertices) + " vertices", "vertices");
+    if (list.value.size() != columns * rows) r_.fail_expected(list, "columns x rows heights");
+    vertices_ += list.value.size();
+    std::vector<T> heights(list.value.size());
+    for (std::size_t i = 0; i < heights.size(); ++i) heights[i] = r_.number(list[i]);
+    std::vector<std::uint8_t> holes;
+    if (at.has("holes")) {
+      const json_at cells = at["holes"];
+      r_.array(cells);
+      holes.assign((columns - 1) * (rows - 1), 0);
+      for (std::size_t h = 0; h < cells.value.size(); ++h) {
+        const json_at cell = cells[h];
+        if (!cell.value.is_array() || cell.value.size() != 2) r_.fail_expected(cell, "a cell [i, k]");
+        const auto i = std::size_t(r_.integer(cell[0], 0, std::int64_t(columns) - 2));
+        const auto k = std::size_t(r_.integer(cell[1], 0, std::int64_t(rows) - 2));
+        holes[k * (columns - 1) + i] = 1;
+      }
+    }
+    std::shared_ptr<const scene_shape<T>> out;
+    check(at, [&] {
+      out = std::make_shared<const scene_shape<T>>(heightfield<T>::make(columns, rows, sx, sz, heights, holes));
+    });
+    return out;
   }
 
   template <class Shape>
@@ -388,8 +427,10 @@ class scene_parser {
     if (def.type == body_type::static_body && (def.linear_velocity != vec3<T>{} || def.angular_velocity != vec3<T>{}))
       r_.fail(at, "a static body cannot move: give it no velocity, or make it \"kinematic\"");
     if (def.type == body_type::dynamic &&
-        (std::holds_alternative<plane<T>>(*body_shape) || std::holds_alternative<triangle_mesh<T>>(*body_shape)))
-      r_.fail(at["shape"], "a plane or a triangle mesh has no volume: its body must be \"static\" or \"kinematic\"");
+        (std::holds_alternative<plane<T>>(*body_shape) || std::holds_alternative<triangle_mesh<T>>(*body_shape) ||
+         std::holds_alternative<heightfield<T>>(*body_shape)))
+      r_.fail(at["shape"], "a plane, a triangle mesh or a heightfield has no volume: its body must be \"static\" or "
+                           "\"kinematic\"");
 
     std::string name;
     if (at.has("name")) {

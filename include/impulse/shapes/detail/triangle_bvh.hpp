@@ -63,6 +63,10 @@ class triangle_bvh {
   [[nodiscard]] std::span<const node> nodes() const noexcept { return nodes_; }
   /// The triangle indices in leaf order.
   [[nodiscard]] std::span<const std::uint32_t> order() const noexcept { return order_; }
+  /// Bytes the tree holds: its nodes and the leaf order.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return nodes_.capacity() * sizeof(node) + order_.capacity() * sizeof(std::uint32_t);
+  }
 
   /// Calls leaf(first, count) for every leaf whose box overlaps `box`
   /// (closed boxes: touching counts); the leaf's triangles are

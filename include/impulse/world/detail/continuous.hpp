@@ -177,7 +177,7 @@ struct continuous_collision {
         using O = std::decay_t<decltype(target)>;
         constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
         constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
-        if constexpr (convex_mover && std::is_same_v<O, triangle_mesh<T>>) {
+        if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
           return mesh_impact_time(mover, path, target, other_path);
         } else if constexpr (convex_mover && convex_target) {
           return convex_impact_time(mover, path, target, other_path);
@@ -222,8 +222,8 @@ struct continuous_collision {
 
   /// The earliest impact on any triangle of the mesh near the mover's
   /// sweep, each triangle a convex shape of its own.
-  template <class M>
-  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const triangle_mesh<T>& mesh,
+  template <class M, class Mesh>
+  T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const Mesh& mesh,
                      const narrowphase::sweep<T>& other_path) const {
     const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
     aabb<T> near = transform_aabb(swept, inverse(other_path.start));

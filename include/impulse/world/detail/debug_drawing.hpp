@@ -13,6 +13,7 @@
 #include "../../shapes/convex_hull.hpp"
 #include "../../shapes/plane.hpp"
 #include "../../shapes/sphere.hpp"
+#include "../../shapes/heightfield.hpp"
 #include "../../shapes/triangle_mesh.hpp"
 #include "../debug_draw.hpp"
 #include "world_state.hpp"
@@ -48,7 +49,8 @@ inline constexpr int circle_segments = 16;
 /// An arc about `center` from `from` (a radius vector) turning about the
 /// unit `axis` by `angle`, in circle_segments·angle/2π segments (at least 1).
 template <scalar_type T, class D>
-void draw_arc(D& d, const vec3<T>& center, const vec3<T>& axis, const vec3<T>& from, T angle, const debug_color& color) {
+void draw_arc(D& d, const vec3<T>& center, const vec3<T>& axis, const vec3<T>& from, T angle,
+              const debug_color& color) {
   const int n = std::max(1, int(std::ceil(std::abs(angle) / (T(2) * std::numbers::pi_v<T>) * T(circle_segments))));
   vec3<T> last = center + from;
   for (int k = 1; k <= n; ++k) {
@@ -101,16 +103,18 @@ void draw_shape(D& d, const convex_hull<T>& h, const transform<T>& pose, const d
   for (const hull_edge& e : h.edges()) d.line(apply(pose, v[e.a]), apply(pose, v[e.b]), color);
 }
 
-template <scalar_type T, class D>
-void draw_shape(D& d, const triangle_mesh<T>& m, const transform<T>& pose, const debug_color& color) {
-  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+/// A mesh's triangles; a heightfield's, less its holes.
+template <scalar_type T, class Mesh, class D>
+  requires std::same_as<Mesh, triangle_mesh<T>> || std::same_as<Mesh, heightfield<T>>
+void draw_shape(D& d, const Mesh& m, const transform<T>& pose, const debug_color& color) {
+  m.for_each_overlapping(m.local_aabb(), [&](std::size_t t) {
     vec3<T> a, b, c;
     m.triangle(t, a, b, c);
     a = apply(pose, a), b = apply(pose, b), c = apply(pose, c);
     d.line(a, b, color);
     d.line(b, c, color);
     d.line(c, a, color);
-  }
+  });
 }
 
 /// A plane: a square 10 m across about the point nearest the origin, and

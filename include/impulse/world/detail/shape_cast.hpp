@@ -6,8 +6,8 @@
 // A convex target is met by conservative advancement (narrowphase/
 // time_of_impact.hpp) between a quarter and a half of `cast_tolerance`
 // short of touching, never past, the point on the target's surface;
-// a triangle mesh triangle by triangle (each a convex shape of three
-// corners); a plane in closed form. A shape that starts overlapping its
+// a triangle mesh or a heightfield triangle by triangle (each a convex
+// shape of three corners); a plane in closed form. A shape that starts overlapping its
 // target hits it at fraction 0, with the normal of least penetration
 // (narrowphase/epa.hpp; a plane's own normal), unless it moves out along
 // that normal; one that starts within the tolerance likewise.
@@ -22,6 +22,7 @@
 #include "../../narrowphase/mesh.hpp"
 #include "../../narrowphase/time_of_impact.hpp"
 #include "../../shapes/plane.hpp"
+#include "../../shapes/heightfield.hpp"
 #include "../../shapes/triangle_mesh.hpp"
 
 namespace impulse::detail {
@@ -91,9 +92,9 @@ std::optional<cast_contact<T>> cast_plane(const S& shape, const transform<T>& po
 }
 
 /// Against each triangle of a mesh near the swept shape; the nearest.
-template <class S, scalar_type T>
+template <class S, scalar_type T, class Mesh>
 std::optional<cast_contact<T>> cast_mesh(const S& shape, const transform<T>& pose, const vec3<T>& translation,
-                                         const triangle_mesh<T>& mesh, const transform<T>& mesh_pose, T max_fraction) {
+                                         const Mesh& mesh, const transform<T>& mesh_pose, T max_fraction) {
   const aabb<T> swept = merge(shape.world_aabb(pose),
                               shape.world_aabb({pose.position + translation * max_fraction, pose.rotation}));
   std::optional<cast_contact<T>> best;
@@ -113,7 +114,7 @@ std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& po
                                           const Target& target, const transform<T>& target_pose, T max_fraction) {
   if constexpr (std::is_same_v<Target, plane<T>>) {
     return cast_plane(shape, pose, translation, target, target_pose, max_fraction);
-  } else if constexpr (std::is_same_v<Target, triangle_mesh<T>>) {
+  } else if constexpr (std::is_same_v<Target, triangle_mesh<T>> || std::is_same_v<Target, heightfield<T>>) {
     return cast_mesh(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (convex_shape<Target, T>) {
     return cast_convex(shape, pose, translation, target, target_pose, max_fraction);

@@ -209,7 +209,7 @@ template <scalar_type T, class Shape>
     return rigid_body<T>::dynamic({p.mass, vec3<T>{}, p.inertia}, def.pose);
   } else {
     report_error(error_code::invalid_parameter,
-                 "world::create_body: planes and triangle meshes can only be static or kinematic");
+                 "world::create_body: planes, triangle meshes and heightfields can only be static or kinematic");
   }
 }
 /// Where a dynamic body of `shape` has its center of mass, in shape space.

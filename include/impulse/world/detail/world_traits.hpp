@@ -19,6 +19,7 @@
 #include "../../shapes/convex_hull.hpp"
 #include "../../shapes/plane.hpp"
 #include "../../shapes/sphere.hpp"
+#include "../../shapes/heightfield.hpp"
 #include "../../shapes/triangle_mesh.hpp"
 #include "../world_settings.hpp"
 
@@ -26,7 +27,7 @@ namespace impulse::detail {
 
 template <class C>
 struct world_shapes {
-  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh>;
+  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield>;
 };
 template <class C>
   requires has_shapes<C>
