@@ -3,8 +3,10 @@
 // pre-solve hook), a conveyor belt carries three crates into a sensor gate
 // that counts them (a hook's surface velocity, sensor events), a ghost
 // ball whose filter leaves the crates out falls through a crate onto the
-// belt, and a shape cast finds the platform under a probe. Prints each as
-// it happens, checks them, and writes out/gameplay.glb and out/gameplay.png.
+// belt, a shape cast finds the platform under a probe, and a chair made of
+// a seat, four legs and a back (a compound) is dropped and stands on its
+// legs. Prints each as it happens, checks them, and writes
+// out/gameplay.glb and out/gameplay.png.
 //
 //   build/native/examples/gameplay [out.glb]
 #include <algorithm>
@@ -57,6 +59,21 @@ body_id add_box(world_type& w, vec3<T> at, vec3<T> half, impulse::body_type type
   return w.create_body(d, impulse::box<T>::make(half));
 }
 
+/// A chair 0.5 m wide as one body: a seat 3 cm thick whose top is 0.48 m
+/// above the legs' feet, four legs 5 cm square, and a back; its origin at
+/// the feet.
+impulse::compound<T> chair() {
+  using impulse::box;
+  using impulse::transform;
+  const auto at = [](T x, T y, T z) { return transform<T>{{x, y, z}, impulse::quat<T>::identity()}; };
+  impulse::compound<T>::builder b;
+  b.add(box<T>{{T(0.25), T(0.015), T(0.25)}}, at(0, T(0.465), 0));
+  for (const T x : {T(-0.22), T(0.22)})
+    for (const T z : {T(-0.22), T(0.22)}) b.add(box<T>{{T(0.025), T(0.225), T(0.025)}}, at(x, T(0.225), z));
+  b.add(box<T>{{T(0.25), T(0.3), T(0.02)}}, at(0, T(0.78), T(-0.23)));
+  return b.build();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,6 +105,11 @@ int main(int argc, char** argv) {
   ghost_def.pose.position = {T(3.5), 3, 0};
   ghost_def.filter = {1, impulse::all_categories & ~crate_category, 0};
   const body_id ghost = world.create_body(ghost_def, impulse::sphere<T>::make(T(0.2)));
+  // A chair dropped from 0.5 m, turned a little: it lands on its legs.
+  impulse::body_def<T> chair_def;
+  chair_def.pose = {{-2, T(0.5), 4}, impulse::quat<T>::from_axis_angle({0, 1, 0}, T(0.6))};
+  chair_def.material.density = 600;  // wood
+  const body_id seat = world.create_body(chair_def, chair());
 
   impulse::io::gltf_recorder recording(world, {.contacts = true});
   int counted = 0;
@@ -108,6 +130,10 @@ int main(int argc, char** argv) {
               double(ball_peak), double(ball_y));
   std::printf("  the ghost passed through a crate: %s; it lies on the belt at %.3f m (its top 0.3 m + 0.2)\n",
               ghost_in_crate ? "yes" : "no", double(ghost_y));
+  const impulse::transform<T> chair_pose = world.shape_pose(seat);
+  const T chair_up = impulse::rotate(chair_pose.rotation, vec3<T>{0, 1, 0}).y;
+  std::printf("  the chair stands on its legs, its feet at %.3f m, leaning %.2f degrees\n", double(chair_pose.position.y),
+              double(std::acos(std::min(T(1), chair_up)) * T(180) / T(3.14159265)));
   // A probe dropped from above the platform: where does it land?
   const auto probe = world.shape_cast(impulse::sphere<T>::make(T(0.3)), {{-5, 6, 0}, impulse::quat<T>::identity()},
                                       {0, -10, 0});
@@ -117,7 +143,8 @@ int main(int argc, char** argv) {
   // The throw peaks at 0.25 + 8²/(2g) = 3.51 m, less the steps' rounding.
   const bool ok = ball_peak > T(3.4) && std::abs(ball_y - T(2.35)) < T(0.01) && counted == 3 && ghost_in_crate &&
                   std::abs(ghost_y - T(0.5)) < T(0.01) && probe_hits_platform &&
-                  std::abs(probe->fraction * 10 - T(3.6)) < T(0.001);
+                  std::abs(probe->fraction * 10 - T(3.6)) < T(0.001) && std::abs(chair_pose.position.y) < T(0.01) &&
+                  chair_up > std::cos(T(0.01));
 
   const std::filesystem::path out(out_file);
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());

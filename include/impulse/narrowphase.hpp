@@ -21,6 +21,7 @@
 #include "narrowphase/analytic.hpp"
 #include "narrowphase/box_box.hpp"
 #include "narrowphase/capsule_polyhedron.hpp"
+#include "narrowphase/compound.hpp"
 #include "narrowphase/dispatch.hpp"
 #include "narrowphase/epa.hpp"
 #include "narrowphase/gjk.hpp"

@@ -4892,7 +4892,8 @@ struct sweep_and_prune {
 //
 // Most of a world's compiled code depends on its scalar alone: the narrow
 // phase's pair tests of the default shapes (sphere, box, capsule,
-// convex_hull, plane, triangle_mesh, heightfield), each pair's time of impact and a
+// convex_hull, plane, triangle_mesh, heightfield; a compound's entries are
+// empty, its children's being these), each pair's time of impact and a
 // ball's sweep against each convex shape. IMPULSE_EXTERN_TEMPLATES=1
 // declares them extern for float and double as well
 // (IMPULSE_DECLARE_NARROW_PHASE), and impulse/instantiate.hpp compiles them
@@ -4953,6 +4954,7 @@ struct sweep_and_prune {
   IMPULSE_DETAIL_COLLIDE_ROW(how, plane, T);                                                               \
   IMPULSE_DETAIL_COLLIDE_ROW(how, triangle_mesh, T);                                                       \
   IMPULSE_DETAIL_COLLIDE_ROW(how, heightfield, T);                                                         \
+  IMPULSE_DETAIL_COLLIDE_ROW(how, compound, T);                                                            \
   IMPULSE_DETAIL_IMPACT_ROW(how, sphere, T);                                                               \
   IMPULSE_DETAIL_IMPACT_ROW(how, box, T);                                                                  \
   IMPULSE_DETAIL_IMPACT_ROW(how, capsule, T);                                                              \
@@ -4972,7 +4974,8 @@ struct sweep_and_prune {
   IMPULSE_DETAIL_COLLIDE(how, A, convex_hull, T);                                                          \
   IMPULSE_DETAIL_COLLIDE(how, A, plane, T);                                                                \
   IMPULSE_DETAIL_COLLIDE(how, A, triangle_mesh, T);                                                        \
-  IMPULSE_DETAIL_COLLIDE(how, A, heightfield, T)
+  IMPULSE_DETAIL_COLLIDE(how, A, heightfield, T);                                                           \
+  IMPULSE_DETAIL_COLLIDE(how, A, compound, T)
 #define IMPULSE_DETAIL_IMPACT(how, A, B, T)                                                                 \
   how impulse::narrowphase::toi_result<T> impulse::narrowphase::time_of_impact<impulse::A<T>, impulse::B<T>, T>( \
       const impulse::A<T>&, const impulse::narrowphase::sweep<T>&, const impulse::B<T>&,                    \
@@ -14477,6 +14480,9 @@ class scratch_buffer {
   [[nodiscard]] U* data() noexcept {
     return large_.empty() ? std::launder(reinterpret_cast<U*>(small_)) : large_.data();
   }
+  [[nodiscard]] const U* data() const noexcept {
+    return large_.empty() ? std::launder(reinterpret_cast<const U*>(small_)) : large_.data();
+  }
   U& operator[](std::size_t i) noexcept { return data()[i]; }
 
  private:
@@ -14918,293 +14924,50 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 
 }  // namespace impulse::narrowphase
 // ---- end impulse/narrowphase/capsule_polyhedron.hpp ----
-// ---- begin impulse/narrowphase/dispatch.hpp ----
-// impulse/narrowphase/dispatch.hpp — the pair tests a world is compiled
-// for, chosen from its config's shape_list.
+// ---- begin impulse/narrowphase/compound.hpp ----
+// impulse/narrowphase/compound.hpp — a compound's pair test and ray cast, child
+// by child.
 //
-// `dispatcher<shape_list<sphere, box>, float>` holds a table of one entry
-// per ordered pair of listed shapes, each entry the `collide` written for
-// that pair (sphere–box, box–sphere, …), called through the shapes'
-// indices in the list. Every entry writes its manifolds into a span and
-// returns how many: one for a pair of convex shapes, one per distinct
-// normal for a mesh (mesh.hpp). Only the listed pairs are instantiated: a world of
-// spheres and boxes compiles none of the hull, capsule or GJK code. Two
-// shapes that are only ever static (planes, triangle meshes) never meet,
-// and their entry returns an empty manifold.
+// The pair test (collide_compound) asks the compound's tree for the
+// children whose boxes the other shape's box, grown by the margin,
+// overlaps, has each tested by the pair test of its own shape (the
+// dispatcher's table, dispatch.hpp: a compound needs no pair test of its
+// own, and compiles none), and merges the children's manifolds by normal
+// (detail/manifold_merger.hpp), as a mesh merges its triangles': two boxes
+// side by side on a floor give one manifold of four corners, the hull
+// around them would too, and a solver sees one face, not two that fight
+// over the same rows.
 //
-// A listed pair with no `collide` is a compile error whose instantiation
-// context names the pair: `missing_pair_test<A, B, T>`. A user's own shape
-// joins by providing `collide(const mine<T>&, const transform<T>&, const
-// other<T>&, const transform<T>&, T margin)` for each shape it is listed
-// with, in its own namespace (found by argument-dependent lookup) or in
-// impulse::narrowphase; or the form with `std::span<contact_manifold<T>>
-// out` last, returning how many it wrote.
+// Feature ids: a child's test gives ids that are stable while its features
+// touch; the child's index is mixed into them (compound_feature), so that
+// the same corner of two children is two ids, and the same corner of the
+// same child keeps its id step after step: warm starting carries each
+// point's impulse as it does for a single shape.
 
 
-// ---- begin impulse/shapes/heightfield.hpp ----
-// impulse/shapes/heightfield.hpp — static terrain: a grid of heights.
+// ---- begin impulse/shapes/compound.hpp ----
+// impulse/shapes/compound.hpp — one body made of several convex shapes.
 //
-// `columns` × `rows` samples, sample (i, k) at x = i·spacing_x,
-// z = k·spacing_z, y = its height, in the shape's frame. Each cell between
-// four samples is two triangles split along the diagonal from (i, k) to
-// (i + 1, k + 1), counter-clockwise seen from above (+y is the free side),
-// unless the cell is a hole. Static only, as a triangle mesh: no volume,
-// no mass properties.
+// A chair, a dumbbell, an L-shaped beam, a table: shapes that are not
+// convex, built from convex children (spheres, boxes, capsules, hulls),
+// each at its own pose in the compound's frame, as Jolt's StaticCompound
+// and Bullet's btCompoundShape do. The body moves as one rigid piece:
 //
-// The narrow phase treats it as the mesh it stands for (narrowphase/
-// mesh.hpp: the same per-triangle tests, the same merging, one-sided from
-// above), with what a mesh keeps in a tree found from the grid: the cells
-// under a box are a range of columns and rows, and their triangles are
-// made from the heights when asked. Active edges are decided as a mesh's
-// are (shapes/detail/active_edges.hpp): an edge is active at the grid's
-// border, beside a hole, and where its two triangles meet convex by more
-// than 5°; a flat or concave edge is internal, so that nothing snags on
-// the seams of flat ground.
+// - mass properties are the exact sum of the children's (each child's
+//   closed form, carried to the compound's frame by the parallel-axis
+//   theorem: mass_properties.hpp), with an optional density per child
+//   relative to the body's material;
+// - the narrow phase tests each child near the other shape
+//   (narrowphase/compound.hpp), found through a tree over the children's
+//   boxes (detail/triangle_bvh.hpp, the mesh's tree), and merges the
+//   children's manifolds by normal, so that two boxes side by side rest
+//   on a floor with one manifold of four corners, as the hull around them
+//   would; each point's feature id carries its child's index, so the same
+//   child's same features keep their id from step to step (warm starting);
+// - ray casts, shape casts and continuous collision go child by child.
 //
-// Memory: a height a sample (4 bytes in float), a byte of active edges a
-// triangle and a byte a cell for holes: about 8 bytes a sample, where the
-// same terrain as a triangle_mesh takes about 90 (its vertices, indices,
-// edge bits and tree nodes; docs/narrowphase.md, "Heightfields").
-
-
-// ---- begin impulse/shapes/detail/active_edges.hpp ----
-// impulse/shapes/detail/active_edges.hpp — whether an edge two triangles
-// share is one something can rest against (active), or an internal seam
-// the narrow phase looks past (triangle_mesh.hpp says why; heightfield.hpp
-// asks the same of its grid).
-
-
-namespace impulse::detail {
-
-/// Triangles (a1, b1, c1) and (a2, b2, c2), wound the same way round, share
-/// an edge through p; `far` is the second's corner off it. The edge is
-/// active where they lie back to back (a sheet folded onto itself) or meet
-/// convex with normals further apart than flat_cosine; flat or concave, it
-/// is internal.
-template <scalar_type T>
-[[nodiscard]] bool shared_edge_active(const vec3<T>& a1, const vec3<T>& b1, const vec3<T>& c1, const vec3<T>& a2,
-                                      const vec3<T>& b2, const vec3<T>& c2, const vec3<T>& p, const vec3<T>& far,
-                                      T flat_cosine) noexcept {
-  const vec3<T> n1 = normalize_or(cross(b1 - a1, c1 - a1), vec3<T>::unit_y());
-  const vec3<T> n2 = normalize_or(cross(b2 - a2, c2 - a2), vec3<T>::unit_y());
-  const T cosine = dot(n1, n2);
-  if (cosine < T(-0.999)) return true;
-  // Concave (the second rises above the first's plane) or flat: internal.
-  if (dot(n1, far - p) >= T(0)) return false;
-  return cosine < flat_cosine;
-}
-
-}  // namespace impulse::detail
-// ---- end impulse/shapes/detail/active_edges.hpp ----
-
-namespace impulse {
-
-template <scalar_type T>
-class heightfield {
- public:
-  static constexpr policy_kind kind = policy_kind::shape;
-  /// Bits of active_edges(t), as triangle_mesh's: edge ab, bc, ca.
-  static constexpr std::uint8_t edge_ab = 1, edge_bc = 2, edge_ca = 4;
-  /// As triangle_mesh::flat_edge_cosine: 5°.
-  static constexpr T flat_edge_cosine = T(0.9961946980917455);
-
-  /// Checks and copies the grid: at least 2 × 2 samples, positive finite
-  /// spacings, finite heights (row k's columns at heights[k·columns + i]),
-  /// and either no holes or one flag a cell (cell (i, k) at
-  /// holes[k·(columns − 1) + i], nonzero for a hole).
-  static heightfield make(std::size_t columns, std::size_t rows, T spacing_x, T spacing_z,
-                          std::span<const T> heights, std::span<const std::uint8_t> holes = {}) {
-    if (columns < 2 || rows < 2)
-      detail::report_error(error_code::degenerate_shape, "heightfield: needs at least 2 x 2 samples");
-    if (columns > 65536 || rows > 65536)
-      detail::report_error(error_code::capacity_exceeded, "heightfield: at most 65536 samples a side");
-    if (!std::isfinite(spacing_x) || !std::isfinite(spacing_z) || !(spacing_x > T(0)) || !(spacing_z > T(0)))
-      detail::report_error(error_code::invalid_parameter, "heightfield: spacings must be positive and finite");
-    if (heights.size() != columns * rows)
-      detail::report_error(error_code::invalid_parameter, "heightfield: needs columns x rows heights");
-    const std::size_t cells = (columns - 1) * (rows - 1);
-    if (!holes.empty() && holes.size() != cells)
-      detail::report_error(error_code::invalid_parameter, "heightfield: needs no holes or one flag per cell");
-    heightfield h;
-    h.columns_ = columns, h.rows_ = rows, h.dx_ = spacing_x, h.dz_ = spacing_z;
-    h.heights_.assign(heights.begin(), heights.end());
-    T low = heights[0], high = heights[0];
-    for (const T y : heights) {
-      if (!std::isfinite(y)) detail::report_error(error_code::non_finite, "heightfield: a height is not finite");
-      low = std::min(low, y), high = std::max(high, y);
-    }
-    h.holes_.assign(cells, std::uint8_t(0));
-    for (std::size_t c = 0; c < holes.size(); ++c) h.holes_[c] = holes[c] != 0;
-    h.bounds_ = {{T(0), low, T(0)}, {T(columns - 1) * spacing_x, high, T(rows - 1) * spacing_z}};
-    h.find_active_edges();
-    return h;
-  }
-
-  /// Refuses an empty field (default-constructed or moved from).
-  void validate() const {
-    if (heights_.empty())
-      detail::report_error(error_code::degenerate_shape,
-                           "heightfield: the field is empty (default-constructed or moved from); use make()");
-  }
-
-  [[nodiscard]] std::size_t columns() const noexcept { return columns_; }
-  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
-  [[nodiscard]] T spacing_x() const noexcept { return dx_; }
-  [[nodiscard]] T spacing_z() const noexcept { return dz_; }
-  [[nodiscard]] T height(std::size_t i, std::size_t k) const noexcept { return heights_[k * columns_ + i]; }
-  [[nodiscard]] bool hole(std::size_t i, std::size_t k) const noexcept { return holes_[k * (columns_ - 1) + i] != 0; }
-  /// Bytes the field holds: heights, holes and edge bits.
-  [[nodiscard]] std::size_t memory_bytes() const noexcept {
-    return heights_.capacity() * sizeof(T) + holes_.capacity() + active_.capacity();
-  }
-  /// Two a cell, holes included (they have no triangles to give).
-  [[nodiscard]] std::size_t triangle_count() const noexcept { return 2 * holes_.size(); }
-
-  /// Triangle t's corners: cell t / 2, the half by t % 2.
-  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
-    const std::size_t cell = t / 2, i = cell % (columns_ - 1), k = cell / (columns_ - 1);
-    const vec3<T> p00 = sample(i, k), p11 = sample(i + 1, k + 1);
-    a = p00;
-    if (t % 2 == 0) b = sample(i, k + 1), c = p11;
-    else b = p11, c = sample(i + 1, k);
-  }
-  [[nodiscard]] std::uint8_t active_edges(std::size_t t) const noexcept { return active_[t]; }
-
-  /// f(t) for each triangle of a cell under `box` (shape frame) whose
-  /// heights reach it; holes give none.
-  template <class F>
-  void for_each_overlapping(const aabb<T>& box, F&& f) const {
-    std::size_t i0, i1, k0, k1;
-    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
-    for (std::size_t k = k0; k <= k1; ++k)
-      for (std::size_t i = i0; i <= i1; ++i) {
-        if (hole(i, k)) continue;
-        const T a = height(i, k), b = height(i + 1, k), c = height(i, k + 1), d = height(i + 1, k + 1);
-        if (std::max({a, b, c, d}) < box.lower.y || std::min({a, b, c, d}) > box.upper.y) continue;
-        const std::size_t cell = k * (columns_ - 1) + i;
-        f(2 * cell);
-        f(2 * cell + 1);
-      }
-  }
-
-  /// f(t, clip) for the triangles of the cells under the segment from
-  /// origin over translation·max_fraction (shape frame); f returns the
-  /// fraction to go on to. Cells are visited in rows, not along the ray.
-  template <class F>
-  void for_each_along_ray(const vec3<T>& origin, const vec3<T>& translation, T max_fraction, F&& f) const {
-    const vec3<T> end = origin + translation * max_fraction;
-    const aabb<T> box{min(origin, end), max(origin, end)};
-    std::size_t i0, i1, k0, k1;
-    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
-    T clip = max_fraction;
-    for (std::size_t k = k0; k <= k1; ++k)
-      for (std::size_t i = i0; i <= i1; ++i) {
-        if (hole(i, k)) continue;
-        const std::size_t cell = k * (columns_ - 1) + i;
-        clip = f(2 * cell, clip);
-        clip = f(2 * cell + 1, clip);
-      }
-  }
-
-  aabb<T> local_aabb() const noexcept { return bounds_; }
-  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(bounds_, pose); }
-
- private:
-  [[nodiscard]] vec3<T> sample(std::size_t i, std::size_t k) const noexcept {
-    return {T(i) * dx_, height(i, k), T(k) * dz_};
-  }
-
-  /// The columns and rows of cells under [x0, x1] × [z0, z1]; false if none.
-  bool cells_under(T x0, T x1, T z0, T z1, std::size_t& i0, std::size_t& i1, std::size_t& k0,
-                   std::size_t& k1) const noexcept {
-    const T cx = T(columns_ - 1), cz = T(rows_ - 1);
-    const T a = std::floor(x0 / dx_), b = std::floor(x1 / dx_), c = std::floor(z0 / dz_), d = std::floor(z1 / dz_);
-    if (!(b >= T(0) && a < cx && d >= T(0) && c < cz)) return false;  // also refuses NaN
-    i0 = std::size_t(std::max(a, T(0))), i1 = std::size_t(std::min(b, cx - T(1)));
-    k0 = std::size_t(std::max(c, T(0))), k1 = std::size_t(std::min(d, cz - T(1)));
-    return true;
-  }
-
-  /// Each triangle's edges: active at the border, beside a hole, and where
-  /// its neighbour meets it convex by more than 5° (see the top).
-  void find_active_edges() {
-    active_.assign(triangle_count(), std::uint8_t(0));
-    const std::size_t cx = columns_ - 1, cz = rows_ - 1;
-    // The triangle across each edge: (cell offset, half), or none.
-    const auto neighbour = [&](std::size_t i, std::size_t k, int di, int dk, int half, std::size_t& t) {
-      const long ni = long(i) + di, nk = long(k) + dk;
-      if (ni < 0 || nk < 0 || ni >= long(cx) || nk >= long(cz) || hole(std::size_t(ni), std::size_t(nk))) return false;
-      t = 2 * (std::size_t(nk) * cx + std::size_t(ni)) + std::size_t(half);
-      return true;
-    };
-    for (std::size_t k = 0; k < cz; ++k)
-      for (std::size_t i = 0; i < cx; ++i) {
-        if (hole(i, k)) continue;
-        const std::size_t t0 = 2 * (k * cx + i), t1 = t0 + 1;
-        // Triangle 0 (p00, p01, p11): ab the cell's x-side at i (across:
-        // the left cell's triangle 1), bc its far z-side (the next row's
-        // triangle 1), ca the diagonal (this cell's triangle 1).
-        // Triangle 1 (p00, p11, p10): ab the diagonal, bc the x-side at
-        // i + 1 (the right cell's triangle 0), ca the near z-side (the row
-        // before's triangle 0).
-        const struct {
-          std::size_t t;
-          std::uint8_t bit;
-          int di, dk, half;
-        } edges[] = {{t0, edge_ab, -1, 0, 1}, {t0, edge_bc, 0, 1, 1}, {t0, edge_ca, 0, 0, 1},
-                     {t1, edge_ab, 0, 0, 0},  {t1, edge_bc, 1, 0, 0}, {t1, edge_ca, 0, -1, 0}};
-        for (const auto& e : edges) {
-          std::size_t other;
-          if (!neighbour(i, k, e.di, e.dk, e.half, other) || crease_is_active(e.t, e.bit, other))
-            active_[e.t] |= e.bit;
-        }
-      }
-  }
-
-  /// Whether the edge `bit` of triangle t, shared with triangle u, is active.
-  bool crease_is_active(std::size_t t, std::uint8_t bit, std::size_t u) const noexcept {
-    vec3<T> a, b, c, d, e, f;
-    triangle(t, a, b, c);
-    triangle(u, d, e, f);
-    const vec3<T> p = bit == edge_ab ? a : bit == edge_bc ? b : c, q = bit == edge_ab ? b : bit == edge_bc ? c : a;
-    const vec3<T> far = (d != p && d != q) ? d : (e != p && e != q) ? e : f;
-    return detail::shared_edge_active(a, b, c, d, e, f, p, far, flat_edge_cosine);
-  }
-
-  std::size_t columns_ = 0, rows_ = 0;
-  T dx_ = T(1), dz_ = T(1);
-  std::vector<T> heights_;
-  std::vector<std::uint8_t> holes_;
-  std::vector<std::uint8_t> active_;
-  aabb<T> bounds_{};
-};
-
-}  // namespace impulse
-// ---- end impulse/shapes/heightfield.hpp ----
-// ---- begin impulse/shapes/triangle_mesh.hpp ----
-// impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
-//
-// Vertices and index triples, counter-clockwise seen from the free side.
-// Static only: it need not be closed, so it has no volume and no mass
-// properties. Built once by make(), which also builds what the narrow phase
-// reads:
-//
-// - a bounding-volume tree over the triangles (detail/triangle_bvh.hpp),
-//   queried by box (for_each_overlapping) and by segment
-//   (for_each_along_ray) without allocating;
-// - which edges of each triangle are active (active_edges): an edge is
-//   active where something can rest against it — a boundary edge (one
-//   triangle), an edge shared by more than two triangles or by two whose
-//   windings disagree or that lie back to back, and a convex edge whose
-//   faces meet more than 5° away from flat. A flat or concave edge between
-//   two triangles is internal: a contact there takes the triangle's face
-//   normal, so that a box sliding over a flat mesh does not catch on the
-//   seams between its triangles (the active edges of Jolt Physics'
-//   MeshShape, Bullet's btInternalEdgeUtility; narrowphase/mesh.hpp).
-//   Neighbours are found by sorting the edges by their two vertices, and
-//   vertices are compared by position, so an unwelded mesh (each triangle
-//   with its own copies of shared corners) gets the same answer as a
-//   welded one.
+// Built once by a builder and then immutable, like a hull or a mesh: a
+// world copies the compound it is given.
 
 
 // ---- begin impulse/shapes/detail/triangle_bvh.hpp ----
@@ -15388,372 +15151,448 @@ class triangle_bvh {
 
 namespace impulse {
 
+/// Which convex shape a child of a compound is.
+enum class compound_part : std::uint8_t { sphere, box, capsule, convex_hull };
+
 template <scalar_type T>
-class triangle_mesh {
+class compound_builder;
+
+template <scalar_type T>
+class compound {
  public:
   static constexpr policy_kind kind = policy_kind::shape;
+  /// The most children a compound takes (feature ids keep 16 bits for the
+  /// child's index: narrowphase/compound.hpp).
+  static constexpr std::size_t max_children = 1u << 16;
 
-  /// Bits of active_edges(t): edge ab (corners 0 → 1), bc, ca.
-  static constexpr std::uint8_t edge_ab = 1, edge_bc = 2, edge_ca = 4;
-  /// Two faces whose normals are closer than this cosine (5°, Jolt's
-  /// default) meet flat: their shared edge is internal. A mesh that bends
-  /// by less than that per edge (a tessellated gentle slope) is treated as
-  /// smooth; a bend of more stops a sliding box as a real step would.
-  static constexpr T flat_edge_cosine = T(0.9961946980917455);
+  /// One child: where it is in the compound's frame, its box there, and its
+  /// density relative to the body's material.
+  struct child {
+    transform<T> pose = transform<T>::identity();
+    aabb<T> bounds{};
+    T relative_density = T(1);
+    compound_part part = compound_part::sphere;
+    std::uint32_t slot = 0;  ///< place in its part's array
+  };
 
-  /// Copies the mesh after checking it: finite vertices, indices in range,
-  /// at least one triangle, and no triangle of zero area. Builds the tree
-  /// and the active edges (O(n log n) in the number of triangles).
-  static triangle_mesh make(std::span<const vec3<T>> vertices, std::span<const std::uint32_t> indices) {
-    if (indices.empty() || indices.size() % 3 != 0)
-      detail::report_error(error_code::degenerate_shape, "triangle_mesh: needs whole triangles, at least one");
-    triangle_mesh mesh;
-    for (const vec3<T>& v : vertices) {
-      if (!is_finite(v)) detail::report_error(error_code::non_finite, "triangle_mesh: a vertex is not finite");
-      mesh.bounds_ = mesh.vertices_.empty() ? aabb<T>{v, v} : merge(mesh.bounds_, v);
-      mesh.vertices_.push_back(v);
-    }
-    for (std::size_t t = 0; t < indices.size(); t += 3) {
-      for (std::size_t k = 0; k < 3; ++k)
-        if (indices[t + k] >= vertices.size())
-          detail::report_error(error_code::out_of_range, "triangle_mesh: an index names a missing vertex",
-                               std::uint32_t(t / 3));
-      const vec3<T> a = vertices[indices[t]], b = vertices[indices[t + 1]], c = vertices[indices[t + 2]];
-      // Zero area relative to the triangle's own size: ε² of its longest edge squared.
-      const T scale = max_component(abs(b - a)) + max_component(abs(c - a));
-      if (!(length_squared(cross(b - a, c - a)) > scalar_traits<T>::epsilon * scalar_traits<T>::epsilon * scale * scale * scale * scale))
-        detail::report_error(error_code::degenerate_shape, "triangle_mesh: a triangle has zero area",
-                             std::uint32_t(t / 3));
-    }
-    if (indices.size() / 3 >= std::size_t(0xffffffffu))
-      detail::report_error(error_code::capacity_exceeded, "triangle_mesh: more triangles than 32-bit indices can name");
-    mesh.indices_.assign(indices.begin(), indices.end());
+  /// Collects the children; build() makes the compound.
+  using builder = compound_builder<T>;
 
-    std::vector<aabb<T>> boxes(mesh.triangle_count());
-    for (std::size_t t = 0; t < boxes.size(); ++t) boxes[t] = mesh.triangle_aabb(t);
-    mesh.tree_.build(boxes);
-    mesh.find_active_edges();
-    return mesh;
-  }
-
-  /// Refuses a mesh with no triangle: a default-constructed or moved-from
-  /// one, which make() never returns. The world checks every shape it is
-  /// given this way.
+  /// Refuses a compound with no children (moved from): builder::build never
+  /// makes one. The world checks every shape it is given this way.
   void validate() const {
-    if (indices_.empty())
-      detail::report_error(error_code::degenerate_shape,
-                           "triangle_mesh: the mesh is empty (default-constructed or moved from); use make()");
+    if (children_.empty())
+      detail::report_error(error_code::degenerate_shape, "compound: the compound is empty (moved from); use a builder");
   }
 
-  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
-  [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
-  /// The three corners of triangle t.
-  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
-    a = vertices_[indices_[3 * t]];
-    b = vertices_[indices_[3 * t + 1]];
-    c = vertices_[indices_[3 * t + 2]];
+  [[nodiscard]] std::size_t child_count() const noexcept { return children_.size(); }
+  [[nodiscard]] const child& child_at(std::size_t i) const noexcept { return children_[i]; }
+  [[nodiscard]] std::span<const child> children() const noexcept { return children_; }
+  /// Whether any child is of this part (the world checks that its shape
+  /// list has each part a compound uses).
+  [[nodiscard]] bool uses(compound_part part) const noexcept {
+    return std::any_of(children_.begin(), children_.end(), [&](const child& c) { return c.part == part; });
   }
-  /// The tight box around triangle t, in the mesh's frame.
-  [[nodiscard]] aabb<T> triangle_aabb(std::size_t t) const noexcept {
-    vec3<T> a, b, c;
-    triangle(t, a, b, c);
-    return merge(aabb<T>{min(a, b), max(a, b)}, c);
-  }
-  /// Which of triangle t's edges are active: edge_ab | edge_bc | edge_ca.
-  [[nodiscard]] std::uint8_t active_edges(std::size_t t) const noexcept { return active_[t]; }
 
-  /// Calls f(t) for every triangle t whose tight box overlaps `local_box`
-  /// (in the mesh's frame; touching counts), in the tree's order. Allocates
-  /// nothing.
+  /// f(shape, pose) with child i's shape and its pose in the compound's
+  /// frame; returns what f returns.
   template <class F>
-  void for_each_overlapping(const aabb<T>& local_box, F&& f) const {
+  decltype(auto) visit(std::size_t i, F&& f) const {
+    const child& c = children_[i];
+    switch (c.part) {
+      case compound_part::sphere: return f(spheres_[c.slot], c.pose);
+      case compound_part::box: return f(boxes_[c.slot], c.pose);
+      case compound_part::capsule: return f(capsules_[c.slot], c.pose);
+      case compound_part::convex_hull: break;
+    }
+    return f(hulls_[c.slot], c.pose);
+  }
+
+  /// Calls f(i) for every child whose box overlaps `box` (in the
+  /// compound's frame; touching counts), without allocating.
+  template <class F>
+  void for_each_overlapping(const aabb<T>& box, F&& f) const {
     const std::span<const std::uint32_t> order = tree_.order();
-    tree_.for_each_leaf_overlapping(local_box, [&](std::uint32_t first, std::uint32_t count) {
-      for (std::uint32_t i = first; i < first + count; ++i)
-        if (overlaps(triangle_aabb(order[i]), local_box)) f(std::size_t(order[i]));
+    tree_.for_each_leaf_overlapping(box, [&](std::uint32_t first, std::uint32_t count) {
+      for (std::uint32_t k = first; k < first + count; ++k)
+        if (overlaps(children_[order[k]].bounds, box)) f(std::size_t(order[k]));  // a leaf holds up to four
     });
   }
-
-  /// Walks the triangles near the segment origin + s·translation, s in
-  /// [0, max_fraction] (in the mesh's frame), leaves nearer along it first:
-  /// f(t, clip) is called with the fraction the segment is clipped to so
-  /// far and returns the new clip (its nearest hit, or clip unchanged);
-  /// leaves entered beyond the clip are skipped. Every triangle the segment
-  /// crosses before the final clip is passed to f. Allocates nothing.
+  /// Calls clip = f(i, clip) for every child whose box the segment origin +
+  /// t·translation (compound frame), t in [0, clip], may cross, nearer
+  /// boxes first; f returns the new clip (its nearest hit so far).
   template <class F>
   void for_each_along_ray(const vec3<T>& origin, const vec3<T>& translation, T max_fraction, F&& f) const {
-    // The slab test's rounding, in metres: a few ulps of the largest
-    // coordinate it subtracts.
-    const T reach = std::max(max_component(abs(bounds_.lower)), max_component(abs(bounds_.upper))) +
-                    max_component(abs(origin));
-    const T slack = T(16) * scalar_traits<T>::epsilon * reach;
+    const T reach = std::max(max_component(abs(bounds_.lower)), max_component(abs(bounds_.upper)));
+    const T slack = T(16) * scalar_traits<T>::epsilon * std::max(reach, max_component(abs(origin)));
     const std::span<const std::uint32_t> order = tree_.order();
     tree_.for_each_leaf_along(origin, translation, max_fraction, slack,
                               [&](std::uint32_t first, std::uint32_t count, T clip) {
-                                for (std::uint32_t i = first; i < first + count; ++i) clip = f(std::size_t(order[i]), clip);
+                                for (std::uint32_t k = first; k < first + count; ++k) clip = f(std::size_t(order[k]), clip);
                                 return clip;
                               });
   }
 
-  /// The tree itself, for inspection and tests.
-  [[nodiscard]] const detail::triangle_bvh<T>& tree() const noexcept { return tree_; }
-  /// Bytes the mesh holds: vertices, indices, edge bits and its tree.
-  [[nodiscard]] std::size_t memory_bytes() const noexcept {
-    return vertices_.capacity() * sizeof(vec3<T>) + indices_.capacity() * sizeof(std::uint32_t) + active_.capacity() +
-           tree_.memory_bytes();
-  }
+  /// m: the smallest half-extent of any child (what the body may cross in a
+  /// step before continuous collision sweeps it), and its use as the
+  /// narrow phase's weld distance.
+  [[nodiscard]] T thinnest_half_extent() const noexcept { return thinnest_; }
 
   aabb<T> local_aabb() const noexcept { return bounds_; }
+  /// The union of the children's own boxes at `pose`: tighter than the
+  /// compound's box turned, for a long compound at an angle.
   aabb<T> world_aabb(const transform<T>& pose) const noexcept {
-    aabb<T> box{apply(pose, vertices_[0]), apply(pose, vertices_[0])};
-    for (const vec3<T>& v : vertices_) box = merge(box, apply(pose, v));
+    aabb<T> box = aabb<T>::empty();
+    for (std::size_t i = 0; i < children_.size(); ++i)
+      box = merge(box, visit(i, [&](const auto& s, const transform<T>& local) { return s.world_aabb(pose * local); }));
     return box;
   }
 
  private:
-  /// Finds each edge's neighbours and decides whether it is active (see
-  /// the top of the file).
-  void find_active_edges() {
-    const std::size_t n = triangle_count();
-    active_.assign(n, std::uint8_t(0));
-    // Vertices by position: each gets the smallest index of the vertices at
-    // its exact position.
-    std::vector<std::uint32_t> by_position(vertices_.size()), canonical(vertices_.size());
-    for (std::uint32_t i = 0; i < by_position.size(); ++i) by_position[i] = i;
-    const auto less = [&](std::uint32_t x, std::uint32_t y) {
-      const vec3<T>& p = vertices_[x];
-      const vec3<T>& q = vertices_[y];
-      if (p.x != q.x) return p.x < q.x;
-      if (p.y != q.y) return p.y < q.y;
-      if (p.z != q.z) return p.z < q.z;
-      return x < y;
-    };
-    std::sort(by_position.begin(), by_position.end(), less);
-    for (std::size_t i = 0; i < by_position.size(); ++i)
-      canonical[by_position[i]] =
-          i > 0 && vertices_[by_position[i]] == vertices_[by_position[i - 1]] ? canonical[by_position[i - 1]] : by_position[i];
+  friend class compound_builder<T>;
 
-    struct edge_record {
-      std::uint32_t lo, hi;  // canonical vertices, lo < hi
-      std::uint32_t triangle;
-      std::uint8_t k;        // 0 ab, 1 bc, 2 ca
-      bool forward;          // the triangle runs it lo -> hi
-    };
-    std::vector<edge_record> edges;
-    edges.reserve(3 * n);
-    for (std::uint32_t t = 0; t < n; ++t)
-      for (std::uint8_t k = 0; k < 3; ++k) {
-        const std::uint32_t p = canonical[indices_[3 * t + k]], q = canonical[indices_[3 * t + (k + 1) % 3]];
-        edges.push_back({std::min(p, q), std::max(p, q), t, k, p < q});
-      }
-    std::sort(edges.begin(), edges.end(), [](const edge_record& x, const edge_record& y) {
-      return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.triangle < y.triangle;
-    });
-    for (std::size_t i = 0; i < edges.size();) {
-      std::size_t j = i + 1;
-      while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
-      const bool active = j - i != 2 || edge_is_active(edges[i].triangle, edges[i].k, edges[i + 1].triangle,
-                                                      edges[i].forward == edges[i + 1].forward);
-      if (active)
-        for (std::size_t e = i; e < j; ++e) active_[edges[e].triangle] |= std::uint8_t(1u << edges[e].k);
-      i = j;
+  void finish() {
+    bounds_ = aabb<T>::empty();
+    thinnest_ = std::numeric_limits<T>::infinity();
+    std::vector<aabb<T>> boxes(children_.size());
+    for (std::size_t i = 0; i < children_.size(); ++i) {
+      boxes[i] = children_[i].bounds;
+      bounds_ = merge(bounds_, boxes[i]);
+      thinnest_ = std::min(thinnest_, visit(i, [](const auto& s, const transform<T>&) { return thinnest_of(s); }));
     }
+    tree_.build(boxes);
   }
 
-  /// Whether the edge k of triangle t1, shared with triangle t2, is active.
-  bool edge_is_active(std::uint32_t t1, std::uint8_t k, std::uint32_t t2, bool same_direction) const noexcept {
-    if (same_direction) return true;  // the windings disagree: no consistent front side across it
-    vec3<T> a1, b1, c1, a2, b2, c2;
-    triangle(t1, a1, b1, c1);
-    triangle(t2, a2, b2, c2);
-    // t2's corner off the edge, by position (either copy of a shared
-    // corner is at the same place).
-    const vec3<T> p = k == 0 ? a1 : k == 1 ? b1 : c1, q = k == 0 ? b1 : k == 1 ? c1 : a1;
-    const vec3<T> far = (a2 != p && a2 != q) ? a2 : (b2 != p && b2 != q) ? b2 : c2;
-    return detail::shared_edge_active(a1, b1, c1, a2, b2, c2, p, far, flat_edge_cosine);
+  static T thinnest_of(const sphere<T>& s) noexcept { return s.radius; }
+  static T thinnest_of(const capsule<T>& c) noexcept { return c.radius; }
+  static T thinnest_of(const box<T>& b) noexcept { return std::min({b.half_extents.x, b.half_extents.y, b.half_extents.z}); }
+  static T thinnest_of(const convex_hull<T>& h) noexcept {
+    const vec3<T> half = half_extents(h.local_aabb());
+    return std::min({half.x, half.y, half.z});
   }
 
-  std::vector<vec3<T>> vertices_;
-  std::vector<std::uint32_t> indices_;
-  std::vector<std::uint8_t> active_;
+  std::vector<child> children_;
+  std::vector<sphere<T>> spheres_;
+  std::vector<box<T>> boxes_;
+  std::vector<capsule<T>> capsules_;
+  std::vector<convex_hull<T>> hulls_;
   detail::triangle_bvh<T> tree_;
   aabb<T> bounds_{};
+  T thinnest_ = T(0);
 };
 
+/// Collects a compound's children (compound<T>::builder); build() makes
+/// the compound.
+template <scalar_type T>
+class compound_builder {
+ public:
+  /// Adds `shape` at `pose` in the compound's frame. relative_density
+  /// scales the body's material density for this child (a lead keel
+  /// under a wooden hull: 11); it must be finite and positive.
+  compound_builder& add(const sphere<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+    return push(result_.spheres_, shape, compound_part::sphere, pose, relative_density);
+  }
+  compound_builder& add(const box<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+    return push(result_.boxes_, shape, compound_part::box, pose, relative_density);
+  }
+  compound_builder& add(const capsule<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+    return push(result_.capsules_, shape, compound_part::capsule, pose, relative_density);
+  }
+  compound_builder& add(const convex_hull<T>& shape, const transform<T>& pose = transform<T>::identity(),
+               T relative_density = T(1)) {
+    return push(result_.hulls_, shape, compound_part::convex_hull, pose, relative_density);
+  }
+
+  /// The compound of the children added so far (at least one), with its
+  /// tree built; the builder is left empty. Each child was checked when
+  /// added.
+  [[nodiscard]] compound<T> build() {
+    if (result_.children_.empty())
+      detail::report_error(error_code::degenerate_shape, "compound: needs at least one child");
+    compound<T> c = std::move(result_);
+    result_ = compound<T>{};
+    c.finish();
+    return c;
+  }
+
+ private:
+  template <class Shape>
+  compound_builder& push(std::vector<Shape>& column, const Shape& shape, compound_part part, const transform<T>& pose,
+                T relative_density) {
+    shape.validate();
+    if (!is_finite(pose.position) || !is_finite(pose.rotation))
+      detail::report_error(error_code::non_finite, "compound: a child's pose is not finite");
+    if (!is_normalized(pose.rotation))
+      detail::report_error(error_code::not_normalized, "compound: a child's rotation is not a unit quaternion");
+    if (!std::isfinite(relative_density) || !(relative_density > T(0)))
+      detail::report_error(error_code::invalid_parameter,
+                           "compound: a child's relative density must be finite and positive");
+    if (result_.children_.size() >= compound<T>::max_children)
+      detail::report_error(error_code::out_of_range, "compound: more than max_children children");
+    column.push_back(shape);
+    result_.children_.push_back(
+        {pose, shape.world_aabb(pose), relative_density, part, std::uint32_t(column.size() - 1)});
+    return *this;
+  }
+
+  compound<T> result_;
+};
+
+/// The children's mass properties, each at the body's density times its
+/// own relative density, placed by its pose and summed: exact for the
+/// solid the children make, when they do not overlap (where two overlap,
+/// the overlap counts twice, as in Jolt and Bullet).
+template <scalar_type T>
+mass_properties<T> mass_properties_of(const compound<T>& c, T density) {
+  c.validate();
+  detail::require_density(density);
+  mass_properties<T> sum;
+  for (std::size_t i = 0; i < c.child_count(); ++i) {
+    const mass_properties<T> part = c.visit(i, [&](const auto& s, const transform<T>& pose) {
+      return transformed(mass_properties_of(s, density * c.child_at(i).relative_density), to_mat3(pose.rotation),
+                         pose.position);
+    });
+    sum = i == 0 ? part : combine(sum, part);
+  }
+  return sum;
+}
+
 }  // namespace impulse
-// ---- end impulse/shapes/triangle_mesh.hpp ----
-// ---- begin impulse/narrowphase/hull.hpp ----
-// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
-//
-// A hull against a plane: each vertex below the plane's surface plus the
-// margin is a candidate (its id the vertex's index), and four are kept
-// (reduce_to_four), as for a box.
-//
-// A sphere against a hull, in the hull's frame: the face whose plane lies
-// farthest above the center decides. If even that plane is below it, the
-// center is inside the hull and the way out is through that face: the depth
-// is the radius plus how far the center is below it. Otherwise the point of
-// the hull nearest the center comes from GJK between the center and the
-// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
-// that point lies within the radius plus the margin. The feature id is that
-// face's index: it holds while the sphere rolls across one face.
+// ---- end impulse/shapes/compound.hpp ----
+// ---- begin impulse/narrowphase/detail/manifold_merger.hpp ----
+// impulse/narrowphase/detail/manifold_merger.hpp — many small manifolds made
+// into few: the triangles a shape touches on a mesh (mesh.hpp), the children
+// of a compound (compound.hpp). Manifolds whose normals agree within
+// tolerances::same_normal_cosine become one, their points welded (two
+// within the weld distance are one, the deeper kept) and reduced to four;
+// the deepest few are written out.
 
 
 
-namespace impulse::narrowphase {
+namespace impulse::narrowphase::detail {
 
+/// Merges the manifolds of single triangles (or a compound's children)
+/// into few: one per normal (within tolerances::same_normal_cosine), at
+/// most `capacity`, each reduced to four points once all are in, so that
+/// the four do not depend on the order the parts came in (reducing as they
+/// come loses a corner: two cubes' four quarters of a face under a bar
+/// kept three of its corners and a midpoint). A normal keeps up to
+/// `group_points` candidates; past that (a box over more than four
+/// triangles) it is reduced to four and goes on. Positions and normals in
+/// the working frame.
 template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  const detail::world_plane<T> p = detail::in_world(b, pose_b);
-  const std::span<const vec3<T>> vertices = a.vertices();
-  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
-  std::size_t count = 0;
-  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
-    const vec3<T> x = apply(pose_a, vertices[k]);
-    const T height = dot(p.normal, x) + p.offset;
-    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
+class manifold_merger {
+ public:
+  static constexpr std::size_t capacity = 16;
+  static constexpr std::size_t group_points = 16;
+
+  explicit manifold_merger(T weld) noexcept : weld_squared_(weld * weld), points_(capacity * group_points) {}
+  manifold_merger(const manifold_merger&) = delete;
+  manifold_merger& operator=(const manifold_merger&) = delete;
+
+  void add(const contact_manifold<T>& m) noexcept {
+    if (m.empty()) return;
+    for (std::size_t g = 0; g < count_; ++g) {
+      if (dot(groups_[g].normal, m.normal) <= tolerances<T>::same_normal_cosine) continue;
+      groups_[g].single = false;
+      for (const contact_point<T>& p : m.contacts()) add_point(g, p);
+      return;
+    }
+    std::size_t g = count_;
+    if (count_ < capacity) {
+      ++count_;
+    } else {
+      // Full (a shape touching more than 16 differently turned faces at
+      // once): the new one replaces the shallowest if it is deeper.
+      g = 0;
+      for (std::size_t k = 1; k < count_; ++k)
+        if (groups_[k].deepest < groups_[g].deepest) g = k;
+      if (!(deepest(m) > groups_[g].deepest)) return;
+    }
+    groups_[g] = {m.normal, 0, -std::numeric_limits<T>::infinity(), true};
+    for (const contact_point<T>& p : m.contacts()) add_point(g, p);
   }
-  contact_manifold<T> m;
-  m.normal = -p.normal;
-  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
-  return m;
-}
 
-template <scalar_type T>
-contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
-}
-
-template <scalar_type T>
-contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
-  std::uint32_t face = 0;
-  T highest = -std::numeric_limits<T>::infinity();
-  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
-    const T d = b.plane(f).distance(center);
-    if (d > highest) highest = d, face = f;
+  /// Writes the deepest min(out.size(), count) manifolds to out, deepest
+  /// first, carried to world space by `to_world` (a point map) and
+  /// `rotation` (the working frame's axes in world). Returns how many.
+  template <class ToWorld>
+  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world, bool flip) noexcept {
+    std::array<std::size_t, capacity> order;
+    for (std::size_t g = 0; g < count_; ++g) order[g] = g;
+    // Insertion sort, deepest first, equals in the order found: at most 16,
+    // and std::stable_sort may allocate.
+    for (std::size_t i = 1; i < count_; ++i)
+      for (std::size_t j = i; j > 0 && groups_[order[j]].deepest > groups_[order[j - 1]].deepest; --j)
+        std::swap(order[j], order[j - 1]);
+    const std::size_t written = std::min(out.size(), count_);
+    for (std::size_t i = 0; i < written; ++i) {
+      contact_manifold<T> m;
+      reduced(order[i], m);
+      m.normal = rotate(rotation, m.normal);
+      for (int k = 0; k < m.count; ++k) m.points[std::size_t(k)].position = to_world(m.points[std::size_t(k)].position);
+      out[i] = flip ? m.flipped() : m;
+    }
+    return written;
   }
-  contact_manifold<T> m;
-  if (highest - a.radius > margin) return m;  // a face's plane separates them
-  // Outside: the hull's point nearest the center.
-  gjk_result<T> g;
-  if (highest > T(0))
-    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{center, quat<T>::identity()}, b, transform<T>::identity())
-            .result;
-  if (highest <= T(0) || g.overlapping) {
-    // Inside (or on the surface, where GJK finds no direction): out through
-    // the nearest face.
-    const vec3<T> n = b.plane(face).normal;
-    m.normal = apply_direction(pose_b, -n);
-    const vec3<T> on_face = center - n * highest, deepest = center - n * a.radius;
-    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
+
+ private:
+  /// Keeps at most four of the n candidates in `group`. Points along one
+  /// line (a capsule lying across several triangles, within 1e-3 of the
+  /// line's length of it) keep the line's two ends, and the deepest point
+  /// if it is deeper than both by the weld distance (a line over a bent
+  /// mesh); else reduce_to_four. (reduce_to_four's own line case keeps the
+  /// deepest point whatever its depth; here the welded duplicates from
+  /// neighbouring triangles would make it keep a third point of the same
+  /// depth.)
+  void reduce(const contact_point<T>* candidates, std::size_t n, contact_manifold<T>& group) const noexcept {
+    const vec3<T> normal = group.normal;
+    const auto across = [&](const vec3<T>& d) { return d - normal * dot(d, normal); };
+    std::size_t e0 = 0, e1 = 0, deepest_point = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (length_squared(across(candidates[i].position - candidates[0].position)) >
+          length_squared(across(candidates[e0].position - candidates[0].position)))
+        e0 = i;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (length_squared(across(candidates[i].position - candidates[e0].position)) >
+          length_squared(across(candidates[e1].position - candidates[e0].position)))
+        e1 = i;
+      if (candidates[i].depth > candidates[deepest_point].depth) deepest_point = i;
+    }
+    const vec3<T> line = across(candidates[e1].position - candidates[e0].position);
+    const T length2 = length_squared(line);
+    bool straight = n > 2 && length2 > weld_squared_;
+    for (std::size_t i = 0; i < n && straight; ++i) {
+      // Twice the area of e0, e1, i over the line's length: i's distance from the line.
+      const T twice_area2 = length_squared(cross(line, across(candidates[i].position - candidates[e0].position)));
+      straight = twice_area2 <= tolerances<T>::collinear_fraction_squared * length2 * length2;
+    }
+    if (!straight) {
+      contact_point<T> kept[group_points];
+      const std::size_t k = outline(candidates, n, normal, kept);
+      reduce_to_four(std::span<const contact_point<T>>(kept, k), normal, group);
+      return;
+    }
+    group.count = 0;
+    group.add(candidates[e0]);
+    group.add(candidates[e1]);
+    const contact_point<T>& d = candidates[deepest_point];
+    if (d.depth > std::max(candidates[e0].depth, candidates[e1].depth) + std::sqrt(weld_squared_)) group.add(d);
+  }
+
+  /// Of the n candidates (n ≤ group_points), those that can matter, into
+  /// `out`; returns how many. The corners of their outline across the normal
+  /// (Andrew's monotone chain; points on an edge of it, within
+  /// collinear_fraction of its size, are not corners), and any point deeper
+  /// than every corner by more than the weld distance (a bump under a
+  /// face). A face over several parts has points along the parts' seams,
+  /// on its outline's edges or inside it; reduce_to_four, which starts from
+  /// the deepest, would start from one of them when rounding made it the
+  /// deepest, and lose a corner: a pair test of the whole face has none.
+  std::size_t outline(const contact_point<T>* in, std::size_t n, const vec3<T>& normal,
+                      contact_point<T>* out) const noexcept {
+    const vec3<T> u = normalize_or(cross(normal, std::abs(normal.x) < T(0.6) ? vec3<T>::unit_x() : vec3<T>::unit_y()),
+                                   vec3<T>::unit_z());
+    const vec3<T> v = cross(normal, u);
+    T x[group_points], y[group_points];
+    std::size_t order[group_points];
+    T lo_x = std::numeric_limits<T>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = hi_x;
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] = dot(in[i].position, u), y[i] = dot(in[i].position, v);
+      lo_x = std::min(lo_x, x[i]), hi_x = std::max(hi_x, x[i]), lo_y = std::min(lo_y, y[i]), hi_y = std::max(hi_y, y[i]);
+      std::size_t j = i;  // insertion sort by (x, y): at most 16
+      for (; j > 0 && (x[order[j - 1]] > x[i] || (x[order[j - 1]] == x[i] && y[order[j - 1]] > y[i])); --j)
+        order[j] = order[j - 1];
+      order[j] = i;
+    }
+    // A turn o → a → b counts as one only if b is off the line oa by more
+    // than collinear_fraction of the candidates' spread.
+    const T spread2 = (hi_x - lo_x) * (hi_x - lo_x) + (hi_y - lo_y) * (hi_y - lo_y);
+    const T least = tolerances<T>::collinear_fraction * spread2;
+    const auto left_turn = [&](std::size_t o, std::size_t a, std::size_t b) {
+      return (x[a] - x[o]) * (y[b] - y[o]) - (y[a] - y[o]) * (x[b] - x[o]) > least;
+    };
+    std::size_t hull[2 * group_points];
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {  // lower chain
+      while (k >= 2 && !left_turn(hull[k - 2], hull[k - 1], order[i])) --k;
+      hull[k++] = order[i];
+    }
+    for (std::size_t i = n - 1, lower = k + 1; i-- > 0;) {  // upper chain
+      while (k >= lower && !left_turn(hull[k - 2], hull[k - 1], order[i])) --k;
+      hull[k++] = order[i];
+    }
+    if (k < 4) {  // fewer than three corners: no outline to speak of
+      for (std::size_t i = 0; i < n; ++i) out[i] = in[i];
+      return n;
+    }
+    --k;  // the chain ends where it began
+    bool corner[group_points] = {};
+    T corner_depth = -std::numeric_limits<T>::infinity();
+    for (std::size_t i = 0; i < k; ++i) corner[hull[i]] = true, corner_depth = std::max(corner_depth, in[hull[i]].depth);
+    std::size_t m = 0;
+    const T weld = std::sqrt(weld_squared_);
+    for (std::size_t i = 0; i < n; ++i)
+      if (corner[i] || in[i].depth > corner_depth + weld) out[m++] = in[i];
     return m;
   }
-  if (g.distance - a.radius > margin) return m;
-  const vec3<T> n = (g.on_b - center) / g.distance;  // from the sphere into the hull
-  m.normal = apply_direction(pose_b, n);
-  m.add({apply(pose_b, (center + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
-  return m;
-}
 
-template <scalar_type T>
-contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
-                            const transform<T>& pose_b, T margin = T(0)) noexcept {
-  return collide(b, pose_b, a, pose_a, margin).flipped();
-}
+  static T deepest(const contact_manifold<T>& m) noexcept {
+    T d = -std::numeric_limits<T>::infinity();
+    for (const contact_point<T>& p : m.contacts()) d = std::max(d, p.depth);
+    return d;
+  }
 
-}  // namespace impulse::narrowphase
-// ---- end impulse/narrowphase/hull.hpp ----
-// ---- begin impulse/narrowphase/mesh.hpp ----
-// impulse/narrowphase/mesh.hpp — a static triangle mesh against a sphere, a
-// capsule, a box or a convex hull, and a ray against a mesh.
-//
-// `collide(mesh, pose_mesh, shape, pose_shape, margin, out)` queries the
-// mesh's tree (shapes/detail/triangle_bvh.hpp) with the shape's box in the
-// mesh's frame, tests each triangle it returns, and merges the triangles'
-// manifolds whose normals agree within about 2.6° (cosine > 0.999) into one
-// (the points of both, points within 1e-4 of the shape's size of each other
-// welded into the deeper, then reduce_to_four, or the two ends of a line of
-// points), so that a box resting on a
-// flat mesh gets one manifold of four points however many triangles it
-// spans. It writes at most out.size() manifolds, the deepest first, and
-// returns how many. Normals point from the mesh (A) into the shape (B); the
-// swapped overload returns the same manifolds flipped.
-//
-// Per triangle, in a frame with the mesh's axes and its origin at the
-// shape's position (so that a mesh far from the origin costs no more
-// precision than the shape's distance from its triangles):
-// - sphere: the closest point on the triangle (triangle.hpp, Ericson §5.1.5).
-// - capsule: the closest points of the core segment and the triangle (the
-//   segment's ends against the triangle, the segment against each edge,
-//   and the segment through the face; Ericson §5.1.10). A contact along
-//   the face normal clips the segment to the triangle's prism and reports
-//   each end within reach, so that a capsule lying on a mesh stands on two
-//   points.
-// - box and hull: the separating axis test between the triangle and the
-//   polyhedron (Gregorius, GDC 2013; Ericson §5.2.1): the triangle's
-//   normal, the polyhedron's face normals, and the cross products of the
-//   triangle's three edges with every edge of the polyhedron. hull_hull.hpp
-//   prunes edge pairs on the Gauss map, which assumes each edge's two faces
-//   are less than 180° apart; a triangle's edges are 180° arcs (front and
-//   back face), so here every pair is tried, in both orientations, with the
-//   exact projections of the triangle's corners and the polyhedron's
-//   vertices. An edge pair becomes the contact normal only where both edges
-//   support their shapes along it (the triangle's edge faces out along it,
-//   the polyhedron's lies between its faces), so that its closest points are
-//   the contact. Faces are preferred over edges, the triangle's face over
-//   the polyhedron's, unless clearly worse (5 % plus 1 % of the
-//   polyhedron's least half extent, as in hull_hull.hpp). A face contact
-//   clips the polyhedron's incident face to the triangle (the triangle's
-//   face the reference) or the triangle to the polyhedron's face (its face
-//   the reference), Sutherland–Hodgman, one point per quarter of the patch
-//   (detail/clipping.hpp).
-//
-// One-sided. A mesh is a surface seen from its front (the side its
-// triangles turn counter-clockwise on). A triangle whose plane has the
-// shape's origin (its pose's position) behind it gives no contact: a shape
-// that has sunk more than halfway through is let through rather than
-// pushed out of the back, which a thin wall seen from behind would do
-// (Jolt's EBackFaceMode::IgnoreBackFaces). A contact normal that points
-// behind the triangle's plane is treated as an internal feature's (below):
-// a triangle only ever pushes towards its front.
-//
-// No snagging on internal edges. A flat mesh made of many triangles has
-// seams that a single face would not: a box sliding over it finds, at the
-// triangle it slides onto, an edge (or a vertex) whose separating axis is
-// horizontal and is stopped as if by a step — "ghost" or "internal edge"
-// collisions. The mesh marks each edge active or internal when it is built
-// (triangle_mesh.hpp); here a contact whose feature on the triangle is an
-// internal edge, or a vertex neither of whose edges in this triangle is
-// active, takes the triangle's face normal instead, and its depth and
-// points are recomputed along it (a face contact; for a shape that is only
-// near the edge and not over the triangle that yields nothing, and the
-// neighbour gives the contact). This is what Jolt Physics does with its
-// active edges (ActiveEdges::FixNormal) and Bullet with
-// btAdjustInternalEdgeContacts; written here from their descriptions.
-//
-// Feature ids: bits 8–31 the triangle's index (cut to 24 bits), bits 0–7
-// the contact within the triangle: bits 5–6 the kind (0 the triangle's face
-// as the reference, 1 the shape's face as the reference, 2 edge against
-// edge, 3 closest points of a sphere or capsule core), bits 2–4 the
-// triangle's feature (a triangle_region: 0–2 corners a, b, c, 3–5 edges ab,
-// bc, ca, 6 the face), bits 0–1 the quarter of a clipped patch or a
-// capsule's segment end. Merged manifolds keep each point's id.
-//
-// `ray_cast(ray, mesh, pose, max_fraction)`: the nearest hit of the front of
-// any triangle (ray_cast_triangle, Möller–Trumbore), walking the tree
-// nearer boxes first and skipping boxes beyond the nearest hit so far. The
-// back of a triangle is not hit (one-sided, as the contacts). Feature: the
-// triangle's index; on a tie (a ray through a shared edge) the lower index.
-//
-// Nothing allocates per query or per triangle, except for a hull of more
-// than 64 vertices or faces (its vertices and planes carried into the
-// working frame; scratch_buffer).
+  /// Group g's candidates, reduced to a manifold. A group made of one
+  /// manifold is that manifold, as its pair test gave it.
+  void reduced(std::size_t g, contact_manifold<T>& m) const noexcept {
+    const group& in = groups_[g];
+    const contact_point<T>* candidates = points_.data() + g * group_points;
+    m.normal = in.normal;
+    m.count = 0;
+    if (in.single && in.count <= std::size_t(contact_manifold<T>::capacity)) {
+      for (std::size_t i = 0; i < in.count; ++i) m.add(candidates[i]);
+      return;
+    }
+    reduce(candidates, in.count, m);
+  }
 
+  /// p into group g: welded to a candidate within the weld distance (the
+  /// deeper kept), else added; a full group is reduced to four first.
+  void add_point(std::size_t g, const contact_point<T>& p) noexcept {
+    group& in = groups_[g];
+    contact_point<T>* candidates = points_.data() + g * group_points;
+    in.deepest = std::max(in.deepest, p.depth);
+    for (std::size_t i = 0; i < in.count; ++i) {
+      if (length_squared(candidates[i].position - p.position) > weld_squared_) continue;
+      if (p.depth > candidates[i].depth) candidates[i] = p;
+      return;
+    }
+    if (in.count == group_points) {
+      contact_manifold<T> four;
+      four.normal = in.normal;
+      reduce(candidates, in.count, four);
+      in.count = 0;
+      for (const contact_point<T>& kept : four.contacts()) candidates[in.count++] = kept;
+    }
+    candidates[in.count++] = p;
+  }
 
+  struct group {
+    vec3<T> normal;
+    std::size_t count;  ///< candidates in points_[g·group_points …]
+    T deepest;          ///< m: the deepest candidate's depth
+    bool single;        ///< made of one manifold
+  };
+  std::array<group, capacity> groups_;
+  std::size_t count_ = 0;
+  T weld_squared_;
+  /// The candidates, group_points per group, left unwritten until used.
+  scratch_buffer<contact_point<T>, capacity * group_points> points_;
+};
+
+}  // namespace impulse::narrowphase::detail
+// ---- end impulse/narrowphase/detail/manifold_merger.hpp ----
 // ---- begin impulse/narrowphase/ray_cast.hpp ----
 // impulse/narrowphase/ray_cast.hpp — where a ray first meets a shape.
 //
@@ -16252,6 +16091,732 @@ namespace impulse::narrowphase {
 
 namespace detail {
 
+/// The id of a point of child `child` whose own test gave it `feature`.
+/// The index is spread over all 32 bits by an odd multiplier (Knuth's
+/// multiplicative hash), a different one for a compound that is B of the
+/// pair than for one that is A, so that child i of A against child j of B
+/// and child j of A against child i of B differ too.
+constexpr std::uint32_t compound_feature(std::uint32_t feature, std::size_t child, bool is_b) noexcept {
+  const std::uint32_t multiplier = is_b ? 0x85EBCA77u : 0x9E3779B1u;
+  return feature ^ ((std::uint32_t(child) + 1u) * multiplier);
+}
+
+}  // namespace detail
+
+/// The manifolds of compound `c` at `pose` against another shape whose
+/// world box is `other_box`, written to `out` (at most out.size(), the
+/// deepest first); returns how many. test(i, child_pose, part) writes
+/// child i's manifolds against the other shape, the child at child_pose
+/// (world), into `part`, with the normal from the pair's A into its B,
+/// and returns how many. `is_b`: the compound is the pair's B.
+template <scalar_type T, class ChildTest>
+std::size_t collide_compound(const compound<T>& c, const transform<T>& pose, const aabb<T>& other_box, T margin,
+                             bool is_b, std::span<contact_manifold<T>> out, ChildTest&& test) {
+  detail::manifold_merger<T> merger(tolerances<T>::weld_fraction * c.thinnest_half_extent());
+  aabb<T> near = expand(transform_aabb(other_box, inverse(pose)), margin);
+  // A plane's box is unbounded, and turning it overflows: then every child.
+  if (!is_finite(near.lower) || !is_finite(near.upper)) near = c.local_aabb();
+  c.for_each_overlapping(near, [&](std::size_t i) {
+    std::array<contact_manifold<T>, contact_manifold<T>::capacity> part;
+    const std::size_t n = test(i, pose * c.child_at(i).pose, std::span<contact_manifold<T>>(part.data(), part.size()));
+    for (std::size_t m = 0; m < n; ++m) {
+      for (int p = 0; p < part[m].count; ++p) {
+        std::uint32_t& feature = part[m].points[std::size_t(p)].feature;
+        feature = detail::compound_feature(feature, i, is_b);
+      }
+      merger.add(part[m]);
+    }
+  });
+  return merger.write(out, quat<T>::identity(), [](const vec3<T>& x) { return x; }, false);
+}
+
+/// The nearest hit of any child (ray_cast.hpp's conventions), walking the
+/// tree along the ray, nearer boxes first; its feature is the child's index.
+template <scalar_type T>
+ray_hit<T> ray_cast(const ray<T>& r, const compound<T>& c, const transform<T>& pose, T max_fraction = T(1)) noexcept {
+  ray_hit<T> best;
+  if (!is_finite(r.origin) || !is_finite(r.translation) || !(max_fraction >= T(0))) return best;
+  const vec3<T> origin = inverse_apply(pose, r.origin), translation = inverse_rotate(pose.rotation, r.translation);
+  c.for_each_along_ray(origin, translation, max_fraction, [&](std::size_t i, T clip) {
+    const ray_hit<T> h =
+        c.visit(i, [&](const auto& s, const transform<T>& local) { return ray_cast(r, s, pose * local, clip); });
+    if (!h || (best && !(h.fraction < best.fraction))) return clip;
+    best = h;
+    best.feature = std::uint32_t(i);
+    return h.fraction;
+  });
+  return best;
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/compound.hpp ----
+// ---- begin impulse/narrowphase/dispatch.hpp ----
+// impulse/narrowphase/dispatch.hpp — the pair tests a world is compiled
+// for, chosen from its config's shape_list.
+//
+// `dispatcher<shape_list<sphere, box>, float>` holds a table of one entry
+// per ordered pair of listed shapes, each entry the `collide` written for
+// that pair (sphere–box, box–sphere, …), called through the shapes'
+// indices in the list. Every entry writes its manifolds into a span and
+// returns how many: one for a pair of convex shapes, one per distinct
+// normal for a mesh (mesh.hpp). Only the listed pairs are instantiated: a world of
+// spheres and boxes compiles none of the hull, capsule or GJK code. Two
+// shapes that are only ever static (planes, triangle meshes) never meet,
+// and their entry returns an empty manifold.
+//
+// A listed pair with no `collide` is a compile error whose instantiation
+// context names the pair: `missing_pair_test<A, B, T>`. A user's own shape
+// joins by providing `collide(const mine<T>&, const transform<T>&, const
+// other<T>&, const transform<T>&, T margin)` for each shape it is listed
+// with, in its own namespace (found by argument-dependent lookup) or in
+// impulse::narrowphase; or the form with `std::span<contact_manifold<T>>
+// out` last, returning how many it wrote.
+//
+// A compound has no entry of its own: collide() takes its children one by
+// one through the table (compound.hpp), so a compound costs no pair test
+// beyond those of its children's shapes, which the list must hold.
+
+
+// ---- begin impulse/shapes/heightfield.hpp ----
+// impulse/shapes/heightfield.hpp — static terrain: a grid of heights.
+//
+// `columns` × `rows` samples, sample (i, k) at x = i·spacing_x,
+// z = k·spacing_z, y = its height, in the shape's frame. Each cell between
+// four samples is two triangles split along the diagonal from (i, k) to
+// (i + 1, k + 1), counter-clockwise seen from above (+y is the free side),
+// unless the cell is a hole. Static only, as a triangle mesh: no volume,
+// no mass properties.
+//
+// The narrow phase treats it as the mesh it stands for (narrowphase/
+// mesh.hpp: the same per-triangle tests, the same merging, one-sided from
+// above), with what a mesh keeps in a tree found from the grid: the cells
+// under a box are a range of columns and rows, and their triangles are
+// made from the heights when asked. Active edges are decided as a mesh's
+// are (shapes/detail/active_edges.hpp): an edge is active at the grid's
+// border, beside a hole, and where its two triangles meet convex by more
+// than 5°; a flat or concave edge is internal, so that nothing snags on
+// the seams of flat ground.
+//
+// Memory: a height a sample (4 bytes in float), a byte of active edges a
+// triangle and a byte a cell for holes: about 8 bytes a sample, where the
+// same terrain as a triangle_mesh takes about 90 (its vertices, indices,
+// edge bits and tree nodes; docs/narrowphase.md, "Heightfields").
+
+
+// ---- begin impulse/shapes/detail/active_edges.hpp ----
+// impulse/shapes/detail/active_edges.hpp — whether an edge two triangles
+// share is one something can rest against (active), or an internal seam
+// the narrow phase looks past (triangle_mesh.hpp says why; heightfield.hpp
+// asks the same of its grid).
+
+
+namespace impulse::detail {
+
+/// Triangles (a1, b1, c1) and (a2, b2, c2), wound the same way round, share
+/// an edge through p; `far` is the second's corner off it. The edge is
+/// active where they lie back to back (a sheet folded onto itself) or meet
+/// convex with normals further apart than flat_cosine; flat or concave, it
+/// is internal.
+template <scalar_type T>
+[[nodiscard]] bool shared_edge_active(const vec3<T>& a1, const vec3<T>& b1, const vec3<T>& c1, const vec3<T>& a2,
+                                      const vec3<T>& b2, const vec3<T>& c2, const vec3<T>& p, const vec3<T>& far,
+                                      T flat_cosine) noexcept {
+  const vec3<T> n1 = normalize_or(cross(b1 - a1, c1 - a1), vec3<T>::unit_y());
+  const vec3<T> n2 = normalize_or(cross(b2 - a2, c2 - a2), vec3<T>::unit_y());
+  const T cosine = dot(n1, n2);
+  if (cosine < T(-0.999)) return true;
+  // Concave (the second rises above the first's plane) or flat: internal.
+  if (dot(n1, far - p) >= T(0)) return false;
+  return cosine < flat_cosine;
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/shapes/detail/active_edges.hpp ----
+
+namespace impulse {
+
+template <scalar_type T>
+class heightfield {
+ public:
+  static constexpr policy_kind kind = policy_kind::shape;
+  /// Bits of active_edges(t), as triangle_mesh's: edge ab, bc, ca.
+  static constexpr std::uint8_t edge_ab = 1, edge_bc = 2, edge_ca = 4;
+  /// As triangle_mesh::flat_edge_cosine: 5°.
+  static constexpr T flat_edge_cosine = T(0.9961946980917455);
+
+  /// Checks and copies the grid: at least 2 × 2 samples, positive finite
+  /// spacings, finite heights (row k's columns at heights[k·columns + i]),
+  /// and either no holes or one flag a cell (cell (i, k) at
+  /// holes[k·(columns − 1) + i], nonzero for a hole).
+  static heightfield make(std::size_t columns, std::size_t rows, T spacing_x, T spacing_z,
+                          std::span<const T> heights, std::span<const std::uint8_t> holes = {}) {
+    if (columns < 2 || rows < 2)
+      detail::report_error(error_code::degenerate_shape, "heightfield: needs at least 2 x 2 samples");
+    if (columns > 65536 || rows > 65536)
+      detail::report_error(error_code::capacity_exceeded, "heightfield: at most 65536 samples a side");
+    if (!std::isfinite(spacing_x) || !std::isfinite(spacing_z) || !(spacing_x > T(0)) || !(spacing_z > T(0)))
+      detail::report_error(error_code::invalid_parameter, "heightfield: spacings must be positive and finite");
+    if (heights.size() != columns * rows)
+      detail::report_error(error_code::invalid_parameter, "heightfield: needs columns x rows heights");
+    const std::size_t cells = (columns - 1) * (rows - 1);
+    if (!holes.empty() && holes.size() != cells)
+      detail::report_error(error_code::invalid_parameter, "heightfield: needs no holes or one flag per cell");
+    heightfield h;
+    h.columns_ = columns, h.rows_ = rows, h.dx_ = spacing_x, h.dz_ = spacing_z;
+    h.heights_.assign(heights.begin(), heights.end());
+    T low = heights[0], high = heights[0];
+    for (const T y : heights) {
+      if (!std::isfinite(y)) detail::report_error(error_code::non_finite, "heightfield: a height is not finite");
+      low = std::min(low, y), high = std::max(high, y);
+    }
+    h.holes_.assign(cells, std::uint8_t(0));
+    for (std::size_t c = 0; c < holes.size(); ++c) h.holes_[c] = holes[c] != 0;
+    h.bounds_ = {{T(0), low, T(0)}, {T(columns - 1) * spacing_x, high, T(rows - 1) * spacing_z}};
+    h.find_active_edges();
+    return h;
+  }
+
+  /// Refuses an empty field (default-constructed or moved from).
+  void validate() const {
+    if (heights_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "heightfield: the field is empty (default-constructed or moved from); use make()");
+  }
+
+  [[nodiscard]] std::size_t columns() const noexcept { return columns_; }
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] T spacing_x() const noexcept { return dx_; }
+  [[nodiscard]] T spacing_z() const noexcept { return dz_; }
+  [[nodiscard]] T height(std::size_t i, std::size_t k) const noexcept { return heights_[k * columns_ + i]; }
+  [[nodiscard]] bool hole(std::size_t i, std::size_t k) const noexcept { return holes_[k * (columns_ - 1) + i] != 0; }
+  /// Bytes the field holds: heights, holes and edge bits.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return heights_.capacity() * sizeof(T) + holes_.capacity() + active_.capacity();
+  }
+  /// Two a cell, holes included (they have no triangles to give).
+  [[nodiscard]] std::size_t triangle_count() const noexcept { return 2 * holes_.size(); }
+
+  /// Triangle t's corners: cell t / 2, the half by t % 2.
+  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
+    const std::size_t cell = t / 2, i = cell % (columns_ - 1), k = cell / (columns_ - 1);
+    const vec3<T> p00 = sample(i, k), p11 = sample(i + 1, k + 1);
+    a = p00;
+    if (t % 2 == 0) b = sample(i, k + 1), c = p11;
+    else b = p11, c = sample(i + 1, k);
+  }
+  [[nodiscard]] std::uint8_t active_edges(std::size_t t) const noexcept { return active_[t]; }
+
+  /// f(t) for each triangle of a cell under `box` (shape frame) whose
+  /// heights reach it; holes give none.
+  template <class F>
+  void for_each_overlapping(const aabb<T>& box, F&& f) const {
+    std::size_t i0, i1, k0, k1;
+    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
+    for (std::size_t k = k0; k <= k1; ++k)
+      for (std::size_t i = i0; i <= i1; ++i) {
+        if (hole(i, k)) continue;
+        const T a = height(i, k), b = height(i + 1, k), c = height(i, k + 1), d = height(i + 1, k + 1);
+        if (std::max({a, b, c, d}) < box.lower.y || std::min({a, b, c, d}) > box.upper.y) continue;
+        const std::size_t cell = k * (columns_ - 1) + i;
+        f(2 * cell);
+        f(2 * cell + 1);
+      }
+  }
+
+  /// f(t, clip) for the triangles of the cells under the segment from
+  /// origin over translation·max_fraction (shape frame); f returns the
+  /// fraction to go on to. Cells are visited in rows, not along the ray.
+  template <class F>
+  void for_each_along_ray(const vec3<T>& origin, const vec3<T>& translation, T max_fraction, F&& f) const {
+    const vec3<T> end = origin + translation * max_fraction;
+    const aabb<T> box{min(origin, end), max(origin, end)};
+    std::size_t i0, i1, k0, k1;
+    if (!cells_under(box.lower.x, box.upper.x, box.lower.z, box.upper.z, i0, i1, k0, k1)) return;
+    T clip = max_fraction;
+    for (std::size_t k = k0; k <= k1; ++k)
+      for (std::size_t i = i0; i <= i1; ++i) {
+        if (hole(i, k)) continue;
+        const std::size_t cell = k * (columns_ - 1) + i;
+        clip = f(2 * cell, clip);
+        clip = f(2 * cell + 1, clip);
+      }
+  }
+
+  aabb<T> local_aabb() const noexcept { return bounds_; }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept { return transform_aabb(bounds_, pose); }
+
+ private:
+  [[nodiscard]] vec3<T> sample(std::size_t i, std::size_t k) const noexcept {
+    return {T(i) * dx_, height(i, k), T(k) * dz_};
+  }
+
+  /// The columns and rows of cells under [x0, x1] × [z0, z1]; false if none.
+  bool cells_under(T x0, T x1, T z0, T z1, std::size_t& i0, std::size_t& i1, std::size_t& k0,
+                   std::size_t& k1) const noexcept {
+    const T cx = T(columns_ - 1), cz = T(rows_ - 1);
+    const T a = std::floor(x0 / dx_), b = std::floor(x1 / dx_), c = std::floor(z0 / dz_), d = std::floor(z1 / dz_);
+    if (!(b >= T(0) && a < cx && d >= T(0) && c < cz)) return false;  // also refuses NaN
+    i0 = std::size_t(std::max(a, T(0))), i1 = std::size_t(std::min(b, cx - T(1)));
+    k0 = std::size_t(std::max(c, T(0))), k1 = std::size_t(std::min(d, cz - T(1)));
+    return true;
+  }
+
+  /// Each triangle's edges: active at the border, beside a hole, and where
+  /// its neighbour meets it convex by more than 5° (see the top).
+  void find_active_edges() {
+    active_.assign(triangle_count(), std::uint8_t(0));
+    const std::size_t cx = columns_ - 1, cz = rows_ - 1;
+    // The triangle across each edge: (cell offset, half), or none.
+    const auto neighbour = [&](std::size_t i, std::size_t k, int di, int dk, int half, std::size_t& t) {
+      const long ni = long(i) + di, nk = long(k) + dk;
+      if (ni < 0 || nk < 0 || ni >= long(cx) || nk >= long(cz) || hole(std::size_t(ni), std::size_t(nk))) return false;
+      t = 2 * (std::size_t(nk) * cx + std::size_t(ni)) + std::size_t(half);
+      return true;
+    };
+    for (std::size_t k = 0; k < cz; ++k)
+      for (std::size_t i = 0; i < cx; ++i) {
+        if (hole(i, k)) continue;
+        const std::size_t t0 = 2 * (k * cx + i), t1 = t0 + 1;
+        // Triangle 0 (p00, p01, p11): ab the cell's x-side at i (across:
+        // the left cell's triangle 1), bc its far z-side (the next row's
+        // triangle 1), ca the diagonal (this cell's triangle 1).
+        // Triangle 1 (p00, p11, p10): ab the diagonal, bc the x-side at
+        // i + 1 (the right cell's triangle 0), ca the near z-side (the row
+        // before's triangle 0).
+        const struct {
+          std::size_t t;
+          std::uint8_t bit;
+          int di, dk, half;
+        } edges[] = {{t0, edge_ab, -1, 0, 1}, {t0, edge_bc, 0, 1, 1}, {t0, edge_ca, 0, 0, 1},
+                     {t1, edge_ab, 0, 0, 0},  {t1, edge_bc, 1, 0, 0}, {t1, edge_ca, 0, -1, 0}};
+        for (const auto& e : edges) {
+          std::size_t other;
+          if (!neighbour(i, k, e.di, e.dk, e.half, other) || crease_is_active(e.t, e.bit, other))
+            active_[e.t] |= e.bit;
+        }
+      }
+  }
+
+  /// Whether the edge `bit` of triangle t, shared with triangle u, is active.
+  bool crease_is_active(std::size_t t, std::uint8_t bit, std::size_t u) const noexcept {
+    vec3<T> a, b, c, d, e, f;
+    triangle(t, a, b, c);
+    triangle(u, d, e, f);
+    const vec3<T> p = bit == edge_ab ? a : bit == edge_bc ? b : c, q = bit == edge_ab ? b : bit == edge_bc ? c : a;
+    const vec3<T> far = (d != p && d != q) ? d : (e != p && e != q) ? e : f;
+    return detail::shared_edge_active(a, b, c, d, e, f, p, far, flat_edge_cosine);
+  }
+
+  std::size_t columns_ = 0, rows_ = 0;
+  T dx_ = T(1), dz_ = T(1);
+  std::vector<T> heights_;
+  std::vector<std::uint8_t> holes_;
+  std::vector<std::uint8_t> active_;
+  aabb<T> bounds_{};
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/heightfield.hpp ----
+// ---- begin impulse/shapes/triangle_mesh.hpp ----
+// impulse/shapes/triangle_mesh.hpp — static triangle soup for level geometry.
+//
+// Vertices and index triples, counter-clockwise seen from the free side.
+// Static only: it need not be closed, so it has no volume and no mass
+// properties. Built once by make(), which also builds what the narrow phase
+// reads:
+//
+// - a bounding-volume tree over the triangles (detail/triangle_bvh.hpp),
+//   queried by box (for_each_overlapping) and by segment
+//   (for_each_along_ray) without allocating;
+// - which edges of each triangle are active (active_edges): an edge is
+//   active where something can rest against it — a boundary edge (one
+//   triangle), an edge shared by more than two triangles or by two whose
+//   windings disagree or that lie back to back, and a convex edge whose
+//   faces meet more than 5° away from flat. A flat or concave edge between
+//   two triangles is internal: a contact there takes the triangle's face
+//   normal, so that a box sliding over a flat mesh does not catch on the
+//   seams between its triangles (the active edges of Jolt Physics'
+//   MeshShape, Bullet's btInternalEdgeUtility; narrowphase/mesh.hpp).
+//   Neighbours are found by sorting the edges by their two vertices, and
+//   vertices are compared by position, so an unwelded mesh (each triangle
+//   with its own copies of shared corners) gets the same answer as a
+//   welded one.
+
+
+
+namespace impulse {
+
+template <scalar_type T>
+class triangle_mesh {
+ public:
+  static constexpr policy_kind kind = policy_kind::shape;
+
+  /// Bits of active_edges(t): edge ab (corners 0 → 1), bc, ca.
+  static constexpr std::uint8_t edge_ab = 1, edge_bc = 2, edge_ca = 4;
+  /// Two faces whose normals are closer than this cosine (5°, Jolt's
+  /// default) meet flat: their shared edge is internal. A mesh that bends
+  /// by less than that per edge (a tessellated gentle slope) is treated as
+  /// smooth; a bend of more stops a sliding box as a real step would.
+  static constexpr T flat_edge_cosine = T(0.9961946980917455);
+
+  /// Copies the mesh after checking it: finite vertices, indices in range,
+  /// at least one triangle, and no triangle of zero area. Builds the tree
+  /// and the active edges (O(n log n) in the number of triangles).
+  static triangle_mesh make(std::span<const vec3<T>> vertices, std::span<const std::uint32_t> indices) {
+    if (indices.empty() || indices.size() % 3 != 0)
+      detail::report_error(error_code::degenerate_shape, "triangle_mesh: needs whole triangles, at least one");
+    triangle_mesh mesh;
+    for (const vec3<T>& v : vertices) {
+      if (!is_finite(v)) detail::report_error(error_code::non_finite, "triangle_mesh: a vertex is not finite");
+      mesh.bounds_ = mesh.vertices_.empty() ? aabb<T>{v, v} : merge(mesh.bounds_, v);
+      mesh.vertices_.push_back(v);
+    }
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+      for (std::size_t k = 0; k < 3; ++k)
+        if (indices[t + k] >= vertices.size())
+          detail::report_error(error_code::out_of_range, "triangle_mesh: an index names a missing vertex",
+                               std::uint32_t(t / 3));
+      const vec3<T> a = vertices[indices[t]], b = vertices[indices[t + 1]], c = vertices[indices[t + 2]];
+      // Zero area relative to the triangle's own size: ε² of its longest edge squared.
+      const T scale = max_component(abs(b - a)) + max_component(abs(c - a));
+      if (!(length_squared(cross(b - a, c - a)) > scalar_traits<T>::epsilon * scalar_traits<T>::epsilon * scale * scale * scale * scale))
+        detail::report_error(error_code::degenerate_shape, "triangle_mesh: a triangle has zero area",
+                             std::uint32_t(t / 3));
+    }
+    if (indices.size() / 3 >= std::size_t(0xffffffffu))
+      detail::report_error(error_code::capacity_exceeded, "triangle_mesh: more triangles than 32-bit indices can name");
+    mesh.indices_.assign(indices.begin(), indices.end());
+
+    std::vector<aabb<T>> boxes(mesh.triangle_count());
+    for (std::size_t t = 0; t < boxes.size(); ++t) boxes[t] = mesh.triangle_aabb(t);
+    mesh.tree_.build(boxes);
+    mesh.find_active_edges();
+    return mesh;
+  }
+
+  /// Refuses a mesh with no triangle: a default-constructed or moved-from
+  /// one, which make() never returns. The world checks every shape it is
+  /// given this way.
+  void validate() const {
+    if (indices_.empty())
+      detail::report_error(error_code::degenerate_shape,
+                           "triangle_mesh: the mesh is empty (default-constructed or moved from); use make()");
+  }
+
+  [[nodiscard]] std::span<const vec3<T>> vertices() const noexcept { return vertices_; }
+  [[nodiscard]] std::size_t triangle_count() const noexcept { return indices_.size() / 3; }
+  /// The three corners of triangle t.
+  void triangle(std::size_t t, vec3<T>& a, vec3<T>& b, vec3<T>& c) const noexcept {
+    a = vertices_[indices_[3 * t]];
+    b = vertices_[indices_[3 * t + 1]];
+    c = vertices_[indices_[3 * t + 2]];
+  }
+  /// The tight box around triangle t, in the mesh's frame.
+  [[nodiscard]] aabb<T> triangle_aabb(std::size_t t) const noexcept {
+    vec3<T> a, b, c;
+    triangle(t, a, b, c);
+    return merge(aabb<T>{min(a, b), max(a, b)}, c);
+  }
+  /// Which of triangle t's edges are active: edge_ab | edge_bc | edge_ca.
+  [[nodiscard]] std::uint8_t active_edges(std::size_t t) const noexcept { return active_[t]; }
+
+  /// Calls f(t) for every triangle t whose tight box overlaps `local_box`
+  /// (in the mesh's frame; touching counts), in the tree's order. Allocates
+  /// nothing.
+  template <class F>
+  void for_each_overlapping(const aabb<T>& local_box, F&& f) const {
+    const std::span<const std::uint32_t> order = tree_.order();
+    tree_.for_each_leaf_overlapping(local_box, [&](std::uint32_t first, std::uint32_t count) {
+      for (std::uint32_t i = first; i < first + count; ++i)
+        if (overlaps(triangle_aabb(order[i]), local_box)) f(std::size_t(order[i]));
+    });
+  }
+
+  /// Walks the triangles near the segment origin + s·translation, s in
+  /// [0, max_fraction] (in the mesh's frame), leaves nearer along it first:
+  /// f(t, clip) is called with the fraction the segment is clipped to so
+  /// far and returns the new clip (its nearest hit, or clip unchanged);
+  /// leaves entered beyond the clip are skipped. Every triangle the segment
+  /// crosses before the final clip is passed to f. Allocates nothing.
+  template <class F>
+  void for_each_along_ray(const vec3<T>& origin, const vec3<T>& translation, T max_fraction, F&& f) const {
+    // The slab test's rounding, in metres: a few ulps of the largest
+    // coordinate it subtracts.
+    const T reach = std::max(max_component(abs(bounds_.lower)), max_component(abs(bounds_.upper))) +
+                    max_component(abs(origin));
+    const T slack = T(16) * scalar_traits<T>::epsilon * reach;
+    const std::span<const std::uint32_t> order = tree_.order();
+    tree_.for_each_leaf_along(origin, translation, max_fraction, slack,
+                              [&](std::uint32_t first, std::uint32_t count, T clip) {
+                                for (std::uint32_t i = first; i < first + count; ++i) clip = f(std::size_t(order[i]), clip);
+                                return clip;
+                              });
+  }
+
+  /// The tree itself, for inspection and tests.
+  [[nodiscard]] const detail::triangle_bvh<T>& tree() const noexcept { return tree_; }
+  /// Bytes the mesh holds: vertices, indices, edge bits and its tree.
+  [[nodiscard]] std::size_t memory_bytes() const noexcept {
+    return vertices_.capacity() * sizeof(vec3<T>) + indices_.capacity() * sizeof(std::uint32_t) + active_.capacity() +
+           tree_.memory_bytes();
+  }
+
+  aabb<T> local_aabb() const noexcept { return bounds_; }
+  aabb<T> world_aabb(const transform<T>& pose) const noexcept {
+    aabb<T> box{apply(pose, vertices_[0]), apply(pose, vertices_[0])};
+    for (const vec3<T>& v : vertices_) box = merge(box, apply(pose, v));
+    return box;
+  }
+
+ private:
+  /// Finds each edge's neighbours and decides whether it is active (see
+  /// the top of the file).
+  void find_active_edges() {
+    const std::size_t n = triangle_count();
+    active_.assign(n, std::uint8_t(0));
+    // Vertices by position: each gets the smallest index of the vertices at
+    // its exact position.
+    std::vector<std::uint32_t> by_position(vertices_.size()), canonical(vertices_.size());
+    for (std::uint32_t i = 0; i < by_position.size(); ++i) by_position[i] = i;
+    const auto less = [&](std::uint32_t x, std::uint32_t y) {
+      const vec3<T>& p = vertices_[x];
+      const vec3<T>& q = vertices_[y];
+      if (p.x != q.x) return p.x < q.x;
+      if (p.y != q.y) return p.y < q.y;
+      if (p.z != q.z) return p.z < q.z;
+      return x < y;
+    };
+    std::sort(by_position.begin(), by_position.end(), less);
+    for (std::size_t i = 0; i < by_position.size(); ++i)
+      canonical[by_position[i]] =
+          i > 0 && vertices_[by_position[i]] == vertices_[by_position[i - 1]] ? canonical[by_position[i - 1]] : by_position[i];
+
+    struct edge_record {
+      std::uint32_t lo, hi;  // canonical vertices, lo < hi
+      std::uint32_t triangle;
+      std::uint8_t k;        // 0 ab, 1 bc, 2 ca
+      bool forward;          // the triangle runs it lo -> hi
+    };
+    std::vector<edge_record> edges;
+    edges.reserve(3 * n);
+    for (std::uint32_t t = 0; t < n; ++t)
+      for (std::uint8_t k = 0; k < 3; ++k) {
+        const std::uint32_t p = canonical[indices_[3 * t + k]], q = canonical[indices_[3 * t + (k + 1) % 3]];
+        edges.push_back({std::min(p, q), std::max(p, q), t, k, p < q});
+      }
+    std::sort(edges.begin(), edges.end(), [](const edge_record& x, const edge_record& y) {
+      return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.triangle < y.triangle;
+    });
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i + 1;
+      while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+      const bool active = j - i != 2 || edge_is_active(edges[i].triangle, edges[i].k, edges[i + 1].triangle,
+                                                      edges[i].forward == edges[i + 1].forward);
+      if (active)
+        for (std::size_t e = i; e < j; ++e) active_[edges[e].triangle] |= std::uint8_t(1u << edges[e].k);
+      i = j;
+    }
+  }
+
+  /// Whether the edge k of triangle t1, shared with triangle t2, is active.
+  bool edge_is_active(std::uint32_t t1, std::uint8_t k, std::uint32_t t2, bool same_direction) const noexcept {
+    if (same_direction) return true;  // the windings disagree: no consistent front side across it
+    vec3<T> a1, b1, c1, a2, b2, c2;
+    triangle(t1, a1, b1, c1);
+    triangle(t2, a2, b2, c2);
+    // t2's corner off the edge, by position (either copy of a shared
+    // corner is at the same place).
+    const vec3<T> p = k == 0 ? a1 : k == 1 ? b1 : c1, q = k == 0 ? b1 : k == 1 ? c1 : a1;
+    const vec3<T> far = (a2 != p && a2 != q) ? a2 : (b2 != p && b2 != q) ? b2 : c2;
+    return detail::shared_edge_active(a1, b1, c1, a2, b2, c2, p, far, flat_edge_cosine);
+  }
+
+  std::vector<vec3<T>> vertices_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<std::uint8_t> active_;
+  detail::triangle_bvh<T> tree_;
+  aabb<T> bounds_{};
+};
+
+}  // namespace impulse
+// ---- end impulse/shapes/triangle_mesh.hpp ----
+// ---- begin impulse/narrowphase/hull.hpp ----
+// impulse/narrowphase/hull.hpp — convex hulls against planes and spheres.
+//
+// A hull against a plane: each vertex below the plane's surface plus the
+// margin is a candidate (its id the vertex's index), and four are kept
+// (reduce_to_four), as for a box.
+//
+// A sphere against a hull, in the hull's frame: the face whose plane lies
+// farthest above the center decides. If even that plane is below it, the
+// center is inside the hull and the way out is through that face: the depth
+// is the radius plus how far the center is below it. Otherwise the point of
+// the hull nearest the center comes from GJK between the center and the
+// hull (gjk.hpp: a sphere enters it as a point), and the sphere touches if
+// that point lies within the radius plus the margin. The feature id is that
+// face's index: it holds while the sphere rolls across one face.
+
+
+
+namespace impulse::narrowphase {
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const plane<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  const detail::world_plane<T> p = detail::in_world(b, pose_b);
+  const std::span<const vec3<T>> vertices = a.vertices();
+  detail::scratch_buffer<contact_point<T>, 64> below(vertices.size());
+  std::size_t count = 0;
+  for (std::uint32_t k = 0; k < vertices.size(); ++k) {
+    const vec3<T> x = apply(pose_a, vertices[k]);
+    const T height = dot(p.normal, x) + p.offset;
+    if (height <= margin) below[count++] = {x - p.normal * (height * T(0.5)), -height, k};
+  }
+  contact_manifold<T> m;
+  m.normal = -p.normal;
+  reduce_to_four(std::span<const contact_point<T>>(below.data(), count), m.normal, m);
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const plane<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const sphere<T>& a, const transform<T>& pose_a, const convex_hull<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  const vec3<T> center = inverse_apply(pose_b, pose_a.position);  // in the hull's frame
+  std::uint32_t face = 0;
+  T highest = -std::numeric_limits<T>::infinity();
+  for (std::uint32_t f = 0; f < b.face_count(); ++f) {
+    const T d = b.plane(f).distance(center);
+    if (d > highest) highest = d, face = f;
+  }
+  contact_manifold<T> m;
+  if (highest - a.radius > margin) return m;  // a face's plane separates them
+  // Outside: the hull's point nearest the center.
+  gjk_result<T> g;
+  if (highest > T(0))
+    g = detail::run_gjk(sphere<T>{a.radius}, transform<T>{center, quat<T>::identity()}, b, transform<T>::identity())
+            .result;
+  if (highest <= T(0) || g.overlapping) {
+    // Inside (or on the surface, where GJK finds no direction): out through
+    // the nearest face.
+    const vec3<T> n = b.plane(face).normal;
+    m.normal = apply_direction(pose_b, -n);
+    const vec3<T> on_face = center - n * highest, deepest = center - n * a.radius;
+    m.add({apply(pose_b, (on_face + deepest) * T(0.5)), a.radius - highest, face});
+    return m;
+  }
+  if (g.distance - a.radius > margin) return m;
+  const vec3<T> n = (g.on_b - center) / g.distance;  // from the sphere into the hull
+  m.normal = apply_direction(pose_b, n);
+  m.add({apply(pose_b, (center + n * a.radius + g.on_b) * T(0.5)), a.radius - g.distance, face});
+  return m;
+}
+
+template <scalar_type T>
+contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a, const sphere<T>& b,
+                            const transform<T>& pose_b, T margin = T(0)) noexcept {
+  return collide(b, pose_b, a, pose_a, margin).flipped();
+}
+
+}  // namespace impulse::narrowphase
+// ---- end impulse/narrowphase/hull.hpp ----
+// ---- begin impulse/narrowphase/mesh.hpp ----
+// impulse/narrowphase/mesh.hpp — a static triangle mesh against a sphere, a
+// capsule, a box or a convex hull, and a ray against a mesh.
+//
+// `collide(mesh, pose_mesh, shape, pose_shape, margin, out)` queries the
+// mesh's tree (shapes/detail/triangle_bvh.hpp) with the shape's box in the
+// mesh's frame, tests each triangle it returns, and merges the triangles'
+// manifolds whose normals agree within about 2.6° (cosine > 0.999) into one
+// (the points of both, points within 1e-4 of the shape's size of each other
+// welded into the deeper, then reduce_to_four, or the two ends of a line of
+// points), so that a box resting on a
+// flat mesh gets one manifold of four points however many triangles it
+// spans. It writes at most out.size() manifolds, the deepest first, and
+// returns how many. Normals point from the mesh (A) into the shape (B); the
+// swapped overload returns the same manifolds flipped.
+//
+// Per triangle, in a frame with the mesh's axes and its origin at the
+// shape's position (so that a mesh far from the origin costs no more
+// precision than the shape's distance from its triangles):
+// - sphere: the closest point on the triangle (triangle.hpp, Ericson §5.1.5).
+// - capsule: the closest points of the core segment and the triangle (the
+//   segment's ends against the triangle, the segment against each edge,
+//   and the segment through the face; Ericson §5.1.10). A contact along
+//   the face normal clips the segment to the triangle's prism and reports
+//   each end within reach, so that a capsule lying on a mesh stands on two
+//   points.
+// - box and hull: the separating axis test between the triangle and the
+//   polyhedron (Gregorius, GDC 2013; Ericson §5.2.1): the triangle's
+//   normal, the polyhedron's face normals, and the cross products of the
+//   triangle's three edges with every edge of the polyhedron. hull_hull.hpp
+//   prunes edge pairs on the Gauss map, which assumes each edge's two faces
+//   are less than 180° apart; a triangle's edges are 180° arcs (front and
+//   back face), so here every pair is tried, in both orientations, with the
+//   exact projections of the triangle's corners and the polyhedron's
+//   vertices. An edge pair becomes the contact normal only where both edges
+//   support their shapes along it (the triangle's edge faces out along it,
+//   the polyhedron's lies between its faces), so that its closest points are
+//   the contact. Faces are preferred over edges, the triangle's face over
+//   the polyhedron's, unless clearly worse (5 % plus 1 % of the
+//   polyhedron's least half extent, as in hull_hull.hpp). A face contact
+//   clips the polyhedron's incident face to the triangle (the triangle's
+//   face the reference) or the triangle to the polyhedron's face (its face
+//   the reference), Sutherland–Hodgman, one point per quarter of the patch
+//   (detail/clipping.hpp).
+//
+// One-sided. A mesh is a surface seen from its front (the side its
+// triangles turn counter-clockwise on). A triangle whose plane has the
+// shape's origin (its pose's position) behind it gives no contact: a shape
+// that has sunk more than halfway through is let through rather than
+// pushed out of the back, which a thin wall seen from behind would do
+// (Jolt's EBackFaceMode::IgnoreBackFaces). A contact normal that points
+// behind the triangle's plane is treated as an internal feature's (below):
+// a triangle only ever pushes towards its front.
+//
+// No snagging on internal edges. A flat mesh made of many triangles has
+// seams that a single face would not: a box sliding over it finds, at the
+// triangle it slides onto, an edge (or a vertex) whose separating axis is
+// horizontal and is stopped as if by a step — "ghost" or "internal edge"
+// collisions. The mesh marks each edge active or internal when it is built
+// (triangle_mesh.hpp); here a contact whose feature on the triangle is an
+// internal edge, or a vertex neither of whose edges in this triangle is
+// active, takes the triangle's face normal instead, and its depth and
+// points are recomputed along it (a face contact; for a shape that is only
+// near the edge and not over the triangle that yields nothing, and the
+// neighbour gives the contact). This is what Jolt Physics does with its
+// active edges (ActiveEdges::FixNormal) and Bullet with
+// btAdjustInternalEdgeContacts; written here from their descriptions.
+//
+// Feature ids: bits 8–31 the triangle's index (cut to 24 bits), bits 0–7
+// the contact within the triangle: bits 5–6 the kind (0 the triangle's face
+// as the reference, 1 the shape's face as the reference, 2 edge against
+// edge, 3 closest points of a sphere or capsule core), bits 2–4 the
+// triangle's feature (a triangle_region: 0–2 corners a, b, c, 3–5 edges ab,
+// bc, ca, 6 the face), bits 0–1 the quarter of a clipped patch or a
+// capsule's segment end. Merged manifolds keep each point's id.
+//
+// `ray_cast(ray, mesh, pose, max_fraction)`: the nearest hit of the front of
+// any triangle (ray_cast_triangle, Möller–Trumbore), walking the tree
+// nearer boxes first and skipping boxes beyond the nearest hit so far. The
+// back of a triangle is not hit (one-sided, as the contacts). Feature: the
+// triangle's index; on a tie (a ray through a shared edge) the lower index.
+//
+// Nothing allocates per query or per triangle, except for a hull of more
+// than 64 vertices or faces (its vertices and planes carried into the
+// working frame; scratch_buffer).
+
+
+
+namespace impulse::narrowphase {
+
+namespace detail {
+
 /// The kinds of contact in bits 5–6 of a mesh feature id.
 enum class mesh_contact : std::uint32_t { triangle_face = 0, shape_face = 1, edges = 2, closest = 3 };
 
@@ -16304,123 +16869,6 @@ inline bool keeps_normal(triangle_region region, std::uint8_t active) noexcept {
 /// The region of an edge k (0 ab, 1 bc, 2 ca) or of its corners.
 inline triangle_region edge_region(int k) noexcept { return triangle_region(3 + k); }
 inline triangle_region corner_region(int k) noexcept { return triangle_region(k % 3); }
-
-/// Merges the manifolds of single triangles into few: one per normal
-/// (within tolerances::same_normal_cosine), at most `capacity`, each reduced to four
-/// points. Positions and normals in the working frame.
-template <scalar_type T>
-class manifold_merger {
- public:
-  static constexpr std::size_t capacity = 16;
-
-  explicit manifold_merger(T weld) noexcept : weld_squared_(weld * weld) {}
-
-  void add(const contact_manifold<T>& m) noexcept {
-    if (m.empty()) return;
-    for (std::size_t g = 0; g < count_; ++g) {
-      contact_manifold<T>& group = groups_[g];
-      if (dot(group.normal, m.normal) <= tolerances<T>::same_normal_cosine) continue;
-      contact_point<T> candidates[2 * contact_manifold<T>::capacity];
-      std::size_t n = 0;
-      for (const contact_point<T>& p : group.contacts()) candidates[n++] = p;
-      for (const contact_point<T>& p : m.contacts()) {
-        bool welded = false;
-        for (std::size_t i = 0; i < n && !welded; ++i) {
-          if (length_squared(candidates[i].position - p.position) > weld_squared_) continue;
-          if (p.depth > candidates[i].depth) candidates[i] = p;
-          welded = true;
-        }
-        if (!welded) candidates[n++] = p;
-      }
-      reduce(candidates, n, group);
-      return;
-    }
-    if (count_ < capacity) {
-      groups_[count_++] = m;
-      return;
-    }
-    // Full (a shape touching more than 16 differently turned faces at
-    // once): the new one replaces the shallowest if it is deeper.
-    std::size_t shallowest = 0;
-    for (std::size_t g = 1; g < count_; ++g)
-      if (deepest(groups_[g]) < deepest(groups_[shallowest])) shallowest = g;
-    if (deepest(m) > deepest(groups_[shallowest])) groups_[shallowest] = m;
-  }
-
-  /// Writes the deepest min(out.size(), count) manifolds to out, deepest
-  /// first, carried to world space by `to_world` (a point map) and
-  /// `rotation` (the working frame's axes in world). Returns how many.
-  template <class ToWorld>
-  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world, bool flip) noexcept {
-    std::array<std::size_t, capacity> order;
-    for (std::size_t g = 0; g < count_; ++g) order[g] = g;
-    // Insertion sort, deepest first, equals in the order found: at most 16,
-    // and std::stable_sort may allocate.
-    for (std::size_t i = 1; i < count_; ++i)
-      for (std::size_t j = i; j > 0 && deepest(groups_[order[j]]) > deepest(groups_[order[j - 1]]); --j)
-        std::swap(order[j], order[j - 1]);
-    const std::size_t written = std::min(out.size(), count_);
-    for (std::size_t i = 0; i < written; ++i) {
-      contact_manifold<T> m = groups_[order[i]];
-      m.normal = rotate(rotation, m.normal);
-      for (int k = 0; k < m.count; ++k) m.points[std::size_t(k)].position = to_world(m.points[std::size_t(k)].position);
-      out[i] = flip ? m.flipped() : m;
-    }
-    return written;
-  }
-
- private:
-  /// Keeps at most four of the n candidates in `group`. Points along one
-  /// line (a capsule lying across several triangles, within 1e-3 of the
-  /// line's length of it) keep the line's two ends, and the deepest point
-  /// if it is deeper than both by the weld distance (a line over a bent
-  /// mesh); else reduce_to_four. (reduce_to_four's own line case keeps the
-  /// deepest point whatever its depth; here the welded duplicates from
-  /// neighbouring triangles would make it keep a third point of the same
-  /// depth.)
-  void reduce(const contact_point<T>* candidates, std::size_t n, contact_manifold<T>& group) const noexcept {
-    const vec3<T> normal = group.normal;
-    const auto across = [&](const vec3<T>& d) { return d - normal * dot(d, normal); };
-    std::size_t e0 = 0, e1 = 0, deepest_point = 0;
-    for (std::size_t i = 1; i < n; ++i)
-      if (length_squared(across(candidates[i].position - candidates[0].position)) >
-          length_squared(across(candidates[e0].position - candidates[0].position)))
-        e0 = i;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (length_squared(across(candidates[i].position - candidates[e0].position)) >
-          length_squared(across(candidates[e1].position - candidates[e0].position)))
-        e1 = i;
-      if (candidates[i].depth > candidates[deepest_point].depth) deepest_point = i;
-    }
-    const vec3<T> line = across(candidates[e1].position - candidates[e0].position);
-    const T length2 = length_squared(line);
-    bool straight = n > 2 && length2 > weld_squared_;
-    for (std::size_t i = 0; i < n && straight; ++i) {
-      // Twice the area of e0, e1, i over the line's length: i's distance from the line.
-      const T twice_area2 = length_squared(cross(line, across(candidates[i].position - candidates[e0].position)));
-      straight = twice_area2 <= tolerances<T>::collinear_fraction_squared * length2 * length2;
-    }
-    if (!straight) {
-      reduce_to_four(std::span<const contact_point<T>>(candidates, n), normal, group);
-      return;
-    }
-    group.count = 0;
-    group.add(candidates[e0]);
-    group.add(candidates[e1]);
-    const contact_point<T>& d = candidates[deepest_point];
-    if (d.depth > std::max(candidates[e0].depth, candidates[e1].depth) + std::sqrt(weld_squared_)) group.add(d);
-  }
-
-  static T deepest(const contact_manifold<T>& m) noexcept {
-    T d = -std::numeric_limits<T>::infinity();
-    for (const contact_point<T>& p : m.contacts()) d = std::max(d, p.depth);
-    return d;
-  }
-
-  std::array<contact_manifold<T>, capacity> groups_{};
-  std::size_t count_ = 0;
-  T weld_squared_;
-};
 
 // ---- sphere and capsule ----------------------------------------------------
 
@@ -16984,8 +17432,9 @@ std::size_t call_collide(const void* a, const transform<T>& pose_a, const void* 
                          std::span<contact_manifold<T>> out) {
   const A& shape_a = *static_cast<const A*>(a);
   const B& shape_b = *static_cast<const B*>(b);
-  if constexpr (static_only<A> && static_only<B>) {
-    return 0;
+  if constexpr ((static_only<A> && static_only<B>) || std::is_same_v<A, compound<T>> ||
+                std::is_same_v<B, compound<T>>) {
+    return 0;  // never met, or (a compound) taken child by child before the table
   } else if constexpr (!missing_pair_test<A, B, T>::value) {
     return 0;  // not reached: missing_pair_test has failed the build
   } else if constexpr (has_manifolds_test<A, B, T>) {
@@ -17040,10 +17489,60 @@ class dispatcher<shape_list<Shapes...>, T> {
   static std::size_t collide(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
                              const transform<T>& pose_b, T margin, std::span<contact_manifold<T>> out) {
     IMPULSE_ASSERT(a.index < shape_count && b.index < shape_count);
+    if constexpr (compound_index < shape_count)
+      if (a.index == compound_index || b.index == compound_index)
+        return collide_compound_pair(a, pose_a, b, pose_b, margin, out);
     return table[a.index * shape_count + b.index](a.shape, pose_a, b.shape, pose_b, margin, out);
   }
 
+  /// Whether the list holds the shape of every child of `c` (a world
+  /// refuses a compound it could not test).
+  static bool holds_children_of(const compound<T>& c) noexcept {
+    for (std::size_t k = 0; k < part_index.size(); ++k)
+      if (part_index[k] == shape_count && c.uses(compound_part(k))) return false;
+    return true;
+  }
+
  private:
+  static constexpr std::uint32_t compound_index = index_of<compound<T>>;
+  /// Each compound_part's place in the list (shape_count: not listed).
+  static constexpr std::array<std::uint32_t, 4> part_index = {index_of<sphere<T>>, index_of<box<T>>,
+                                                              index_of<capsule<T>>, index_of<convex_hull<T>>};
+
+  /// Child i of c as a listed shape.
+  static shape_ref child_ref(const compound<T>& c, std::size_t i) noexcept {
+    const void* shape = c.visit(i, [](const auto& s, const transform<T>&) { return static_cast<const void*>(&s); });
+    return {shape, part_index[std::size_t(c.child_at(i).part)]};
+  }
+
+  /// A pair with a compound, child by child; a child against a compound
+  /// (the other side of two compounds) comes back here for that one's
+  /// children.
+  static std::size_t collide_compound_pair(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
+                                           const transform<T>& pose_b, T margin, std::span<contact_manifold<T>> out) {
+    if (a.index == compound_index) {
+      const compound<T>& c = *static_cast<const compound<T>*>(a.shape);
+      return collide_compound(c, pose_a, bounds[b.index](b.shape, pose_b), margin, false, out,
+                              [&](std::size_t i, const transform<T>& pose, std::span<contact_manifold<T>> part) {
+                                return collide(child_ref(c, i), pose, b, pose_b, margin, part);
+                              });
+    }
+    const compound<T>& c = *static_cast<const compound<T>*>(b.shape);
+    return collide_compound(c, pose_b, bounds[a.index](a.shape, pose_a), margin, true, out,
+                            [&](std::size_t i, const transform<T>& pose, std::span<contact_manifold<T>> part) {
+                              return collide(a, pose_a, child_ref(c, i), pose, margin, part);
+                            });
+  }
+
+  /// Each listed shape's world box, for a compound to find its children
+  /// near it.
+  using bounds_of = aabb<T> (*)(const void*, const transform<T>&);
+  template <class S>
+  static aabb<T> call_bounds(const void* s, const transform<T>& pose) noexcept {
+    return static_cast<const S*>(s)->world_aabb(pose);
+  }
+  static constexpr std::array<bounds_of, shape_count> bounds = {&call_bounds<Shapes<T>>...};
+
   using pair_test = std::size_t (*)(const void*, const transform<T>&, const void*, const transform<T>&, T,
                                     std::span<contact_manifold<T>>);
 
@@ -19550,7 +20049,8 @@ IMPULSE_DECLARE_PARTICLE_SYSTEM(impulse::default_double_config, impulse::particl
 // ---- end impulse/particles.hpp ----
 // ---- begin impulse/shapes.hpp ----
 // impulse/shapes.hpp — the shape module: sphere, box, capsule, convex_hull, plane,
-// triangle_mesh, with support functions, bounds and exact mass properties.
+// triangle_mesh, heightfield, compound, with support functions, bounds and
+// exact mass properties.
 
 // ---- begin impulse/shapes/fwd.hpp ----
 // impulse/shapes/fwd.hpp — the shape module's names.
@@ -20591,7 +21091,7 @@ namespace impulse::detail {
 
 template <class C>
 struct world_shapes {
-  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield>;
+  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield, compound>;
 };
 template <class C>
   requires has_shapes<C>
@@ -21761,7 +22261,9 @@ namespace impulse::detail {
 /// its thinnest half-extent.
 template <scalar_type T, class Shape>
 [[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
-  if constexpr (requires { shape.radius; }) {
+  if constexpr (requires { shape.thinnest_half_extent(); }) {
+    return shape.thinnest_half_extent();  // a compound's thinnest child
+  } else if constexpr (requires { shape.radius; }) {
     return shape.radius;  // a ball's, and a capsule's across
   } else if constexpr (requires { shape.local_aabb(); }) {
     const aabb<T> box = shape.local_aabb();
@@ -21900,26 +22402,62 @@ struct continuous_collision {
   }
 
   /// When r, moving along path, first comes within ccd_gap of o moving along
-  /// its own; 1 if not within the step. Convex pairs by convex_impact_time;
-  /// a mesh triangle by triangle (mesh_impact_time). Planes are
-  /// half-spaces, which nothing can cross unseen.
+  /// its own; 1 if not within the step.
   T impact_time(const body_record<T>& r, const narrowphase::sweep<T>& path, const body_record<T>& o,
                 const narrowphase::sweep<T>& other_path) const {
     return state.shape_store.visit(r.shape, [&](const auto& mover) {
       return state.shape_store.visit(o.shape, [&](const auto& target) {
-        using M = std::decay_t<decltype(mover)>;
-        using O = std::decay_t<decltype(target)>;
-        constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
-        constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
-        if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
-          return mesh_impact_time(mover, path, target, other_path);
-        } else if constexpr (convex_mover && convex_target) {
-          return convex_impact_time(mover, path, target, other_path);
-        } else {
-          return T(1);
-        }
+        return impact_between(mover, path, target, other_path);
       });
     });
+  }
+
+  /// Convex pairs by convex_impact_time; a mesh triangle by triangle
+  /// (mesh_impact_time); a compound child by child, each swept with its
+  /// body (the earliest of its children; of the target's, those near the
+  /// mover's sweep). Planes are half-spaces, which nothing can cross unseen.
+  template <class M, class O>
+  T impact_between(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+                   const narrowphase::sweep<T>& other_path) const {
+    constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
+    constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
+    if constexpr (std::is_same_v<M, compound<T>>) {
+      T first = T(1);
+      for (std::size_t i = 0; i < mover.child_count(); ++i)
+        mover.visit(i, [&](const auto& child, const transform<T>& local) {
+          first = std::min(first, impact_between(child, child_sweep(path, local), target, other_path));
+        });
+      return first;
+    } else if constexpr (convex_mover && std::is_same_v<O, compound<T>>) {
+      T first = T(1);
+      target.for_each_overlapping(near_box(mover, path, other_path), [&](std::size_t i) {
+        target.visit(i, [&](const auto& child, const transform<T>& local) {
+          first = std::min(first, impact_between(mover, path, child, child_sweep(other_path, local)));
+        });
+      });
+      return first;
+    } else if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
+      return mesh_impact_time(mover, path, target, other_path);
+    } else if constexpr (convex_mover && convex_target) {
+      return convex_impact_time(mover, path, target, other_path);
+    } else {
+      return T(1);
+    }
+  }
+
+  /// A compound's child's motion: its body's, from the child's place in it.
+  static narrowphase::sweep<T> child_sweep(const narrowphase::sweep<T>& path, const transform<T>& local) noexcept {
+    return {path.start * local, path.end * local, inverse_apply(local, path.local_center)};
+  }
+  /// The box, in the frame of a body moving along other_path, around the
+  /// mover's sweep at both of its ends, grown by ccd_gap: where the parts
+  /// (triangles, children) it may meet are.
+  template <class M>
+  aabb<T> near_box(const M& mover, const narrowphase::sweep<T>& path, const narrowphase::sweep<T>& other_path) const {
+    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
+    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
+    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
+    return expand(near, state.settings.ccd_gap);
   }
 
   /// A convex pair. A ball against a body that does not turn is a sphere
@@ -21959,12 +22497,8 @@ struct continuous_collision {
   template <class M, class Mesh>
   T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const Mesh& mesh,
                      const narrowphase::sweep<T>& other_path) const {
-    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
-    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
-    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
-    const vec3<T> gap = vec3<T>::splat(state.settings.ccd_gap);
     T first = T(1);
-    mesh.for_each_overlapping({near.lower - gap, near.upper + gap}, [&](std::size_t t) {
+    mesh.for_each_overlapping(near_box(mover, path, other_path), [&](std::size_t t) {
       narrowphase::detail::convex_triangle<T> triangle;
       mesh.triangle(t, triangle.v[0], triangle.v[1], triangle.v[2]);
       first = std::min(first, convex_impact_time(mover, path, triangle, other_path));
@@ -22107,6 +22641,13 @@ void draw_shape(D& d, const plane<T>& p, const transform<T>& pose, const debug_c
   const vec3<T> c[4] = {o + u + w, o - u + w, o - u - w, o + u - w};
   for (int i = 0; i < 4; ++i) d.line(c[i], c[(i + 1) % 4], color);
   d.arrow(o, o + n, color);
+}
+
+/// Each child of a compound, where the body holds it.
+template <scalar_type T, class D>
+void draw_shape(D& d, const compound<T>& c, const transform<T>& pose, const debug_color& color) {
+  for (std::size_t i = 0; i < c.child_count(); ++i)
+    c.visit(i, [&](const auto& child, const transform<T>& local) { draw_shape(d, child, pose * local, color); });
 }
 
 /// A joint's anchors, its bodies' lever lines, its axis and its limits.
@@ -22762,7 +23303,7 @@ struct sensor_update {
 // time_of_impact.hpp) between a quarter and a half of `cast_tolerance`
 // short of touching, never past, the point on the target's surface;
 // a triangle mesh or a heightfield triangle by triangle (each a convex
-// shape of three corners); a plane in closed form. A shape that starts overlapping its
+// shape of three corners), a compound child by child; a plane in closed form. A shape that starts overlapping its
 // target hits it at fraction 0, with the normal of least penetration
 // (narrowphase/epa.hpp; a plane's own normal), unless it moves out along
 // that normal; one that starts within the tolerance likewise.
@@ -22852,6 +23393,24 @@ std::optional<cast_contact<T>> cast_mesh(const S& shape, const transform<T>& pos
   return best;
 }
 
+/// Against each child of a compound near the swept shape; the nearest.
+template <class S, scalar_type T>
+std::optional<cast_contact<T>> cast_compound(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                             const compound<T>& target, const transform<T>& target_pose,
+                                             T max_fraction) {
+  const aabb<T> swept = merge(shape.world_aabb(pose),
+                              shape.world_aabb({pose.position + translation * max_fraction, pose.rotation}));
+  std::optional<cast_contact<T>> best;
+  T reach = max_fraction;
+  target.for_each_overlapping(transform_aabb(swept, inverse(target_pose)), [&](std::size_t i) {
+    const std::optional<cast_contact<T>> hit = target.visit(i, [&](const auto& child, const transform<T>& local) {
+      return cast_convex(shape, pose, translation, child, target_pose * local, reach);
+    });
+    if (hit && (!best || hit->fraction < best->fraction)) best = hit, reach = hit->fraction;
+  });
+  return best;
+}
+
 /// The cast against any target shape.
 template <class S, class Target, scalar_type T>
 std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& pose, const vec3<T>& translation,
@@ -22860,6 +23419,8 @@ std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& po
     return cast_plane(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (std::is_same_v<Target, triangle_mesh<T>> || std::is_same_v<Target, heightfield<T>>) {
     return cast_mesh(shape, pose, translation, target, target_pose, max_fraction);
+  } else if constexpr (std::is_same_v<Target, compound<T>>) {
+    return cast_compound(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (convex_shape<Target, T>) {
     return cast_convex(shape, pose, translation, target, target_pose, max_fraction);
   } else {
@@ -24141,6 +24702,10 @@ body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
   // Every shape is checked here; a hull or mesh only for being empty
   // (moved from), since their factories checked the rest.
   if constexpr (requires { shape.validate(); }) shape.validate();
+  if constexpr (std::is_same_v<Shape, compound<T>>)
+    if (!detail::world_state<Config>::dispatcher::holds_children_of(shape))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_body: the compound has a child whose shape is not in the config's shape_list");
   def.material.validate();
   const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
   const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};

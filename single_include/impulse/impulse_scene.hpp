@@ -91,9 +91,9 @@ struct scene_limits {
   /// objects of short keys: 10^7 values bound it to about 1.3 GB at worst,
   /// 500 MB for a mesh. Both mesh limits below together need 8·10^6.
   std::size_t json_values = 10'000'000;
-  /// Arrays and objects inside one another. The format's deepest value, an
-  /// attractor's position (/particles/i/forces/attractors/points/j/position),
-  /// is inside 8, counting the document.
+  /// Arrays and objects inside one another. The format's deepest value, a
+  /// point of a compound's hull (/bodies/i/shape/children/j/shape/vertices/k),
+  /// is inside 9, counting the document.
   int depth = 32;
   /// Bodies, counting every copy a "repeat" makes.
   std::size_t bodies = 100'000;
@@ -115,6 +115,11 @@ struct scene_limits {
   std::size_t vertices = 1'000'000;
   /// Triangles of all meshes: 10^6, the former limit of one mesh.
   std::size_t triangles = 1'000'000;
+  /// Children of all compounds: 2^16, as many as one compound takes
+  /// (compound::max_children). A child holds a copy of its shape: a hull
+  /// named in "shapes" counts towards `vertices` again for each child that
+  /// names it.
+  std::size_t compound_children = 65536;
 };
 
 /// The default limits under the names they had before scene_limits.
@@ -126,8 +131,8 @@ inline constexpr std::size_t max_particle_capacity = scene_limits{}.particles;
 inline constexpr int max_scene_depth = scene_limits{}.depth;
 
 template <scalar_type T>
-using scene_shape =
-    std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>, heightfield<T>>;
+using scene_shape = std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>,
+                                 heightfield<T>, compound<T>>;
 
 /// A body of a scene: how to make it and where in the file it was described.
 template <scalar_type T>
@@ -621,7 +626,11 @@ class scene_parser {
     if (root_.has("shapes")) {
       const json_at all = root_["shapes"];
       if (!all.value.is_object()) r_.fail_expected(all, "an object of named shapes");
-      for (const auto& item : all.value.items()) shapes_[item.key()] = shape(all[item.key()]);
+      // Compounds after the others: a child may name a shape, and the keys come sorted, not as written.
+      for (const bool compounds : {false, true})
+        for (const auto& item : all.value.items())
+          if ((item.value().is_object() && item.value().value("type", json()) == "compound") == compounds)
+            shapes_[item.key()] = shape(all[item.key()]);
     }
     if (root_.has("bodies")) {
       const json_at all = root_["bodies"];
@@ -809,8 +818,9 @@ class scene_parser {
       return out;
     }
     if (type == "heightfield") return heightfield_shape(at);
-    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\", \"triangle_mesh\" or "
-                        "\"heightfield\", got " + describe(at["type"].value));
+    if (type == "compound") return compound_shape(at);
+    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\", \"triangle_mesh\", "
+                        "\"heightfield\" or \"compound\", got " + describe(at["type"].value));
   }
 
   /// columns × rows heights (row by row, counted as the scene's vertices),
@@ -848,6 +858,45 @@ class scene_parser {
     check(at, [&] {
       out = std::make_shared<const scene_shape<T>>(heightfield<T>::make(columns, rows, sx, sz, heights, holes));
     });
+    return out;
+  }
+
+  /// Convex children, in place or named in "shapes", each at a pose in the compound's frame and with a
+  /// density relative to the body's material; they count over all compounds (compound_children).
+  std::shared_ptr<const scene_shape<T>> compound_shape(const json_at& at) {
+    r_.object(at, {"type", "children"});
+    const json_at list = at["children"];
+    r_.array(list, 1);
+    if (list.value.size() > limits_.compound_children - children_)
+      exceeded(list, "the scene's compounds would have more than " + std::to_string(limits_.compound_children) +
+                         " children", "compound_children");
+    children_ += list.value.size();
+    const auto convex_child = [&](const json_at& shape_at, const std::string& type) {  // one of compound_part
+      if (type == "plane" || type == "triangle_mesh" || type == "heightfield" || type == "compound")
+        r_.fail(shape_at, "a compound's child must be a sphere, a box, a capsule or a convex_hull, not a " + type);
+    };
+    typename compound<T>::builder parts;
+    for (std::size_t i = 0; i < list.value.size(); ++i) {
+      const json_at child = list[i];
+      r_.object(child, {"shape", "position", "rotation", "relative_density"});
+      const json_at where = child["shape"];
+      // By its written type, before it is read: a nested compound's own errors would hide this one.
+      if (where.has("type")) convex_child(where, r_.string(where["type"]));
+      const std::shared_ptr<const scene_shape<T>> part = shape(where);
+      if (where.value.is_string()) convex_child(where, r_.string(root_["shapes"][r_.string(where)]["type"]));
+      const auto* hull = where.value.is_string() ? std::get_if<convex_hull<T>>(part.get()) : nullptr;
+      const std::size_t copied = hull ? hull->vertex_count() : 0;  // a named hull is copied into the child
+      if (copied > limits_.vertices - vertices_)
+        exceeded(where, "the scene's meshes and hulls would have more than " + std::to_string(limits_.vertices) +
+                            " vertices", "vertices");
+      vertices_ += copied;
+      const transform<T> place = pose(child);
+      const T density = child.has("relative_density") ? r_.positive(child["relative_density"]) : T(1);
+      const auto add = [&](const auto& s) { if constexpr (requires { parts.add(s); }) parts.add(s, place, density); };
+      check(child, [&] { std::visit(add, *part); });
+    }
+    std::shared_ptr<const scene_shape<T>> out;
+    check(at, [&] { out = std::make_shared<const scene_shape<T>>(parts.build()); });
     return out;
   }
 
@@ -1281,7 +1330,7 @@ class scene_parser {
   json_reader<T> r_;
   json_at root_;
   scene_limits limits_;
-  std::size_t vertices_ = 0, triangles_ = 0;  ///< so far, over the whole document
+  std::size_t vertices_ = 0, triangles_ = 0, children_ = 0;  ///< so far, over the whole document
   scene<T> out_;
   std::map<std::string, impulse::material<T>, std::less<>> materials_;
   std::map<std::string, std::shared_ptr<const scene_shape<T>>, std::less<>> shapes_;

@@ -359,7 +359,7 @@ class api_driver {
     d.sensor = next() % 16 == 0;
     if (next() % 8 == 0) d.filter = filter(next);
     const T size = next() % 16 == 0 ? real(next, T(1)) : T(0.1) + T(next() % 100) / T(100);
-    switch (next() % 5) {
+    switch (next() % 6) {
       case 0: world_.create_body(d, impulse::sphere<T>{size}); break;
       case 1: world_.create_body(d, impulse::box<T>{{size, size * T(0.5), size}}); break;
       case 2: world_.create_body(d, impulse::capsule<T>{size * T(0.5), size}); break;
@@ -367,6 +367,14 @@ class api_driver {
         const std::array<impulse::vec3<T>, 5> points{
             impulse::vec3<T>{0, 0, 0}, {size, 0, 0}, {0, size, 0}, {0, 0, size}, {size, size, size}};
         world_.create_body(d, impulse::convex_hull<T>::from_points(points));
+        break;
+      }
+      case 4: {
+        // A box and a ball beside it, the ball's place from the input.
+        typename impulse::compound<T>::builder parts;
+        parts.add(impulse::box<T>{{size, size * T(0.5), size}});
+        parts.add(impulse::sphere<T>{size * T(0.7)}, {vector(next, T(2)), impulse::quat<T>::identity()});
+        world_.create_body(d, parts.build());
         break;
       }
       default: {

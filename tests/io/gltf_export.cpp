@@ -1,7 +1,8 @@
 // The glTF recording (io/gltf.hpp) read back with nlohmann::json (Debian's
 // nlohmann-json3-dev): the GLB container, every accessor inside its view
 // and every view inside the buffer, the meshes shared where shapes are the
-// same, and the animation's last frame where the world left each body.
+// same, a compound's one mesh spanning its children, and the animation's
+// last frame where the world left each body.
 // Its own executable, built when nlohmann-json is installed: the library
 // never needs it.
 #include <doctest/doctest.h>
@@ -162,6 +163,33 @@ TEST_CASE("a recorded run is a valid GLB whose animation ends where the world le
   CHECK(std::size_t(std::ftell(f)) == recording.glb().size());
   std::fclose(f);
   std::remove(path);
+}
+
+TEST_CASE("a compound body records as one mesh of its children placed in its frame") {
+  // Two boxes side by side and a ball on top: the node's mesh holds the
+  // three children's vertices, and its positions span the compound's box.
+  compound<float>::builder b;
+  b.add(box<float>::make({0.5f, 0.25f, 0.25f}), {{-0.5f, 0, 0}, quat<float>::identity()});
+  b.add(box<float>::make({0.5f, 0.25f, 0.25f}), {{0.5f, 0, 0}, quat<float>::identity()});
+  b.add(sphere<float>::make(0.25f), {{0, 0.5f, 0}, quat<float>::identity()});
+  const compound<float> shape = b.build();
+  world<awake> w;
+  body_def<float> d;
+  d.pose.position = {0, 2, 0};
+  w.create_body(d, shape);
+  io::gltf_recorder recording(w);
+  w.step(1.0f / 60);
+  recording.record(w);
+  CHECK(recording.mesh_count() == 1);
+  const glb_file file(recording.glb());
+  const json& primitive = file.document["meshes"][0]["primitives"][0];
+  const json& positions = file.document["accessors"][primitive["attributes"]["POSITION"].get<std::size_t>()];
+  CHECK(positions["count"] == io::mesh_of(shape).positions.size());
+  const aabb<float> bounds = shape.local_aabb();
+  for (int c = 0; c < 3; ++c) {
+    CHECK(positions["min"][std::size_t(c)].get<float>() == doctest::Approx(bounds.lower[c]).epsilon(1e-5));
+    CHECK(positions["max"][std::size_t(c)].get<float>() == doctest::Approx(bounds.upper[c]).epsilon(1e-5));
+  }
 }
 
 TEST_CASE("an empty world records as a valid GLB with no nodes and no buffer") {

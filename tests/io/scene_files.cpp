@@ -1,7 +1,8 @@
 // Scene files (io/scene.hpp): what a file says is what the world gets, the
 // copies of a repeat lie where their rule puts them, a scene loaded from a
-// file behaves as physics says, and every broken file is refused with its
-// file, JSON path and expectation while the world stays as it was.
+// file behaves as physics says (a compound weighs its children's masses
+// summed), and every broken file is refused with its file, JSON path and
+// expectation while the world stays as it was.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -123,7 +124,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(s.settings.solver.soft_step.substeps == 4);
   CHECK(s.settings.solver.soft_step.contact_hertz == 30);
   CHECK(s.settings.solver.sequential_impulse.exact_joint_trees);
-  CHECK(s.bodies.size() == 38);
+  CHECK(s.bodies.size() == 39);
   CHECK(std::holds_alternative<plane<double>>(*body("ground").shape));
   CHECK(std::get<triangle_mesh<double>>(*body("ramp").shape).triangle_count() == 2);
   CHECK(body("ball").def.material.restitution == 0.8);  // rubber
@@ -145,6 +146,11 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   CHECK(terrain.hole(1, 1));
   CHECK_FALSE(terrain.hole(0, 1));
   CHECK_FALSE(body("post").def.sensor);
+  const compound<double>& stool = std::get<compound<double>>(*body("stool").shape);
+  REQUIRE(stool.child_count() == 3);
+  CHECK(stool.child_at(1).part == compound_part::capsule);
+  CHECK(stool.child_at(1).relative_density == 2);
+  CHECK(stool.child_at(2).pose.rotation.y == doctest::Approx(std::sin(std::numbers::pi / 8)));
   CHECK(length(body("wall[19]").def.pose.position - vec3<double>{4 * 0.41, 0.1 + 3 * 0.201, -3}) < 1e-12);
   CHECK(length(body("link[3]").def.pose.position - vec3<double>{0.25 + 1.5, 2, 3}) < 1e-12);  // its own -y is world +x
 
@@ -183,7 +189,7 @@ TEST_CASE("every element of the scene format reads back as the file wrote it") {
   // And it loads and runs: 120 steps of every joint, shape and kind.
   world<awake_double> w;
   const io::scene_ids ids = io::add_scene(w, s);
-  CHECK(w.body_count() == 38);
+  CHECK(w.body_count() == 39);
   CHECK(w.joint_count() == 8);
   CHECK(ids.joint("rope") == ids.joints[7]);
   for (int i = 0; i < 120; ++i) w.step(1.0 / 60);
@@ -282,6 +288,91 @@ TEST_CASE("each broken scene document is refused naming the JSON path and what w
     CAPTURE(message);
     CHECK(message.find(c.message) != std::string::npos);
   }
+}
+
+TEST_CASE_TEMPLATE("a dynamic compound of two boxes side by side weighs the sum of its children's masses", T, float,
+                   double) {
+  // Two boxes of 1 × 0.5 × 0.5 m (0.25 m³ each) side by side along x, at
+  // 200 kg/m³, the second (named in "shapes", turned about x) at 3 times the
+  // density: 50 + 150 = 200 kg, whose center is 0.25 m to the +x side.
+  const io::scene<T> scene = io::parse_scene<T>(R"({
+    "impulse_scene": 1,
+    "shapes": { "heavy": { "type": "box", "half_extents": [0.5, 0.25, 0.25] } },
+    "bodies": [
+      { "type": "static", "shape": { "type": "box", "half_extents": [50, 0.5, 50] }, "position": [0, -0.5, 0] },
+      { "name": "pair", "type": "dynamic", "position": [0, 1, 0], "material": { "density": 200 },
+        "shape": { "type": "compound", "children": [
+          { "shape": { "type": "box", "half_extents": [0.5, 0.25, 0.25] }, "position": [-0.5, 0, 0] },
+          { "shape": "heavy", "position": [0.5, 0, 0], "rotation": { "axis": [1, 0, 0], "degrees": 90 },
+            "relative_density": 3 } ] } } ] })",
+                                                "pair.json");
+  const io::scene_body<T>& pair = scene.bodies[*scene.find_body("pair")];
+  CHECK(pair.def.type == body_type::dynamic);
+  const compound<T>& shape = std::get<compound<T>>(*pair.shape);
+  REQUIRE(shape.child_count() == 2);
+  CHECK(shape.child_at(0).relative_density == T(1));
+  CHECK(shape.child_at(1).relative_density == T(3));
+  CHECK(length(shape.child_at(1).pose.position - vec3<T>{T(0.5), 0, 0}) < T(1e-6));
+  CHECK(std::abs(rotate(shape.child_at(1).pose.rotation, vec3<T>{0, 1, 0}).z - 1) < T(1e-6));
+
+  awake_world<T> w;
+  const io::scene_ids ids = io::add_scene(w, scene);
+  const double density = 200, volume = 8 * 0.5 * 0.25 * 0.25, mass = density * volume + 3 * density * volume;
+  CHECK(std::abs(double(w.body(ids.body("pair")).mass) / mass - 1) < 1e-5);
+  CHECK(std::abs(double(w.body(ids.body("pair")).position.x) - 0.25) < 1e-5);  // the center of mass
+  for (int i = 0; i < 60; ++i) w.step(T(1) / 60);
+  CHECK(is_finite(w.body(ids.body("pair")).position));
+}
+
+TEST_CASE("a compound's child that is not convex is refused at the child's shape") {
+  const std::string head = R"({"impulse_scene": 1, )";
+  const std::string brick = R"({"shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}})";
+  const std::string ball = R"({"type": "sphere", "radius": 1})";
+  const std::string inner = R"("inner": {"type": "compound", "children": [)" + brick + "]}";
+  // A body whose shape is a compound of `children`, after the shapes `named`.
+  const auto body = [&](const std::string& children, const std::string& named = "") {
+    return head + (named.empty() ? "" : R"("shapes": {)" + named + "}, ") +
+           R"("bodies": [{"shape": {"type": "compound", "children": [)" + children + "]}}]}";
+  };
+  const std::string child = "/bodies/0/shape/children/";
+  const struct {
+    std::string text, path, message;
+  } cases[] = {
+      {body(brick + R"(, {"shape": {"type": "plane", "normal": [0, 1, 0]}})"), child + "1/shape",
+       "a compound's child must be a sphere, a box, a capsule or a convex_hull, not a plane"},
+      {body(R"({"shape": {"type": "compound", "children": [)" + brick + "]}}"), child + "0/shape", "not a compound"},
+      // Refused by its type before it is read: not for its missing vertices.
+      {body(R"({"shape": {"type": "triangle_mesh"}})"), child + "0/shape", "not a triangle_mesh"},
+      {body(R"({"shape": {"type": "heightfield"}})"), child + "0/shape", "not a heightfield"},
+      {body(brick + R"(, {"shape": "floor"})", R"("floor": {"type": "plane", "normal": [0, 1, 0]})"), child + "1/shape",
+       "not a plane"},
+      {body(R"({"shape": "inner", "position": [1, 0, 0]})", inner), child + "0/shape", "not a compound"},
+      {head + R"("shapes": {"outer": {"type": "compound", "children": [{"shape": "inner"}]}, )" + inner + "}}",
+       "/shapes/outer/children/0/shape", "not a compound"},
+      {body(R"({"position": [0, 0, 0]})"), child + "0", "expected the key \"shape\""},
+      {body(R"({"shape": "brick"})"), child + "0/shape", "no shape named \"brick\""},
+      {body(""), "/bodies/0/shape/children", "expected an array of at least 1"},
+      {body(R"({"shape": )" + ball + R"(, "relative_density": 0})"), child + "0/relative_density",
+       "expected a number > 0, got 0"},
+      {body(R"({"shape": )" + ball + R"(, "density": 2})"), child + "0/density", "unknown key \"density\""},
+      {body(R"({"shape": )" + ball + R"(, "rotation": {"axis": [0, 0, 0], "degrees": 9}})"), child + "0/rotation/axis",
+       "expected a direction"},
+      {head + R"("bodies": [{"shape": {"type": "cone"}}]})", "/bodies/0/shape/type",
+       "\"triangle_mesh\", \"heightfield\" or \"compound\", got \"cone\""},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.text);
+    const std::string message = refusal(c.text);
+    CAPTURE(message);
+    CHECK(message.find("broken.json: " + c.path + ": ") == 0);
+    CHECK(message.find(c.message) != std::string::npos);
+  }
+  // A compound under "shapes" may name a shape whose key sorts after its own.
+  const io::scene<float> named = io::parse_scene<float>(head + R"(
+    "shapes": { "a": { "type": "compound", "children": [{ "shape": "b" }, { "shape": "b", "position": [1, 0, 0] }] },
+                "b": { "type": "sphere", "radius": 0.5 } },
+    "bodies": [{ "shape": "a" }] })");
+  CHECK(std::get<compound<float>>(*named.bodies[0].shape).child_count() == 2);
 }
 
 TEST_CASE("a scene's solver numbers reach the world of either solver: the shared ones both, each solver's own its own") {

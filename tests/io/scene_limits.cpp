@@ -1,12 +1,12 @@
 // Scene files cannot ask for unbounded memory (io/scene.hpp, scene_limits):
 // the limits hold over the whole document (bodies, joints, particles summed
 // over all systems, vertices and triangles summed over all meshes and hulls,
-// bytes, JSON values and nesting), each is checked before the memory it
-// guards is allocated, and each refusal is a scene_error with
-// error_code::capacity_exceeded naming the JSON path of the value that
-// crossed it. A key given twice in one object is refused with its path, and
-// particle masses too small to invert and emitter rates past max_rate are
-// refused where the file gives them.
+// children summed over all compounds, bytes, JSON values and nesting), each
+// is checked before the memory it guards is allocated, and each refusal is
+// a scene_error with error_code::capacity_exceeded naming the JSON path of
+// the value that crossed it. A key given twice in one object is refused
+// with its path, and particle masses too small to invert and emitter rates
+// past max_rate are refused where the file gives them.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -63,6 +63,12 @@ std::string mesh(std::size_t vertices, std::size_t triangles = 1) {
   std::string out = R"({"type": "triangle_mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0])";
   if (vertices > 3) out += ',', out += repeated("[0,0,0]", vertices - 3);
   return out + R"(], "triangles": [)" + repeated("[0,1,2]", triangles) + "]}";
+}
+
+/// A compound of `children` balls.
+std::string balls_compound(std::size_t children) {
+  const std::string ball_child = R"({"shape": {"type": "sphere", "radius": 0.1}})";
+  return R"({"type": "compound", "children": [)" + repeated(ball_child, children) + "]}";
 }
 
 const std::string head = R"({"impulse_scene": 1, )";
@@ -167,6 +173,10 @@ TEST_CASE("each limit holds over the whole document and can be lowered: at it a 
       {"triangles", &io::scene_limits::triangles, 5,
        head + R"("shapes": {"a": )" + mesh(3, 2) + R"(, "b": )" + mesh(3, 3) + "}}",
        head + R"("shapes": {"a": )" + mesh(3, 2) + R"(, "b": )" + mesh(3, 4) + "}}", "/shapes/b/triangles"},
+      {"compound_children", &io::scene_limits::compound_children, 5,
+       head + R"("shapes": {"a": )" + balls_compound(2) + R"(, "b": )" + balls_compound(3) + "}}",
+       head + R"("shapes": {"a": )" + balls_compound(2) + R"(, "b": )" + balls_compound(4) + "}}",
+       "/shapes/b/children"},
       // 7 values: the document, 1, the settings, the gravity and its 3
       // numbers. With a duration as well, gravity's last number is the 8th.
       {"json_values", &io::scene_limits::json_values, 7, head + R"("settings": {"gravity": [0, -9.81, 0]}})",
@@ -199,6 +209,40 @@ TEST_CASE("each limit holds over the whole document and can be lowered: at it a 
   CHECK(deep.path == "/bodies/0/rotation/axis");
   CHECK(deep.code == error_code::capacity_exceeded);
   CHECK(deep.message.find("nested deeper than 4 levels (scene_limits::depth)") != std::string::npos);
+}
+
+TEST_CASE("a compound past the default compound_children is refused before its children are built") {
+  // One child more than scene_limits::compound_children and compound::max_children (both 2^16).
+  const std::size_t most = io::scene_limits{}.compound_children;
+  REQUIRE(most == compound<float>::max_children);
+  const std::string one_more = head + R"("bodies": [{"shape": )" + balls_compound(most + 1) + "}]}";
+  const refusal past = refusal_of(one_more);
+  CHECK(past.path == "/bodies/0/shape/children");
+  CHECK(past.code == error_code::capacity_exceeded);
+  CHECK_MESSAGE(past.message.find("(scene_limits::compound_children)") != std::string::npos, past.message);
+  CHECK(!refusal_of(head + R"("bodies": [{"shape": )" + balls_compound(most) + "}]}").refused);
+  // With the limit raised, one compound still takes no more than max_children:
+  // the builder's refusal names the child past it.
+  io::scene_limits raised;
+  raised.compound_children = 2 * most;
+  const refusal builder = refusal_of(one_more, raised);
+  CHECK(builder.path == "/bodies/0/shape/children/" + std::to_string(most));
+  CHECK_MESSAGE(builder.message.find("max_children") != std::string::npos, builder.message);
+}
+
+TEST_CASE("a hull named by a compound's children counts its vertices again for each child that copies it") {
+  // The hull's 4 points, then 4 vertices for each of the 3 children that name it: 16.
+  const std::string copies = R"({"type": "compound", "children": [{"shape": "h"}, {"shape": "h"}, {"shape": "h"}]})";
+  const std::string text = head + R"("shapes": {"h": )" + hull(4) + R"(, "c": )" + copies + "}}";
+  io::scene_limits limits;
+  limits.vertices = 16;
+  const refusal at = refusal_of(text, limits);
+  CHECK_MESSAGE(!at.refused, at.message);
+  limits.vertices = 15;
+  const refusal past = refusal_of(text, limits);
+  CHECK(past.path == "/shapes/c/children/2/shape");
+  CHECK(past.code == error_code::capacity_exceeded);
+  CHECK_MESSAGE(past.message.find("(scene_limits::vertices)") != std::string::npos, past.message);
 }
 
 TEST_CASE("a key given twice in one object is refused naming its path") {

@@ -1,6 +1,7 @@
 // Pictures of a world (io/picture.hpp): a ball covers the disc its
-// silhouette projects to, the nearer body hides the farther, a floor under
-// the camera is cut at the near plane, and the PNG holds the picture's
+// silhouette projects to, a compound draws each child and not the gap
+// between them, the nearer body hides the farther, a floor under the
+// camera is cut at the near plane, and the PNG holds the picture's
 // pixels in a stream any reader can take (checked by reading it back here:
 // chunk CRCs, stored deflate blocks, Adler-32).
 #include <doctest/doctest.h>
@@ -70,6 +71,24 @@ TEST_CASE("the nearer of two bodies hides the farther in a rendered picture") {
   const auto edge = picture.at(100, 100 + 30);  // past the near box, on the far one: grey
   CHECK(std::abs(int(edge[0]) - int(edge[2])) < 20);
   CHECK(!is_sky(picture, 100, 130));
+}
+
+TEST_CASE("a compound's picture covers each of its children and not the gap between them") {
+  // Two balls of radius 0.5 m, 3 m apart, as one body seen from 10 m: each
+  // child's center is drawn, the middle between them is sky.
+  compound<float>::builder b;
+  b.add(sphere<float>::make(0.5f), {{-1.5f, 0, 0}, quat<float>::identity()});
+  b.add(sphere<float>::make(0.5f), {{1.5f, 0, 0}, quat<float>::identity()});
+  world<default_config> w;
+  w.create_body({.pose = {{0, 0, 0}, quat<float>::identity()}}, b.build());
+  const io::camera<float> eye{.position = {0, 0, 10}, .target = {0, 0, 0}, .vertical_fov_degrees = 45,
+                              .width = 400, .height = 400};
+  const io::image picture = io::render(w, eye);
+  // 1.5 m to the side at 10 m is f·0.15 pixels from the middle.
+  const int offset = int(std::lround(200 / std::tan(22.5 * std::numbers::pi / 180) * 0.15));
+  CHECK(!is_sky(picture, 200 - offset, 200));
+  CHECK(!is_sky(picture, 200 + offset, 200));
+  CHECK(is_sky(picture, 200, 200));
 }
 
 TEST_CASE("a floor that runs under the camera is drawn up to the near plane") {

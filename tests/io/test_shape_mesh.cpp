@@ -2,7 +2,8 @@
 // shape's volume with its triangles facing out, which the divergence
 // theorem checks at once: V = Σ a·(b × c) / 6 over the triangles is the
 // volume when they are all counter-clockwise seen from outside, and
-// anything missing, doubled or turned inward shows.
+// anything missing, doubled or turned inward shows. A compound's mesh is
+// its children's, each placed by its pose.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "impulse/io/shape_mesh.hpp"
+#include "impulse/shapes/compound.hpp"
 
 namespace io_shape_mesh_tests {
 
@@ -92,6 +94,58 @@ TEST_CASE("a triangle mesh's mesh is its own triangles") {
   const io::shape_mesh m = io::mesh_of(triangle_mesh<float>::make(corners, triangles));
   CHECK(m.indices.size() == 6);
   for (const vec3<float>& n : m.normals) CHECK(n.y == doctest::Approx(1.0f));
+  check_normals(m);
+}
+
+TEST_CASE("a compound's mesh is its children's meshes placed by their poses and fills the compound's box") {
+  // A box, a ball, a turned capsule and a hull, at poses of their own: the
+  // mesh holds each child's vertices and triangles once, its triangles index
+  // within it, and its vertices reach the compound's box exactly (each
+  // child's mesh reaches its own box: a box's and a hull's corners, a
+  // ball's poles and equator, a capsule's caps turned a quarter about z).
+  const std::vector<vec3<float>> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  const box<float> brick = box<float>::make({0.5f, 0.25f, 1});
+  const sphere<float> ball = sphere<float>::make(0.4f);
+  const capsule<float> pill = capsule<float>::make(0.2f, 0.6f);
+  const convex_hull<float> wedge = convex_hull<float>::from_points(points);
+  const quat<float> quarter = quat<float>::from_axis_angle({0, 0, 1}, std::numbers::pi_v<float> / 2);
+  compound<float>::builder b;
+  b.add(brick, {{-1, 0, 0}, quat<float>::identity()});
+  b.add(ball, {{2, 1, 0}, quat<float>::identity()}, 3);
+  b.add(pill, {{0, -1.5f, 0.5f}, quarter});
+  b.add(wedge, {{0.5f, 2, -2}, quarter});
+  const compound<float> c = b.build();
+  const io::shape_mesh m = io::mesh_of(c);
+  const io::shape_mesh parts[] = {io::mesh_of(brick), io::mesh_of(ball), io::mesh_of(pill), io::mesh_of(wedge)};
+  std::size_t vertices = 0, indices = 0;
+  for (const io::shape_mesh& part : parts) vertices += part.positions.size(), indices += part.indices.size();
+  CHECK(m.positions.size() == vertices);
+  CHECK(m.indices.size() == indices);
+  for (const std::uint32_t k : m.indices) CHECK(k < m.positions.size());
+  // Each child's triangles, in order, are its own mesh's moved by its pose.
+  std::size_t first_vertex = 0, first_index = 0;
+  for (std::size_t i = 0; i < c.child_count(); ++i) {
+    const transform<float>& pose = c.child_at(i).pose;
+    const io::shape_mesh& part = parts[i];
+    for (std::size_t k = 0; k < part.indices.size(); ++k) {
+      CHECK(m.indices[first_index + k] == first_vertex + part.indices[k]);
+      const vec3<float> expected = apply(pose, part.positions[part.indices[k]]);
+      CHECK(length(m.positions[m.indices[first_index + k]] - expected) < 1e-5f);
+    }
+    first_vertex += part.positions.size();
+    first_index += part.indices.size();
+  }
+  aabb<float> reach = aabb<float>::empty();
+  for (const vec3<float>& p : m.positions) reach = merge(reach, p);
+  const aabb<float> expected = c.local_aabb();
+  for (int axis = 0; axis < 3; ++axis) {
+    CHECK(std::abs(reach.lower[axis] - expected.lower[axis]) < 1e-5f);
+    CHECK(std::abs(reach.upper[axis] - expected.upper[axis]) < 1e-5f);
+  }
+  // Every child is closed and outward, so the whole encloses the sum of theirs.
+  double volume = 0;
+  for (const io::shape_mesh& part : parts) volume += enclosed_volume(part);
+  CHECK(enclosed_volume(m) == doctest::Approx(volume).epsilon(1e-5));
   check_normals(m);
 }
 

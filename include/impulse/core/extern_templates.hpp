@@ -34,7 +34,8 @@
 //
 // Most of a world's compiled code depends on its scalar alone: the narrow
 // phase's pair tests of the default shapes (sphere, box, capsule,
-// convex_hull, plane, triangle_mesh, heightfield), each pair's time of impact and a
+// convex_hull, plane, triangle_mesh, heightfield; a compound's entries are
+// empty, its children's being these), each pair's time of impact and a
 // ball's sweep against each convex shape. IMPULSE_EXTERN_TEMPLATES=1
 // declares them extern for float and double as well
 // (IMPULSE_DECLARE_NARROW_PHASE), and impulse/instantiate.hpp compiles them
@@ -96,6 +97,7 @@
   IMPULSE_DETAIL_COLLIDE_ROW(how, plane, T);                                                               \
   IMPULSE_DETAIL_COLLIDE_ROW(how, triangle_mesh, T);                                                       \
   IMPULSE_DETAIL_COLLIDE_ROW(how, heightfield, T);                                                         \
+  IMPULSE_DETAIL_COLLIDE_ROW(how, compound, T);                                                            \
   IMPULSE_DETAIL_IMPACT_ROW(how, sphere, T);                                                               \
   IMPULSE_DETAIL_IMPACT_ROW(how, box, T);                                                                  \
   IMPULSE_DETAIL_IMPACT_ROW(how, capsule, T);                                                              \
@@ -115,7 +117,8 @@
   IMPULSE_DETAIL_COLLIDE(how, A, convex_hull, T);                                                          \
   IMPULSE_DETAIL_COLLIDE(how, A, plane, T);                                                                \
   IMPULSE_DETAIL_COLLIDE(how, A, triangle_mesh, T);                                                        \
-  IMPULSE_DETAIL_COLLIDE(how, A, heightfield, T)
+  IMPULSE_DETAIL_COLLIDE(how, A, heightfield, T);                                                           \
+  IMPULSE_DETAIL_COLLIDE(how, A, compound, T)
 #define IMPULSE_DETAIL_IMPACT(how, A, B, T)                                                                 \
   how impulse::narrowphase::toi_result<T> impulse::narrowphase::time_of_impact<impulse::A<T>, impulse::B<T>, T>( \
       const impulse::A<T>&, const impulse::narrowphase::sweep<T>&, const impulse::B<T>&,                    \

@@ -25,6 +25,7 @@
 #include "../particles/point_forces.hpp"
 #include "../particles/springs.hpp"
 #include "../particles/wind.hpp"
+#include "../shapes/compound.hpp"
 #include "../world/world.hpp"
 
 
@@ -54,9 +55,9 @@ struct scene_limits {
   /// objects of short keys: 10^7 values bound it to about 1.3 GB at worst,
   /// 500 MB for a mesh. Both mesh limits below together need 8·10^6.
   std::size_t json_values = 10'000'000;
-  /// Arrays and objects inside one another. The format's deepest value, an
-  /// attractor's position (/particles/i/forces/attractors/points/j/position),
-  /// is inside 8, counting the document.
+  /// Arrays and objects inside one another. The format's deepest value, a
+  /// point of a compound's hull (/bodies/i/shape/children/j/shape/vertices/k),
+  /// is inside 9, counting the document.
   int depth = 32;
   /// Bodies, counting every copy a "repeat" makes.
   std::size_t bodies = 100'000;
@@ -78,6 +79,11 @@ struct scene_limits {
   std::size_t vertices = 1'000'000;
   /// Triangles of all meshes: 10^6, the former limit of one mesh.
   std::size_t triangles = 1'000'000;
+  /// Children of all compounds: 2^16, as many as one compound takes
+  /// (compound::max_children). A child holds a copy of its shape: a hull
+  /// named in "shapes" counts towards `vertices` again for each child that
+  /// names it.
+  std::size_t compound_children = 65536;
 };
 
 /// The default limits under the names they had before scene_limits.
@@ -89,8 +95,8 @@ inline constexpr std::size_t max_particle_capacity = scene_limits{}.particles;
 inline constexpr int max_scene_depth = scene_limits{}.depth;
 
 template <scalar_type T>
-using scene_shape =
-    std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>, heightfield<T>>;
+using scene_shape = std::variant<sphere<T>, box<T>, capsule<T>, convex_hull<T>, plane<T>, triangle_mesh<T>,
+                                 heightfield<T>, compound<T>>;
 
 /// A body of a scene: how to make it and where in the file it was described.
 template <scalar_type T>

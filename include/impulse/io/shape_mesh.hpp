@@ -7,11 +7,13 @@
 // boxes and hulls have flat faces with their own vertices, so that each
 // face is lit flat; a plane is a square `plane_half_size` (100 m) from the
 // point of the plane nearest the shape's origin; a triangle mesh is its
-// own triangles, flat.
+// own triangles, flat; a compound is its children's meshes, each at its
+// pose.
 #pragma once
 
 #include <cmath>
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
 #include <utility>
@@ -20,6 +22,7 @@
 #include "../math/vec3.hpp"
 #include "../shapes/box.hpp"
 #include "../shapes/capsule.hpp"
+#include "../shapes/compound.hpp"
 #include "../shapes/convex_hull.hpp"
 #include "../shapes/plane.hpp"
 #include "../shapes/sphere.hpp"
@@ -167,6 +170,26 @@ shape_mesh mesh_of(const triangle_mesh<T>& mesh, int = 0) {
 template <scalar_type T>
 shape_mesh mesh_of(const heightfield<T>& field, int = 0) {
   return detail::triangles_of<T>(field);
+}
+
+/// The children's meshes, each moved to its pose in the compound's frame,
+/// as one mesh: the vertices of each child after those of the children
+/// before it, and its indices shifted by as many.
+template <scalar_type T>
+shape_mesh mesh_of(const compound<T>& c, int segments = 24) {
+  shape_mesh m;
+  for (std::size_t i = 0; i < c.child_count(); ++i)
+    c.visit(i, [&](const auto& child, const transform<T>& pose) {
+      const shape_mesh part = mesh_of(child, segments);
+      const auto first = std::uint32_t(m.positions.size());
+      // Moved in T, then rounded to float once.
+      const auto widen = [](const vec3<float>& v) { return vec3<T>{T(v.x), T(v.y), T(v.z)}; };
+      for (std::size_t k = 0; k < part.positions.size(); ++k)
+        m.add_vertex(detail::to_float(apply(pose, widen(part.positions[k]))),
+                     detail::to_float(rotate(pose.rotation, widen(part.normals[k]))));
+      for (const std::uint32_t k : part.indices) m.indices.push_back(first + k);
+    });
+  return m;
 }
 
 }  // namespace impulse::io

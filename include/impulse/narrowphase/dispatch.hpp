@@ -18,6 +18,10 @@
 // with, in its own namespace (found by argument-dependent lookup) or in
 // impulse::narrowphase; or the form with `std::span<contact_manifold<T>>
 // out` last, returning how many it wrote.
+//
+// A compound has no entry of its own: collide() takes its children one by
+// one through the table (compound.hpp), so a compound costs no pair test
+// beyond those of its children's shapes, which the list must hold.
 #pragma once
 
 #include <array>
@@ -37,6 +41,7 @@
 #include "analytic.hpp"
 #include "box_box.hpp"
 #include "capsule_polyhedron.hpp"
+#include "compound.hpp"
 #include "hull.hpp"
 #include "hull_hull.hpp"
 #include "manifold.hpp"
@@ -101,8 +106,9 @@ std::size_t call_collide(const void* a, const transform<T>& pose_a, const void* 
                          std::span<contact_manifold<T>> out) {
   const A& shape_a = *static_cast<const A*>(a);
   const B& shape_b = *static_cast<const B*>(b);
-  if constexpr (static_only<A> && static_only<B>) {
-    return 0;
+  if constexpr ((static_only<A> && static_only<B>) || std::is_same_v<A, compound<T>> ||
+                std::is_same_v<B, compound<T>>) {
+    return 0;  // never met, or (a compound) taken child by child before the table
   } else if constexpr (!missing_pair_test<A, B, T>::value) {
     return 0;  // not reached: missing_pair_test has failed the build
   } else if constexpr (has_manifolds_test<A, B, T>) {
@@ -157,10 +163,60 @@ class dispatcher<shape_list<Shapes...>, T> {
   static std::size_t collide(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
                              const transform<T>& pose_b, T margin, std::span<contact_manifold<T>> out) {
     IMPULSE_ASSERT(a.index < shape_count && b.index < shape_count);
+    if constexpr (compound_index < shape_count)
+      if (a.index == compound_index || b.index == compound_index)
+        return collide_compound_pair(a, pose_a, b, pose_b, margin, out);
     return table[a.index * shape_count + b.index](a.shape, pose_a, b.shape, pose_b, margin, out);
   }
 
+  /// Whether the list holds the shape of every child of `c` (a world
+  /// refuses a compound it could not test).
+  static bool holds_children_of(const compound<T>& c) noexcept {
+    for (std::size_t k = 0; k < part_index.size(); ++k)
+      if (part_index[k] == shape_count && c.uses(compound_part(k))) return false;
+    return true;
+  }
+
  private:
+  static constexpr std::uint32_t compound_index = index_of<compound<T>>;
+  /// Each compound_part's place in the list (shape_count: not listed).
+  static constexpr std::array<std::uint32_t, 4> part_index = {index_of<sphere<T>>, index_of<box<T>>,
+                                                              index_of<capsule<T>>, index_of<convex_hull<T>>};
+
+  /// Child i of c as a listed shape.
+  static shape_ref child_ref(const compound<T>& c, std::size_t i) noexcept {
+    const void* shape = c.visit(i, [](const auto& s, const transform<T>&) { return static_cast<const void*>(&s); });
+    return {shape, part_index[std::size_t(c.child_at(i).part)]};
+  }
+
+  /// A pair with a compound, child by child; a child against a compound
+  /// (the other side of two compounds) comes back here for that one's
+  /// children.
+  static std::size_t collide_compound_pair(const shape_ref& a, const transform<T>& pose_a, const shape_ref& b,
+                                           const transform<T>& pose_b, T margin, std::span<contact_manifold<T>> out) {
+    if (a.index == compound_index) {
+      const compound<T>& c = *static_cast<const compound<T>*>(a.shape);
+      return collide_compound(c, pose_a, bounds[b.index](b.shape, pose_b), margin, false, out,
+                              [&](std::size_t i, const transform<T>& pose, std::span<contact_manifold<T>> part) {
+                                return collide(child_ref(c, i), pose, b, pose_b, margin, part);
+                              });
+    }
+    const compound<T>& c = *static_cast<const compound<T>*>(b.shape);
+    return collide_compound(c, pose_b, bounds[a.index](a.shape, pose_a), margin, true, out,
+                            [&](std::size_t i, const transform<T>& pose, std::span<contact_manifold<T>> part) {
+                              return collide(a, pose_a, child_ref(c, i), pose, margin, part);
+                            });
+  }
+
+  /// Each listed shape's world box, for a compound to find its children
+  /// near it.
+  using bounds_of = aabb<T> (*)(const void*, const transform<T>&);
+  template <class S>
+  static aabb<T> call_bounds(const void* s, const transform<T>& pose) noexcept {
+    return static_cast<const S*>(s)->world_aabb(pose);
+  }
+  static constexpr std::array<bounds_of, shape_count> bounds = {&call_bounds<Shapes<T>>...};
+
   using pair_test = std::size_t (*)(const void*, const transform<T>&, const void*, const transform<T>&, T,
                                     std::span<contact_manifold<T>>);
 

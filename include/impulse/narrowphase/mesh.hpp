@@ -104,6 +104,7 @@
 #include "../shapes/triangle_mesh.hpp"
 #include "analytic.hpp"
 #include "detail/clipping.hpp"
+#include "detail/manifold_merger.hpp"
 #include "hull_hull.hpp"
 #include "manifold.hpp"
 #include "ray_cast.hpp"
@@ -166,123 +167,6 @@ inline bool keeps_normal(triangle_region region, std::uint8_t active) noexcept {
 /// The region of an edge k (0 ab, 1 bc, 2 ca) or of its corners.
 inline triangle_region edge_region(int k) noexcept { return triangle_region(3 + k); }
 inline triangle_region corner_region(int k) noexcept { return triangle_region(k % 3); }
-
-/// Merges the manifolds of single triangles into few: one per normal
-/// (within tolerances::same_normal_cosine), at most `capacity`, each reduced to four
-/// points. Positions and normals in the working frame.
-template <scalar_type T>
-class manifold_merger {
- public:
-  static constexpr std::size_t capacity = 16;
-
-  explicit manifold_merger(T weld) noexcept : weld_squared_(weld * weld) {}
-
-  void add(const contact_manifold<T>& m) noexcept {
-    if (m.empty()) return;
-    for (std::size_t g = 0; g < count_; ++g) {
-      contact_manifold<T>& group = groups_[g];
-      if (dot(group.normal, m.normal) <= tolerances<T>::same_normal_cosine) continue;
-      contact_point<T> candidates[2 * contact_manifold<T>::capacity];
-      std::size_t n = 0;
-      for (const contact_point<T>& p : group.contacts()) candidates[n++] = p;
-      for (const contact_point<T>& p : m.contacts()) {
-        bool welded = false;
-        for (std::size_t i = 0; i < n && !welded; ++i) {
-          if (length_squared(candidates[i].position - p.position) > weld_squared_) continue;
-          if (p.depth > candidates[i].depth) candidates[i] = p;
-          welded = true;
-        }
-        if (!welded) candidates[n++] = p;
-      }
-      reduce(candidates, n, group);
-      return;
-    }
-    if (count_ < capacity) {
-      groups_[count_++] = m;
-      return;
-    }
-    // Full (a shape touching more than 16 differently turned faces at
-    // once): the new one replaces the shallowest if it is deeper.
-    std::size_t shallowest = 0;
-    for (std::size_t g = 1; g < count_; ++g)
-      if (deepest(groups_[g]) < deepest(groups_[shallowest])) shallowest = g;
-    if (deepest(m) > deepest(groups_[shallowest])) groups_[shallowest] = m;
-  }
-
-  /// Writes the deepest min(out.size(), count) manifolds to out, deepest
-  /// first, carried to world space by `to_world` (a point map) and
-  /// `rotation` (the working frame's axes in world). Returns how many.
-  template <class ToWorld>
-  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world, bool flip) noexcept {
-    std::array<std::size_t, capacity> order;
-    for (std::size_t g = 0; g < count_; ++g) order[g] = g;
-    // Insertion sort, deepest first, equals in the order found: at most 16,
-    // and std::stable_sort may allocate.
-    for (std::size_t i = 1; i < count_; ++i)
-      for (std::size_t j = i; j > 0 && deepest(groups_[order[j]]) > deepest(groups_[order[j - 1]]); --j)
-        std::swap(order[j], order[j - 1]);
-    const std::size_t written = std::min(out.size(), count_);
-    for (std::size_t i = 0; i < written; ++i) {
-      contact_manifold<T> m = groups_[order[i]];
-      m.normal = rotate(rotation, m.normal);
-      for (int k = 0; k < m.count; ++k) m.points[std::size_t(k)].position = to_world(m.points[std::size_t(k)].position);
-      out[i] = flip ? m.flipped() : m;
-    }
-    return written;
-  }
-
- private:
-  /// Keeps at most four of the n candidates in `group`. Points along one
-  /// line (a capsule lying across several triangles, within 1e-3 of the
-  /// line's length of it) keep the line's two ends, and the deepest point
-  /// if it is deeper than both by the weld distance (a line over a bent
-  /// mesh); else reduce_to_four. (reduce_to_four's own line case keeps the
-  /// deepest point whatever its depth; here the welded duplicates from
-  /// neighbouring triangles would make it keep a third point of the same
-  /// depth.)
-  void reduce(const contact_point<T>* candidates, std::size_t n, contact_manifold<T>& group) const noexcept {
-    const vec3<T> normal = group.normal;
-    const auto across = [&](const vec3<T>& d) { return d - normal * dot(d, normal); };
-    std::size_t e0 = 0, e1 = 0, deepest_point = 0;
-    for (std::size_t i = 1; i < n; ++i)
-      if (length_squared(across(candidates[i].position - candidates[0].position)) >
-          length_squared(across(candidates[e0].position - candidates[0].position)))
-        e0 = i;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (length_squared(across(candidates[i].position - candidates[e0].position)) >
-          length_squared(across(candidates[e1].position - candidates[e0].position)))
-        e1 = i;
-      if (candidates[i].depth > candidates[deepest_point].depth) deepest_point = i;
-    }
-    const vec3<T> line = across(candidates[e1].position - candidates[e0].position);
-    const T length2 = length_squared(line);
-    bool straight = n > 2 && length2 > weld_squared_;
-    for (std::size_t i = 0; i < n && straight; ++i) {
-      // Twice the area of e0, e1, i over the line's length: i's distance from the line.
-      const T twice_area2 = length_squared(cross(line, across(candidates[i].position - candidates[e0].position)));
-      straight = twice_area2 <= tolerances<T>::collinear_fraction_squared * length2 * length2;
-    }
-    if (!straight) {
-      reduce_to_four(std::span<const contact_point<T>>(candidates, n), normal, group);
-      return;
-    }
-    group.count = 0;
-    group.add(candidates[e0]);
-    group.add(candidates[e1]);
-    const contact_point<T>& d = candidates[deepest_point];
-    if (d.depth > std::max(candidates[e0].depth, candidates[e1].depth) + std::sqrt(weld_squared_)) group.add(d);
-  }
-
-  static T deepest(const contact_manifold<T>& m) noexcept {
-    T d = -std::numeric_limits<T>::infinity();
-    for (const contact_point<T>& p : m.contacts()) d = std::max(d, p.depth);
-    return d;
-  }
-
-  std::array<contact_manifold<T>, capacity> groups_{};
-  std::size_t count_ = 0;
-  T weld_squared_;
-};
 
 // ---- sphere and capsule ----------------------------------------------------
 

@@ -21,6 +21,10 @@ body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
   // Every shape is checked here; a hull or mesh only for being empty
   // (moved from), since their factories checked the rest.
   if constexpr (requires { shape.validate(); }) shape.validate();
+  if constexpr (std::is_same_v<Shape, compound<T>>)
+    if (!detail::world_state<Config>::dispatcher::holds_children_of(shape))
+      detail::report_error(error_code::invalid_parameter,
+                           "world::create_body: the compound has a child whose shape is not in the config's shape_list");
   def.material.validate();
   const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
   const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};

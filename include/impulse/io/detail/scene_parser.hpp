@@ -84,7 +84,11 @@ class scene_parser {
     if (root_.has("shapes")) {
       const json_at all = root_["shapes"];
       if (!all.value.is_object()) r_.fail_expected(all, "an object of named shapes");
-      for (const auto& item : all.value.items()) shapes_[item.key()] = shape(all[item.key()]);
+      // Compounds after the others: a child may name a shape, and the keys come sorted, not as written.
+      for (const bool compounds : {false, true})
+        for (const auto& item : all.value.items())
+          if ((item.value().is_object() && item.value().value("type", json()) == "compound") == compounds)
+            shapes_[item.key()] = shape(all[item.key()]);
     }
     if (root_.has("bodies")) {
       const json_at all = root_["bodies"];
@@ -272,8 +276,9 @@ class scene_parser {
       return out;
     }
     if (type == "heightfield") return heightfield_shape(at);
-    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\", \"triangle_mesh\" or "
-                        "\"heightfield\", got " + describe(at["type"].value));
+    if (type == "compound") return compound_shape(at);
+    r_.fail(at["type"], "expected \"sphere\", \"box\", \"capsule\", \"plane\", \"convex_hull\", \"triangle_mesh\", "
+                        "\"heightfield\" or \"compound\", got " + describe(at["type"].value));
   }
 
   /// columns × rows heights (row by row, counted as the scene's vertices),
@@ -311,6 +316,45 @@ class scene_parser {
     check(at, [&] {
       out = std::make_shared<const scene_shape<T>>(heightfield<T>::make(columns, rows, sx, sz, heights, holes));
     });
+    return out;
+  }
+
+  /// Convex children, in place or named in "shapes", each at a pose in the compound's frame and with a
+  /// density relative to the body's material; they count over all compounds (compound_children).
+  std::shared_ptr<const scene_shape<T>> compound_shape(const json_at& at) {
+    r_.object(at, {"type", "children"});
+    const json_at list = at["children"];
+    r_.array(list, 1);
+    if (list.value.size() > limits_.compound_children - children_)
+      exceeded(list, "the scene's compounds would have more than " + std::to_string(limits_.compound_children) +
+                         " children", "compound_children");
+    children_ += list.value.size();
+    const auto convex_child = [&](const json_at& shape_at, const std::string& type) {  // one of compound_part
+      if (type == "plane" || type == "triangle_mesh" || type == "heightfield" || type == "compound")
+        r_.fail(shape_at, "a compound's child must be a sphere, a box, a capsule or a convex_hull, not a " + type);
+    };
+    typename compound<T>::builder parts;
+    for (std::size_t i = 0; i < list.value.size(); ++i) {
+      const json_at child = list[i];
+      r_.object(child, {"shape", "position", "rotation", "relative_density"});
+      const json_at where = child["shape"];
+      // By its written type, before it is read: a nested compound's own errors would hide this one.
+      if (where.has("type")) convex_child(where, r_.string(where["type"]));
+      const std::shared_ptr<const scene_shape<T>> part = shape(where);
+      if (where.value.is_string()) convex_child(where, r_.string(root_["shapes"][r_.string(where)]["type"]));
+      const auto* hull = where.value.is_string() ? std::get_if<convex_hull<T>>(part.get()) : nullptr;
+      const std::size_t copied = hull ? hull->vertex_count() : 0;  // a named hull is copied into the child
+      if (copied > limits_.vertices - vertices_)
+        exceeded(where, "the scene's meshes and hulls would have more than " + std::to_string(limits_.vertices) +
+                            " vertices", "vertices");
+      vertices_ += copied;
+      const transform<T> place = pose(child);
+      const T density = child.has("relative_density") ? r_.positive(child["relative_density"]) : T(1);
+      const auto add = [&](const auto& s) { if constexpr (requires { parts.add(s); }) parts.add(s, place, density); };
+      check(child, [&] { std::visit(add, *part); });
+    }
+    std::shared_ptr<const scene_shape<T>> out;
+    check(at, [&] { out = std::make_shared<const scene_shape<T>>(parts.build()); });
     return out;
   }
 
@@ -744,7 +788,7 @@ class scene_parser {
   json_reader<T> r_;
   json_at root_;
   scene_limits limits_;
-  std::size_t vertices_ = 0, triangles_ = 0;  ///< so far, over the whole document
+  std::size_t vertices_ = 0, triangles_ = 0, children_ = 0;  ///< so far, over the whole document
   scene<T> out_;
   std::map<std::string, impulse::material<T>, std::less<>> materials_;
   std::map<std::string, std::shared_ptr<const scene_shape<T>>, std::less<>> shapes_;

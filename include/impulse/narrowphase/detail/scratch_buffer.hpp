@@ -31,6 +31,9 @@ class scratch_buffer {
   [[nodiscard]] U* data() noexcept {
     return large_.empty() ? std::launder(reinterpret_cast<U*>(small_)) : large_.data();
   }
+  [[nodiscard]] const U* data() const noexcept {
+    return large_.empty() ? std::launder(reinterpret_cast<const U*>(small_)) : large_.data();
+  }
   U& operator[](std::size_t i) noexcept { return data()[i]; }
 
  private:

@@ -19,6 +19,7 @@
 #include "../../narrowphase/epa.hpp"
 #include "../../narrowphase/ray_cast.hpp"
 #include "../../narrowphase/time_of_impact.hpp"
+#include "../../shapes/compound.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
@@ -27,7 +28,9 @@ namespace impulse::detail {
 /// its thinnest half-extent.
 template <scalar_type T, class Shape>
 [[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
-  if constexpr (requires { shape.radius; }) {
+  if constexpr (requires { shape.thinnest_half_extent(); }) {
+    return shape.thinnest_half_extent();  // a compound's thinnest child
+  } else if constexpr (requires { shape.radius; }) {
     return shape.radius;  // a ball's, and a capsule's across
   } else if constexpr (requires { shape.local_aabb(); }) {
     const aabb<T> box = shape.local_aabb();
@@ -166,26 +169,62 @@ struct continuous_collision {
   }
 
   /// When r, moving along path, first comes within ccd_gap of o moving along
-  /// its own; 1 if not within the step. Convex pairs by convex_impact_time;
-  /// a mesh triangle by triangle (mesh_impact_time). Planes are
-  /// half-spaces, which nothing can cross unseen.
+  /// its own; 1 if not within the step.
   T impact_time(const body_record<T>& r, const narrowphase::sweep<T>& path, const body_record<T>& o,
                 const narrowphase::sweep<T>& other_path) const {
     return state.shape_store.visit(r.shape, [&](const auto& mover) {
       return state.shape_store.visit(o.shape, [&](const auto& target) {
-        using M = std::decay_t<decltype(mover)>;
-        using O = std::decay_t<decltype(target)>;
-        constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
-        constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
-        if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
-          return mesh_impact_time(mover, path, target, other_path);
-        } else if constexpr (convex_mover && convex_target) {
-          return convex_impact_time(mover, path, target, other_path);
-        } else {
-          return T(1);
-        }
+        return impact_between(mover, path, target, other_path);
       });
     });
+  }
+
+  /// Convex pairs by convex_impact_time; a mesh triangle by triangle
+  /// (mesh_impact_time); a compound child by child, each swept with its
+  /// body (the earliest of its children; of the target's, those near the
+  /// mover's sweep). Planes are half-spaces, which nothing can cross unseen.
+  template <class M, class O>
+  T impact_between(const M& mover, const narrowphase::sweep<T>& path, const O& target,
+                   const narrowphase::sweep<T>& other_path) const {
+    constexpr bool convex_mover = requires(const M& m, vec3<T> d) { m.support(d); };
+    constexpr bool convex_target = requires(const O& t, vec3<T> d) { t.support(d); };
+    if constexpr (std::is_same_v<M, compound<T>>) {
+      T first = T(1);
+      for (std::size_t i = 0; i < mover.child_count(); ++i)
+        mover.visit(i, [&](const auto& child, const transform<T>& local) {
+          first = std::min(first, impact_between(child, child_sweep(path, local), target, other_path));
+        });
+      return first;
+    } else if constexpr (convex_mover && std::is_same_v<O, compound<T>>) {
+      T first = T(1);
+      target.for_each_overlapping(near_box(mover, path, other_path), [&](std::size_t i) {
+        target.visit(i, [&](const auto& child, const transform<T>& local) {
+          first = std::min(first, impact_between(mover, path, child, child_sweep(other_path, local)));
+        });
+      });
+      return first;
+    } else if constexpr (convex_mover && (std::is_same_v<O, triangle_mesh<T>> || std::is_same_v<O, heightfield<T>>)) {
+      return mesh_impact_time(mover, path, target, other_path);
+    } else if constexpr (convex_mover && convex_target) {
+      return convex_impact_time(mover, path, target, other_path);
+    } else {
+      return T(1);
+    }
+  }
+
+  /// A compound's child's motion: its body's, from the child's place in it.
+  static narrowphase::sweep<T> child_sweep(const narrowphase::sweep<T>& path, const transform<T>& local) noexcept {
+    return {path.start * local, path.end * local, inverse_apply(local, path.local_center)};
+  }
+  /// The box, in the frame of a body moving along other_path, around the
+  /// mover's sweep at both of its ends, grown by ccd_gap: where the parts
+  /// (triangles, children) it may meet are.
+  template <class M>
+  aabb<T> near_box(const M& mover, const narrowphase::sweep<T>& path, const narrowphase::sweep<T>& other_path) const {
+    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
+    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
+    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
+    return expand(near, state.settings.ccd_gap);
   }
 
   /// A convex pair. A ball against a body that does not turn is a sphere
@@ -225,12 +264,8 @@ struct continuous_collision {
   template <class M, class Mesh>
   T mesh_impact_time(const M& mover, const narrowphase::sweep<T>& path, const Mesh& mesh,
                      const narrowphase::sweep<T>& other_path) const {
-    const aabb<T> swept = merge(mover.world_aabb(path.start), mover.world_aabb(path.end));
-    aabb<T> near = transform_aabb(swept, inverse(other_path.start));
-    if (!(other_path.start == other_path.end)) near = merge(near, transform_aabb(swept, inverse(other_path.end)));
-    const vec3<T> gap = vec3<T>::splat(state.settings.ccd_gap);
     T first = T(1);
-    mesh.for_each_overlapping({near.lower - gap, near.upper + gap}, [&](std::size_t t) {
+    mesh.for_each_overlapping(near_box(mover, path, other_path), [&](std::size_t t) {
       narrowphase::detail::convex_triangle<T> triangle;
       mesh.triangle(t, triangle.v[0], triangle.v[1], triangle.v[2]);
       first = std::min(first, convex_impact_time(mover, path, triangle, other_path));

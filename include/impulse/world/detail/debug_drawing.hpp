@@ -10,6 +10,7 @@
 
 #include "../../shapes/box.hpp"
 #include "../../shapes/capsule.hpp"
+#include "../../shapes/compound.hpp"
 #include "../../shapes/convex_hull.hpp"
 #include "../../shapes/plane.hpp"
 #include "../../shapes/sphere.hpp"
@@ -128,6 +129,13 @@ void draw_shape(D& d, const plane<T>& p, const transform<T>& pose, const debug_c
   const vec3<T> c[4] = {o + u + w, o - u + w, o - u - w, o + u - w};
   for (int i = 0; i < 4; ++i) d.line(c[i], c[(i + 1) % 4], color);
   d.arrow(o, o + n, color);
+}
+
+/// Each child of a compound, where the body holds it.
+template <scalar_type T, class D>
+void draw_shape(D& d, const compound<T>& c, const transform<T>& pose, const debug_color& color) {
+  for (std::size_t i = 0; i < c.child_count(); ++i)
+    c.visit(i, [&](const auto& child, const transform<T>& local) { draw_shape(d, child, pose * local, color); });
 }
 
 /// A joint's anchors, its bodies' lever lines, its axis and its limits.

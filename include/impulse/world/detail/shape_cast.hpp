@@ -7,7 +7,7 @@
 // time_of_impact.hpp) between a quarter and a half of `cast_tolerance`
 // short of touching, never past, the point on the target's surface;
 // a triangle mesh or a heightfield triangle by triangle (each a convex
-// shape of three corners); a plane in closed form. A shape that starts overlapping its
+// shape of three corners), a compound child by child; a plane in closed form. A shape that starts overlapping its
 // target hits it at fraction 0, with the normal of least penetration
 // (narrowphase/epa.hpp; a plane's own normal), unless it moves out along
 // that normal; one that starts within the tolerance likewise.
@@ -21,6 +21,7 @@
 #include "../../narrowphase/epa.hpp"
 #include "../../narrowphase/mesh.hpp"
 #include "../../narrowphase/time_of_impact.hpp"
+#include "../../shapes/compound.hpp"
 #include "../../shapes/plane.hpp"
 #include "../../shapes/heightfield.hpp"
 #include "../../shapes/triangle_mesh.hpp"
@@ -108,6 +109,24 @@ std::optional<cast_contact<T>> cast_mesh(const S& shape, const transform<T>& pos
   return best;
 }
 
+/// Against each child of a compound near the swept shape; the nearest.
+template <class S, scalar_type T>
+std::optional<cast_contact<T>> cast_compound(const S& shape, const transform<T>& pose, const vec3<T>& translation,
+                                             const compound<T>& target, const transform<T>& target_pose,
+                                             T max_fraction) {
+  const aabb<T> swept = merge(shape.world_aabb(pose),
+                              shape.world_aabb({pose.position + translation * max_fraction, pose.rotation}));
+  std::optional<cast_contact<T>> best;
+  T reach = max_fraction;
+  target.for_each_overlapping(transform_aabb(swept, inverse(target_pose)), [&](std::size_t i) {
+    const std::optional<cast_contact<T>> hit = target.visit(i, [&](const auto& child, const transform<T>& local) {
+      return cast_convex(shape, pose, translation, child, target_pose * local, reach);
+    });
+    if (hit && (!best || hit->fraction < best->fraction)) best = hit, reach = hit->fraction;
+  });
+  return best;
+}
+
 /// The cast against any target shape.
 template <class S, class Target, scalar_type T>
 std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& pose, const vec3<T>& translation,
@@ -116,6 +135,8 @@ std::optional<cast_contact<T>> cast_shape(const S& shape, const transform<T>& po
     return cast_plane(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (std::is_same_v<Target, triangle_mesh<T>> || std::is_same_v<Target, heightfield<T>>) {
     return cast_mesh(shape, pose, translation, target, target_pose, max_fraction);
+  } else if constexpr (std::is_same_v<Target, compound<T>>) {
+    return cast_compound(shape, pose, translation, target, target_pose, max_fraction);
   } else if constexpr (convex_shape<Target, T>) {
     return cast_convex(shape, pose, translation, target, target_pose, max_fraction);
   } else {

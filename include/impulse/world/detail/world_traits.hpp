@@ -16,6 +16,7 @@
 #include "../../dynamics/soft_step.hpp"
 #include "../../shapes/box.hpp"
 #include "../../shapes/capsule.hpp"
+#include "../../shapes/compound.hpp"
 #include "../../shapes/convex_hull.hpp"
 #include "../../shapes/plane.hpp"
 #include "../../shapes/sphere.hpp"
@@ -27,7 +28,7 @@ namespace impulse::detail {
 
 template <class C>
 struct world_shapes {
-  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield>;
+  using type = shape_list<sphere, box, capsule, convex_hull, plane, triangle_mesh, heightfield, compound>;
 };
 template <class C>
   requires has_shapes<C>
