@@ -6,3 +6,4 @@
 IMPULSE_INSTANTIATE_WORLD(impulse::test::awake_config);
 IMPULSE_INSTANTIATE_WORLD(impulse::test::sleeping_config);
 IMPULSE_INSTANTIATE_WORLD(impulse::test::soft_config);
+IMPULSE_INSTANTIATE_WORLD(impulse::test::ccd_config);

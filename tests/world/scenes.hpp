@@ -30,6 +30,10 @@ struct soft_config : awake_config {
 struct soft_double_config : awake_double_config {
   using solver = impulse::solver::soft_step;
 };
+/// Sleeping off, continuous collision on: the fast bodies' and bullets' tests.
+struct ccd_config : awake_config {
+  static constexpr bool ccd = true;
+};
 
 template <class T>
 inline constexpr T step_dt = T(1) / T(60);
@@ -181,4 +185,5 @@ IMPULSE_DECLARE_WORLD(impulse::test::awake_double_config);
 IMPULSE_DECLARE_WORLD(impulse::test::sleeping_config);
 IMPULSE_DECLARE_WORLD(impulse::test::soft_config);
 IMPULSE_DECLARE_WORLD(impulse::test::soft_double_config);
+IMPULSE_DECLARE_WORLD(impulse::test::ccd_config);
 #endif

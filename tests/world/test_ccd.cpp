@@ -16,9 +16,7 @@ using namespace impulse;
 
 namespace {
 
-struct ccd_config : impulse::test::awake_config {
-  static constexpr bool ccd = true;
-};
+using impulse::test::ccd_config;
 static_assert(world<ccd_config>::ccd && !world<impulse::test::awake_config>::ccd);
 
 enum class wall_kind { box, mesh };

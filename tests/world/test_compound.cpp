@@ -219,19 +219,13 @@ TEST_CASE("a stack of ten compounds laid crosswise stands for 10 s with sleeping
   for (const body_id id : bars) CHECK(tilt(w.body(id).orientation) < 1e-3f);
 }
 
-namespace {
-struct ccd_config : impulse::test::awake_config {
-  static constexpr bool ccd = true;
-};
-}  // namespace
-
 TEST_CASE("a fast compound with a thin plate does not pass a thin wall and a bullet does not pass a thin child") {
   world_settings<float> weightless;
   weightless.gravity = {};
   {
     // A plate 2 cm thick and a ball, flying edge-on at 150 m/s (2.5 m a
     // step) at a wall 1 cm thick whose near face is x = 5.
-    world<ccd_config> w(weightless);
+    world<impulse::test::ccd_config> w(weightless);
     body_def<float> wall;
     wall.type = body_type::static_body;
     wall.pose.position = {5.005f, 0, 0};
@@ -252,7 +246,7 @@ TEST_CASE("a fast compound with a thin plate does not pass a thin wall and a bul
   {
     // A static compound: a thick block and a plate 1 cm thick in front of
     // it, with a gap; a bullet ball at 300 m/s meets the plate.
-    world<ccd_config> w(weightless);
+    world<impulse::test::ccd_config> w(weightless);
     compound<float>::builder b;
     b.add(box<float>{{0.005f, 2, 2}}, tf{{5.005f, 0, 0}, upright});
     b.add(box<float>{{1, 2, 2}}, tf{{8, 0, 0}, upright});

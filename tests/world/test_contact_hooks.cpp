@@ -102,7 +102,7 @@ TEST_CASE("a ball thrown up through a one-way platform flies as if it were not t
   CHECK(highest < 1.9f - 0.25f + 0.01f);
 }
 
-TEST_CASE("a box on a conveyor belt speeds up at mu*g to the belt's speed, with the belt as either body, in both solvers") {
+TEST_CASE("a box on a conveyor belt speeds up at mu*g to the belt's speed, with the belt as either body, in both solvers with sleeping off and on") {
   const auto check = [](auto& w, bool belt_first) {
     // Friction 0.6 on both (combined 0.6): μ·g = 5.886 m/s², so the box
     // reaches 2 m/s at t = 0.340 s, having moved 0.340 m, then keeps it.
@@ -132,6 +132,8 @@ TEST_CASE("a box on a conveyor belt speeds up at mu*g to the belt's speed, with 
     check(w, belt_first);
     world<impulse::test::soft_config> soft;
     check(soft, belt_first);
+    world<impulse::test::sleeping_config> sleepy;  // the box never rests on the belt long enough to sleep
+    check(sleepy, belt_first);
   }
 }
 

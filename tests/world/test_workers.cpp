@@ -27,10 +27,7 @@ using world_type = world<awake_config>;
 using impulse::test::soft_config;
 using soft_world = world<soft_config>;
 using sleeping_world = world<impulse::test::sleeping_config>;
-struct ccd_config : awake_config {
-  static constexpr bool ccd = true;
-};
-using ccd_world = world<ccd_config>;
+using ccd_world = world<impulse::test::ccd_config>;
 
 /// What a run leaves: every body's transform (transform_hash), and the
 /// contact events of every step, their pairs in the order given (FNV-1a).

@@ -252,6 +252,32 @@ for (const recording of recordings) {
   });
 }
 
+// The examples' recordings, named in IMPULSE_VIEWER_SCENES (':'-separated,
+// relative to the repository): whole scenes (examples/character's course,
+// examples/gameplay's platform, belt, gate and chair), so the checks are
+// what any of them must show: it opens, has several bodies of which some
+// move, one frame per recorded step, its dynamic bodies drawn orange at the
+// start and at the end, and the picture changes as they move.
+const scenes = (process.env.IMPULSE_VIEWER_SCENES ?? '').split(':').filter((p) => p);
+for (const recording of scenes) {
+  test(`an example's recording opens and plays: ${recording}`, async () => {
+    await openViewer(page, `${url}?file=/repo/${recording}`);
+    const info = await viewer(() => window.viewer.info);
+    assert.equal(info.kind, 'glb');
+    assert.ok(info.nodes >= 3, `several bodies (${info.nodes} nodes)`);
+    assert.ok(info.movingNodes >= 1 && info.movingNodes < info.nodes, `some move (${info.movingNodes})`);
+    assert.ok(info.frames > 100, `one frame per recorded step (${info.frames})`);
+    const isOrange = ([r, g, b]) => r > g + 20 && g > b + 20 && r - b > 60;
+    await viewer(() => (window.viewer.pause(), window.viewer.setTime(0)));
+    const start = survey(await grab(), isOrange);
+    await viewer(() => window.viewer.setTime(window.viewer.duration));
+    const end = survey(await grab(), isOrange);
+    assert.ok(start.count > 100 && end.count > 100, `dynamic bodies drawn (${start.count} and ${end.count} px)`);
+    assert.ok(start.count !== end.count || start.x !== end.x || start.y !== end.y, 'the picture changes as they move');
+    console.log(`# checked: ${recording}: ${info.nodes} nodes, ${info.movingNodes} moving, ${info.frames} frames`);
+  });
+}
+
 test('a file that is no recording, or is missing, is reported', async () => {
   const message = (u) => viewer((u) => window.viewer.load(u).then(() => null, () => window.viewer.error), u);
   assert.match(await message('/fixtures/neither.bin'), /neither a \.glb/);

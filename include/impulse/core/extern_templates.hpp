@@ -69,7 +69,8 @@
 /// The narrow phase of the default shapes in scalar T, compiled in another
 /// translation unit: what the world's dispatcher calls for each ordered
 /// pair (narrowphase/dispatch.hpp), time_of_impact for each pair of convex
-/// shapes, and sphere_cast against each convex shape.
+/// shapes and of a convex shape and a mesh's triangle, and sphere_cast
+/// against each convex shape.
 #define IMPULSE_DECLARE_NARROW_PHASE(T) IMPULSE_DETAIL_NARROW_PHASE(extern template, T)
 /// Compiles the narrow phase of the default shapes in scalar T here, in one translation unit.
 #define IMPULSE_INSTANTIATE_NARROW_PHASE(T) IMPULSE_DETAIL_NARROW_PHASE(template, T)
@@ -102,6 +103,10 @@
   IMPULSE_DETAIL_IMPACT_ROW(how, box, T);                                                                  \
   IMPULSE_DETAIL_IMPACT_ROW(how, capsule, T);                                                              \
   IMPULSE_DETAIL_IMPACT_ROW(how, convex_hull, T);                                                          \
+  IMPULSE_DETAIL_TRIANGLE_IMPACT(how, sphere, T);                                                          \
+  IMPULSE_DETAIL_TRIANGLE_IMPACT(how, box, T);                                                             \
+  IMPULSE_DETAIL_TRIANGLE_IMPACT(how, capsule, T);                                                         \
+  IMPULSE_DETAIL_TRIANGLE_IMPACT(how, convex_hull, T);                                                     \
   IMPULSE_DETAIL_BALL_SWEEP(how, sphere, T);                                                               \
   IMPULSE_DETAIL_BALL_SWEEP(how, box, T);                                                                  \
   IMPULSE_DETAIL_BALL_SWEEP(how, capsule, T);                                                              \
@@ -128,6 +133,14 @@
   IMPULSE_DETAIL_IMPACT(how, A, box, T);                                                                   \
   IMPULSE_DETAIL_IMPACT(how, A, capsule, T);                                                               \
   IMPULSE_DETAIL_IMPACT(how, A, convex_hull, T)
+/// A convex shape's time of impact against one triangle of a mesh or a
+/// heightfield (continuous collision, world/detail/continuous.hpp).
+#define IMPULSE_DETAIL_TRIANGLE_IMPACT(how, A, T)                                                           \
+  how impulse::narrowphase::toi_result<T>                                                                   \
+  impulse::narrowphase::time_of_impact<impulse::A<T>, impulse::narrowphase::detail::convex_triangle<T>, T>( \
+      const impulse::A<T>&, const impulse::narrowphase::sweep<T>&,                                          \
+      const impulse::narrowphase::detail::convex_triangle<T>&, const impulse::narrowphase::sweep<T>&,       \
+      const impulse::narrowphase::toi_options<T>&) noexcept
 #define IMPULSE_DETAIL_BALL_SWEEP(how, B, T)                                                                \
   how impulse::narrowphase::ray_hit<T> impulse::narrowphase::sphere_cast<impulse::B<T>, T>(                 \
       const impulse::ray<T>&, T, const impulse::B<T>&, const impulse::transform<T>&, T) noexcept
