@@ -105,6 +105,34 @@ LAYERS = [
     ]),
 ]
 CORE = LAYERS[0][0]
+# The layers whose code steps a simulation. Defining
+# IMPULSE_CROSS_PLATFORM_DETERMINISM before including them turns off the
+# fusing of multiplies and adds for their own code alone
+# (core/floating_point.hpp): clang's scoped `fp contract(off)`, GCC's
+# optimize options (with no SLP vectorisation, which fuses a quaternion
+# product's terms even with contraction off) for the functions defined in
+# between. Each system header
+# is included outside that region, so the standard library keeps the
+# program's own flags.
+CONTRACTION_OFF = {"impulse.hpp", "impulse_character.hpp"}
+CONTRACTION_MACROS = """
+// IMPULSE_CROSS_PLATFORM_DETERMINISM: this header's code is compiled with no
+// fused multiply-add contraction, whatever the program's flags, so that a
+// config with cross_platform_determinism steps to the same bits in every
+// build (docs/world.md). With GCC, the program's own functions then do not
+// inline impulse's (their options differ).
+#if defined(IMPULSE_CROSS_PLATFORM_DETERMINISM) && defined(__clang__)
+#define IMPULSE_DETAIL_CONTRACTION_OFF _Pragma("float_control(push)") _Pragma("clang fp contract(off)")
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED _Pragma("float_control(pop)")
+#elif defined(IMPULSE_CROSS_PLATFORM_DETERMINISM) && defined(__GNUC__)
+#define IMPULSE_DETAIL_CONTRACTION_OFF \\
+  _Pragma("GCC push_options") _Pragma("GCC optimize(\\"fp-contract=off\\", \\"no-tree-slp-vectorize\\")")
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED _Pragma("GCC pop_options")
+#else
+#define IMPULSE_DETAIL_CONTRACTION_OFF
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED
+#endif
+"""
 # Modular headers deliberately in no single header, with the reason.
 NOT_INLINED: set = set()
 
@@ -124,7 +152,7 @@ def resolve(name: str, including: pathlib.Path) -> pathlib.Path:
     sys.exit(f"amalgamate: {including.relative_to(ROOT)}: cannot find \"{name}\"")
 
 
-def inline(path: pathlib.Path, done: set, system: set, out: list) -> None:
+def inline(path: pathlib.Path, done: set, system: set, out: list, contraction_off: bool) -> None:
     done.add(path)
     out.append(f"// ---- begin {path.relative_to(INCLUDE).as_posix()} ----\n")
     depth = 0  # preprocessor conditional nesting within this file
@@ -139,7 +167,7 @@ def inline(path: pathlib.Path, done: set, system: set, out: list) -> None:
         if local:
             target = resolve(local.group(1), path)
             if target not in done:
-                inline(target, done, system, out)
+                inline(target, done, system, out, contraction_off)
             continue
         system_header = SYSTEM_INCLUDE.match(line)
         if system_header:
@@ -147,6 +175,9 @@ def inline(path: pathlib.Path, done: set, system: set, out: list) -> None:
                 continue
             if depth == 0:  # one inside #if may be skipped, so it does not count as seen
                 system.add(system_header.group(1))
+            if contraction_off:
+                out.extend(["IMPULSE_DETAIL_CONTRACTION_RESTORED\n", line, "IMPULSE_DETAIL_CONTRACTION_OFF\n"])
+                continue
         out.append(line)
     out.append(f"// ---- end {path.relative_to(INCLUDE).as_posix()} ----\n")
 
@@ -171,12 +202,19 @@ def amalgamate() -> dict:
             *(f"// {line}\n" for line in about),
             "#pragma once\n",
         ]
-        if base is not None:
+        if base is None:
+            out.append(CONTRACTION_MACROS)
+        else:
             out.append(f'\n#include "{base}"\n\n')
+        contraction_off = name in CONTRACTION_OFF
+        if contraction_off:
+            out.append("IMPULSE_DETAIL_CONTRACTION_OFF\n")
         for entry in entries:
             path = (INCLUDE / entry).resolve()
             if path not in done:
-                inline(path, done, system, out)
+                inline(path, done, system, out, contraction_off)
+        if contraction_off:
+            out.append("IMPULSE_DETAIL_CONTRACTION_RESTORED\n")
         texts[name] = "".join(out)
         holds[name] = (done, system)
     inlined = set().union(*(done for done, _ in holds.values()))

@@ -104,6 +104,7 @@ class impulse_engine {
            std::to_string(count) + (parts > 1 ? " substeps=" + std::to_string(parts) : std::string()) + ' ' +
            std::string(detail::broad_phase_name<sleeping_world>()) +
            (std::is_same_v<T, double> ? " double" : " float") +
+           (sleeping_world::cross_platform_determinism ? " lockstep" : "") +
            (workers_ > 1 ? " workers=" + std::to_string(workers_) : std::string());
   }
 

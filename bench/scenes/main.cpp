@@ -83,9 +83,19 @@ using impulse_spatial_hash = impulse_set<impulse::broadphase::spatial_hash>;
 using impulse_octree = impulse_set<impulse::broadphase::octree>;
 using impulse_brute_force = impulse_set<impulse::broadphase::brute_force>;
 using impulse_soft_step = impulse_set<impulse::broadphase::dynamic_bvh, impulse::solver::soft_step>;
+/// The default policies with cross_platform_determinism: only in
+/// scenes_lockstep, built with impulse::deterministic's flags (no fused
+/// multiply-adds), where it is the one engine; its cost is read beside
+/// `scenes --config dynamic_bvh` (docs/world.md, "Lockstep determinism").
+struct impulse_lockstep : impulse_dynamic_bvh {
+  static constexpr bool cross_platform_determinism = true;
+};
 
 std::vector<engine_entry> engines() {
   std::vector<engine_entry> list;
+#if defined(IMPULSE_BENCH_LOCKSTEP)
+  list.push_back(entry<impulse_engine<impulse_lockstep>>());
+#else
   list.push_back(entry<impulse_engine<impulse_dynamic_bvh>>());
   list.push_back(entry<impulse_engine<impulse_sweep_and_prune>>());
   list.push_back(entry<impulse_engine<impulse_spatial_hash>>());
@@ -93,6 +103,7 @@ std::vector<engine_entry> engines() {
   list.push_back(entry<impulse_engine<impulse_brute_force>>());
   list.push_back(entry<impulse_engine<impulse_soft_step>>());
   for (const engine_entry& peer : peer_engines()) list.push_back(peer);
+#endif
   return list;
 }
 

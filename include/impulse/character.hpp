@@ -96,7 +96,7 @@ class character {
     up_ = length_squared(g) > T(0) ? normalize(-g) : vec3<T>{T(0), T(1), T(0)};
     const vec3<T> y{T(0), T(1), T(0)};
     const vec3<T> axis = cross(y, up_);
-    const T turn = std::acos(std::clamp(dot(y, up_), T(-1), T(1)));
+    const T turn = portable_acos(std::clamp(dot(y, up_), T(-1), T(1)));
     upright_ = length(axis) > T(1e-6) ? quat<T>::from_axis_angle(normalize(axis), turn)
                : dot(y, up_) > T(0)   ? quat<T>::identity()
                                       : quat<T>::from_axis_angle({T(1), T(0), T(0)}, T(3.14159265358979));
@@ -185,7 +185,7 @@ class character {
   }
   [[nodiscard]] vec3<T> across(const vec3<T>& v) const noexcept { return v - up_ * dot(v, up_); }
   [[nodiscard]] bool walkable(const vec3<T>& normal) const noexcept {
-    return dot(normal, up_) >= std::cos(def_.max_slope) - T(1e-6);
+    return dot(normal, up_) >= portable_cos(def_.max_slope) - T(1e-6);
   }
 
   /// How far the ground carried the feet since the last move: its change

@@ -10,6 +10,24 @@
 // pictures) and impulse_scene.hpp (scene files, needs nlohmann-json): kept
 // out of here so that a program that only steps a world parses less.
 #pragma once
+
+// IMPULSE_CROSS_PLATFORM_DETERMINISM: this header's code is compiled with no
+// fused multiply-add contraction, whatever the program's flags, so that a
+// config with cross_platform_determinism steps to the same bits in every
+// build (docs/world.md). With GCC, the program's own functions then do not
+// inline impulse's (their options differ).
+#if defined(IMPULSE_CROSS_PLATFORM_DETERMINISM) && defined(__clang__)
+#define IMPULSE_DETAIL_CONTRACTION_OFF _Pragma("float_control(push)") _Pragma("clang fp contract(off)")
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED _Pragma("float_control(pop)")
+#elif defined(IMPULSE_CROSS_PLATFORM_DETERMINISM) && defined(__GNUC__)
+#define IMPULSE_DETAIL_CONTRACTION_OFF \
+  _Pragma("GCC push_options") _Pragma("GCC optimize(\"fp-contract=off\", \"no-tree-slp-vectorize\")")
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED _Pragma("GCC pop_options")
+#else
+#define IMPULSE_DETAIL_CONTRACTION_OFF
+#define IMPULSE_DETAIL_CONTRACTION_RESTORED
+#endif
+IMPULSE_DETAIL_CONTRACTION_OFF
 // ---- begin impulse/impulse.hpp ----
 // impulse/impulse.hpp — everything in impulse. Each module also has its own
 // umbrella header (impulse/math.hpp, ...) for users who need less.
@@ -49,10 +67,18 @@
 // inverted box, a stale id) is refused with impulse::invalid_argument and
 // changes nothing.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <concepts>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cstddef>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cstdint>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <span>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/core/policy.hpp ----
 // impulse/core/policy.hpp — the concepts a configuration's policies must model,
@@ -70,7 +96,9 @@
 // their operations, they require the policy to say which kind it is; the
 // operational requirements are added with the first implementation.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <type_traits>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse {
 
@@ -158,6 +186,7 @@ template <class C> concept has_shapes = requires { typename C::shapes; };
 template <class C> concept has_sleeping = requires { C::sleeping; };
 template <class C> concept has_ccd = requires { C::ccd; };
 template <class C> concept has_collision = requires { C::collision; };
+template <class C> concept has_cross_platform_determinism = requires { C::cross_platform_determinism; };
 
 template <class T>
 concept constexpr_bool = std::same_as<std::remove_cv_t<T>, bool>;
@@ -177,7 +206,8 @@ concept world_config =
     (!detail::has_shapes<C> || shape_set<typename C::shapes>) &&
     (!detail::has_sleeping<C> || detail::constexpr_bool<decltype(C::sleeping)>) &&
     (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>) &&
-    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>);
+    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>) &&
+    (!detail::has_cross_platform_determinism<C> || detail::constexpr_bool<decltype(C::cross_platform_determinism)>);
 
 /// Loud form: use as `static_assert(impulse::check_config<C>());`. Each failed
 /// requirement produces one static_assert message naming the member at fault.
@@ -225,6 +255,10 @@ consteval bool check_config() {
     static_assert(detail::constexpr_bool<decltype(C::collision)>,
                   "impulse config: `collision` must be `static constexpr bool`");
   }
+  if constexpr (detail::has_cross_platform_determinism<C>) {
+    static_assert(detail::constexpr_bool<decltype(C::cross_platform_determinism)>,
+                  "impulse config: `cross_platform_determinism` must be `static constexpr bool`");
+  }
   return world_config<C>;
 }
 
@@ -237,7 +271,9 @@ consteval bool check_config() {
 // upper = -max), the identity of merge, so a box can be grown point by point
 // from it; is_valid is false for it until something is merged in.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <limits>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/math/mat3.hpp ----
 // impulse/math/mat3.hpp — 3×3 matrix of float or double (rotations, inertia tensors).
@@ -246,8 +282,12 @@ consteval bool check_config() {
 // of a rotation matrix are the rotated basis vectors. m(r, c) reads row r of
 // column c.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cmath>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <optional>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/math/vec3.hpp ----
 // impulse/math/vec3.hpp — three-component vector of float or double.
@@ -266,8 +306,12 @@ consteval bool check_config() {
 // Bad *user input* at the API boundary is not asserted: it is reported with
 // impulse::invalid_argument (core/error.hpp) in every build.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cstdio>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cstdlib>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse::detail {
 
@@ -603,6 +647,186 @@ bool is_finite(const mat3<T>& m) noexcept {
 // never by adding ½ω q dt, which leaves the unit sphere at first order.
 
 
+// ---- begin impulse/math/trigonometry.hpp ----
+// impulse/math/trigonometry.hpp — sin, cos, atan2, acos and cbrt that give the
+// same bits on every machine.
+//
+// The C library's sin, cos and atan2 differ between glibc, musl, Apple's libm
+// and Microsoft's CRT in the last bit, and a last bit is enough for two
+// lockstep peers to drift apart (world.md, "Lockstep determinism"). These are
+// built from +, −, ×, ÷, √, floor and fmod alone, which IEEE 754 rounds
+// correctly everywhere, in double whatever the scalar, and rounded once to
+// the scalar at the end. The simulation path (quaternion integration,
+// rotation_between, joint angles, the character controller) calls only these.
+//
+// The method is the textbook one (Muller, "Elementary Functions", chapters 6
+// and 11): sin and cos reduce the argument by the nearest multiple of π/2 with
+// π/2 split in three (Cody and Waite), the first two parts 33 bits long so that
+// k·part is exact for |k| < 2^20, then evaluate their Taylor series on
+// [−π/4, π/4] through x^17 and x^18 (the next terms are below 1e-19 there;
+// for float results, through x^11 and x^12).
+// atan reduces |y/x| ≤ 1 to u = (t − c)/(1 + t·c) about the nearest c = k/8,
+// |u| ≤ 1/16, and adds atan(c) from a table to the series through u^13 (the
+// next term is 1e-18 of u). Each is within 2 ulp of the true value in double
+// (tests/math/test_trigonometry.cpp checks against the C library's to 4 ulp).
+// The constants are hexadecimal literals, exact as written.
+//
+// These are only portable when the compiler does not fuse their multiplies
+// and adds: a world with cross_platform_determinism checks that it does not.
+
+
+
+namespace impulse {
+
+/// sin x and cos x from one reduction.
+template <scalar_type T>
+struct sine_cosine {
+  T sin;
+  T cos;
+};
+
+namespace detail {
+
+/// Terms: through x^17 and x^18 for a double result, x^11 and x^12 for a
+/// float one (the next terms are below 1e-19, and 7e-12 of float's 6e-8).
+template <bool for_float = false>
+sine_cosine<double> portable_sin_cos(double x) noexcept {
+  if (!std::isfinite(x)) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  if (x == 0.0) return {x, 1.0};  // keeps the sign of −0, as std::sin does
+  // Past 2^19 rad the quotient k would outgrow the split's 20 spare bits:
+  // fmod is exact, so the argument is first brought within one turn of the
+  // rounded 2π. Angles this large have lost their fraction long before.
+  constexpr double two_pi = 0x1.921fb54442d18p+2;
+  if (std::abs(x) > 0x1p19) x = std::fmod(x, two_pi);
+  constexpr double two_over_pi = 0x1.45f306dc9c883p-1;
+  constexpr double half_pi_1 = 0x1.921fb544p+0, half_pi_2 = 0x1.0b4611a6p-34, half_pi_3 = 0x1.3198a2e037073p-69;
+  const double k = std::floor(x * two_over_pi + 0.5);
+  const double r = ((x - k * half_pi_1) - k * half_pi_2) - k * half_pi_3;
+  const double r2 = r * r;
+  // Horner's form, the coefficients 1/n! exact to their rounding.
+  double s, c;
+  if constexpr (for_float) {
+    s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0
+        + r2 * (-1.0 / 39916800.0)))));
+    c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0
+        + r2 * (-1.0 / 3628800.0 + r2 * (1.0 / 479001600.0))))));
+  } else {
+    s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0
+        + r2 * (-1.0 / 39916800.0 + r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0
+        + r2 * (1.0 / 355687428096000.0))))))));
+    c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0
+        + r2 * (-1.0 / 3628800.0 + r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0
+        + r2 * (1.0 / 20922789888000.0 + r2 * (-1.0 / 6402373705728000.0)))))))));
+  }
+  switch (static_cast<std::int64_t>(k) & 3) {
+    case 0: return {s, c};
+    case 1: return {c, -s};
+    case 2: return {-s, -c};
+    default: return {-c, s};
+  }
+}
+
+/// atan t for t in [0, 1].
+inline double portable_atan_unit(double t) noexcept {
+  // atan(k/8), k = 0 … 8, each the double nearest the true value.
+  static constexpr double table[9] = {0.0,
+                                      0x1.fd5ba9aac2f6ep-4,
+                                      0x1.f5b75f92c80ddp-3,
+                                      0x1.6f61941e4def1p-2,
+                                      0x1.dac670561bb4fp-2,
+                                      0x1.1e00babdefeb4p-1,
+                                      0x1.4978fa3269ee1p-1,
+                                      0x1.700a7c5784634p-1,
+                                      0x1.921fb54442d18p-1};
+  const int k = static_cast<int>(t * 8.0 + 0.5);
+  const double c = double(k) / 8.0;
+  const double u = (t - c) / (1.0 + t * c);
+  const double u2 = u * u;
+  const double series = u + u * u2 * (-1.0 / 3.0 + u2 * (1.0 / 5.0 + u2 * (-1.0 / 7.0 + u2 * (1.0 / 9.0
+                        + u2 * (-1.0 / 11.0 + u2 * (1.0 / 13.0))))));
+  return table[k] + series;
+}
+
+inline double portable_atan2(double y, double x) noexcept {
+  constexpr double pi = 0x1.921fb54442d18p+1, half_pi = 0x1.921fb54442d18p+0, quarter_pi = 0x1.921fb54442d18p-1;
+  if (std::isnan(x) || std::isnan(y)) return std::numeric_limits<double>::quiet_NaN();
+  const double ax = std::abs(x), ay = std::abs(y);
+  double a;
+  if (std::isinf(ax) || std::isinf(ay)) {
+    // The C standard's limits: toward the infinite one's axis, or the diagonal.
+    if (std::isinf(ax) && std::isinf(ay)) a = quarter_pi;
+    else a = std::isinf(ay) ? half_pi : 0.0;
+  } else if (ay <= ax) {
+    a = ax > 0.0 ? portable_atan_unit(ay / ax) : 0.0;  // atan2(±0, ±0): ±0 or ±π below
+  } else {
+    a = half_pi - portable_atan_unit(ax / ay);
+  }
+  if (std::signbit(x)) a = pi - a;
+  return std::signbit(y) ? -a : a;
+}
+
+inline double portable_cbrt(double x) noexcept {
+  if (!std::isfinite(x) || x == 0.0) return x;
+  const double a = std::abs(x);
+  // A start within a factor of 2 from the exponent, then Newton's steps on
+  // y³ = a, which double the correct digits: eight reach double's 53 bits
+  // from the worst start. Written y − (y − a/y²)/3, the correction is a
+  // small difference of two close numbers, so its rounding stays small.
+  int e = 0;
+  (void)std::frexp(a, &e);
+  double y = std::ldexp(1.0, e / 3);
+  for (int i = 0; i < 8; ++i) y -= (y - a / (y * y)) / 3.0;
+  return std::signbit(x) ? -y : y;
+}
+
+}  // namespace detail
+
+/// sin x and cos x (x in radians), within 2 ulp in double and 1 in float
+/// (computed in double, rounded once); NaN for an infinite or NaN x. The
+/// same bits on every IEEE-754 machine, where std::sin and std::cos differ
+/// by library.
+template <scalar_type T>
+sine_cosine<T> portable_sin_cos(T x) noexcept {
+  const sine_cosine<double> r = detail::portable_sin_cos<std::is_same_v<T, float>>(double(x));
+  return {T(r.sin), T(r.cos)};
+}
+
+template <scalar_type T>
+T portable_sin(T x) noexcept {
+  return portable_sin_cos(x).sin;
+}
+
+template <scalar_type T>
+T portable_cos(T x) noexcept {
+  return portable_sin_cos(x).cos;
+}
+
+/// The angle of (x, y) in [−π, π], as std::atan2, including its signed zeros
+/// and infinities; portable as portable_sin_cos.
+template <scalar_type T>
+T portable_atan2(T y, T x) noexcept {
+  return T(detail::portable_atan2(double(y), double(x)));
+}
+
+/// acos x in [0, π] for x in [−1, 1]; NaN outside. From atan2 of √(1 − x²)
+/// computed as √((1 − x)(1 + x)), exact to rounding near ±1 where acos is
+/// steep.
+template <scalar_type T>
+T portable_acos(T x) noexcept {
+  const double d = double(x);
+  if (!(std::abs(d) <= 1.0)) return std::numeric_limits<T>::quiet_NaN();
+  return T(detail::portable_atan2(std::sqrt((1.0 - d) * (1.0 + d)), d));
+}
+
+/// The real cube root, by Newton's steps from the exponent; portable as
+/// portable_sin_cos.
+template <scalar_type T>
+T portable_cbrt(T x) noexcept {
+  return T(detail::portable_cbrt(double(x)));
+}
+
+}  // namespace impulse
+// ---- end impulse/math/trigonometry.hpp ----
 
 namespace impulse {
 
@@ -620,8 +844,8 @@ struct quat {
   /// Rotation by `angle` radians about `axis`. The axis must be unit length.
   static quat from_axis_angle(const vec3<T>& axis, T angle) noexcept {
     IMPULSE_ASSERT(is_normalized(axis));
-    const T s = std::sin(angle * T(0.5));
-    return {axis.x * s, axis.y * s, axis.z * s, std::cos(angle * T(0.5))};
+    const sine_cosine<T> half = portable_sin_cos(angle * T(0.5));
+    return {axis.x * half.sin, axis.y * half.sin, axis.z * half.sin, half.cos};
   }
 
   constexpr vec3<T> vector_part() const noexcept { return {x, y, z}; }
@@ -637,6 +861,31 @@ constexpr quat<T> operator*(const quat<T>& a, const quat<T>& b) noexcept {
           a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
           a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
+
+namespace detail {
+
+/// Whether this build fuses the multiplies and adds of the product above:
+/// GCC 12's SLP vectoriser forms fused multiply-subtract-adds from its
+/// alternating signs even with -ffp-contract=off (core/floating_point.hpp).
+/// The product of two quaternions loaded from volatiles and stored whole
+/// (the stores are what the vectoriser groups), against the same sums with
+/// every term stored to a volatile first, which nothing can fuse.
+[[gnu::noinline]] inline void multiply_into(const quat<float>& a, const quat<float>& b, quat<float>& out) noexcept {
+  out = a * b;
+}
+inline bool quat_product_fused() noexcept {
+  volatile float in[8] = {0.1f, 0.7f, -0.3f, 0.9f, -0.6f, 0.2f, 0.8f, 0.35f};
+  const quat<float> a{in[0], in[1], in[2], in[3]}, b{in[4], in[5], in[6], in[7]};
+  quat<float> product;
+  multiply_into(a, b, product);
+  volatile float t[16] = {a.w * b.x, a.x * b.w, a.y * b.z, a.z * b.y, a.w * b.y, a.x * b.z, a.y * b.w, a.z * b.x,
+                          a.w * b.z, a.x * b.y, a.y * b.x, a.z * b.w, a.w * b.w, a.x * b.x, a.y * b.y, a.z * b.z};
+  const quat<float> rounded{t[0] + t[1] + t[2] - t[3], t[4] - t[5] + t[6] + t[7], t[8] + t[9] - t[10] + t[11],
+                            t[12] - t[13] - t[14] - t[15]};
+  return !(product == rounded);
+}
+
+}  // namespace detail
 
 template <scalar_type T>
 constexpr quat<T> operator*(const quat<T>& q, T s) noexcept {
@@ -756,8 +1005,9 @@ quat<T> exp_pure(const vec3<T>& v) noexcept {
     return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, cos_h};
   }
   const T h = std::sqrt(h2);
-  const T sin_h_over_h = std::sin(h) / h;
-  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, std::cos(h)};
+  const sine_cosine<T> turn = portable_sin_cos(h);
+  const T sin_h_over_h = turn.sin / h;
+  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, turn.cos};
 }
 
 /// Orientation after turning at constant world-space angular velocity
@@ -778,7 +1028,7 @@ quat<T> integrate(const quat<T>& q, const vec3<T>& omega, T dt) noexcept {
 template <scalar_type T>
 T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
   const quat<T> d = conjugate(a) * b;
-  return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
+  return T(2) * portable_atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
 }
 
 /// The rotation vector (world axis times angle, radians) of the shortest
@@ -790,7 +1040,7 @@ vec3<T> rotation_between(const quat<T>& from, const quat<T>& to) noexcept {
   if (q.w < T(0)) q = q * T(-1);  // the short way round
   const vec3<T> axis = q.vector_part();
   const T sine = length(axis);
-  return sine > T(0) ? axis * (T(2) * std::atan2(sine, q.w) / sine) : vec3<T>{};
+  return sine > T(0) ? axis * (T(2) * portable_atan2(sine, q.w) / sine) : vec3<T>{};
 }
 
 }  // namespace impulse
@@ -968,7 +1218,9 @@ constexpr aabb<T> transform_aabb(const aabb<T>& b, const transform<T>& t) noexce
 // set_error_handler (the default prints and aborts), and callers that need to
 // recover use the functions that return an error_code instead.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <stdexcept>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse {
 
@@ -1068,7 +1320,9 @@ namespace detail {
 // caller can clip the segment as hits come in. The broad phases, the narrow
 // phase's ray casts and a mesh's tree all take it.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <utility>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 
 namespace impulse {
@@ -1124,7 +1378,9 @@ template <scalar_type T>
 // of another owner, so an id kept from one world never names a body of
 // another, even at the same slot and generation.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <vector>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 
 namespace impulse {
@@ -1401,8 +1657,12 @@ consteval bool check_broad_phase() {
 // with their ids' generations, so a new proxy in a freed slot starts new
 // pairs rather than continuing the old proxy's.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <algorithm>
+IMPULSE_DETAIL_CONTRACTION_OFF
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <bit>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 
 namespace impulse::broadphase::detail {
@@ -3321,7 +3581,9 @@ struct octree {
 // are proxies (a ray long against the cell), the cast tests every box
 // instead: a cell costs a hash and a lookup, about what a box test costs.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <cstring>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 
 namespace impulse::broadphase {
@@ -3609,7 +3871,7 @@ class basic_spatial_hash {
     std::nth_element(sample_.begin(), quartile, sample_.end());
     if (*quartile > 0) return *quartile;
     const double spread = std::min(max_component(bounds.upper - bounds.lower), std::numeric_limits<double>::max());
-    return spread / std::cbrt(double(n));
+    return spread / portable_cbrt(double(n));
   }
 
   void choose_cell_size() {
@@ -3913,7 +4175,9 @@ struct spatial_hash {
 // move to at the next update. Nothing here checks input: the broad phase
 // that owns the regions does.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <iterator>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/broadphase/detail/pair_set.hpp ----
 // impulse/broadphase/detail/pair_set.hpp — a set of pairs of 32-bit handles
@@ -5148,7 +5412,9 @@ static_assert(check_config<default_double_config>());
 // line, and never reallocated, so a pointer taken before a step is still
 // valid after it. Elements are value-initialised (zero for scalars).
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <new>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse {
 
@@ -6577,7 +6843,9 @@ template <scalar_type T>
 // and kinematic bodies are there too, with zero inverse mass, so every row
 // has two ends and no branch.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <array>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/narrowphase/manifold.hpp ----
 // impulse/narrowphase/manifold.hpp — what a pair test reports: one normal
@@ -7055,7 +7323,9 @@ void apply_impulse(solver_body<T>& a, solver_body<T>& b, const vec3<T>& ra, cons
 // This is the implicit Euler step of the spring–damper, so any stiffness
 // is stable at any step; the spring is only as stiff as the step resolves.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <numbers>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 
 namespace impulse {
@@ -7452,7 +7722,9 @@ void solve_friction(solver_body<T>& a, solver_body<T>& b, contact_constraint<T>&
 // sleeps) and cannot go stale. Static bodies join no island: a floor
 // would otherwise make one island of everything on it.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <numeric>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse::detail {
 
@@ -7683,7 +7955,7 @@ template <scalar_type T>
 [[nodiscard]] T twist_angle(const quat<T>& qa, const quat<T>& qb, const joint_constraint<T>& j) noexcept {
   quat<T> d = conjugate(qa) * qb * conjugate(j.reference);
   if (d.w < T(0)) d = d * T(-1);
-  return T(2) * std::atan2(dot(d.vector_part(), j.local_axis_a), d.w);
+  return T(2) * portable_atan2(dot(d.vector_part(), j.local_axis_a), d.w);
 }
 
 /// The parts, their masses and the joint's errors, from where the bodies
@@ -9982,13 +10254,19 @@ class joint_tree {
 // block of a loop writes only its own items, as with parallel_for
 // (core/task_system.hpp).
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <atomic>
+IMPULSE_DETAIL_CONTRACTION_OFF
 // sched_yield where there is one: <thread> would add 12 000 lines to what
 // every world program parses.
 #if __has_include(<sched.h>)
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <sched.h>
+IMPULSE_DETAIL_CONTRACTION_OFF
 #else
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <thread>
+IMPULSE_DETAIL_CONTRACTION_OFF
 #endif
 
 
@@ -11796,7 +12074,9 @@ using aabbd = aabb<double>;
 // sphere by three base-3 digits, one per axis (0 between the faces, 1 at −h,
 // 2 at +h), so that a sphere rolling across one face keeps its id.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <initializer_list>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/shapes/box.hpp ----
 // impulse/shapes/box.hpp — a solid rectangular box centered at the body origin.
@@ -18349,8 +18629,96 @@ struct gravity {
 // the kernel never spends lanes on the dead; a spring follows the particle
 // it is attached to.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <tuple>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
+// ---- begin impulse/core/floating_point.hpp ----
+// impulse/core/floating_point.hpp — what lockstep determinism asks of the
+// compiler, and the checks that it got it.
+//
+// A config with `static constexpr bool cross_platform_determinism = true`
+// promises the same bits from every build of a program: g++ or clang, -O2 or
+// -O3, SSE2, AVX2 or AVX-512 (docs/world.md, "Lockstep determinism"). IEEE
+// 754 rounds +, −, ×, ÷ and √ correctly on every such machine, so the same
+// operations in the same order give the same bits. Three things break that,
+// and this header checks for each:
+//   - fusing a multiply and an add into one FMA instruction rounds once
+//     where the code asked for two. GCC fuses across statements by default
+//     wherever the target has FMA (-march=haswell and later), clang within
+//     an expression; GCC 12's SLP vectoriser fuses a quaternion product's
+//     terms (fmsubadd) even with contraction off. impulse's code must be
+//     compiled with -ffp-contract=off, and with g++ -fno-tree-slp-vectorize
+//     (the CMake target impulse::deterministic and Meson's
+//     impulse-deterministic dependency add them), or, with the single
+//     header, with IMPULSE_CROSS_PLATFORM_DETERMINISM defined before
+//     including it, which turns both off for the header's own code alone. A
+//     world or particle system checks this when it is made
+//     (contraction_in_effect, quat_product_fused).
+//   - -ffast-math lets the compiler reorder sums and drop NaN checks; it is
+//     refused at compile time.
+//   - x87 arithmetic (32-bit x86 without SSE2) keeps 80-bit intermediates:
+//     refused at compile time (FLT_EVAL_METHOD must be 0).
+// The C library's transcendental functions differ by library; the
+// simulation path uses impulse's own (math/trigonometry.hpp) in every build.
+
+IMPULSE_DETAIL_CONTRACTION_RESTORED
+#include <cfloat>
+IMPULSE_DETAIL_CONTRACTION_OFF
+
+
+namespace impulse::detail {
+
+/// Config::cross_platform_determinism, false when absent.
+template <class C>
+consteval bool cross_platform_determinism() {
+  if constexpr (has_cross_platform_determinism<C>) {
+    return C::cross_platform_determinism;
+  } else {
+    return false;
+  }
+}
+
+/// Whether the compiler fused the multiply and the add below into one FMA:
+/// a·b + c with a = b = 1 + 2^-30 and c = −(1 + 2^-29) is 2^-60 exactly,
+/// which one rounding keeps and two lose (a·b rounds to 1 + 2^-29). The
+/// operands are volatile so that the compiler cannot fold the sum; inline,
+/// so that it is compiled with the flags of the code that calls it.
+inline bool contraction_in_effect() noexcept {
+  volatile double a = 1.0 + 0x1p-30, b = 1.0 + 0x1p-30, c = -(1.0 + 0x1p-29);
+  const double x = a, y = b, z = c;
+  return x * y + z != 0.0;
+}
+
+/// What a world or particle system with cross_platform_determinism states
+/// at compile time about the build it is in.
+template <class C>
+consteval bool check_determinism_build() {
+  if constexpr (cross_platform_determinism<C>()) {
+#if defined(__FAST_MATH__)
+    static_assert(!cross_platform_determinism<C>(),
+                  "impulse config: cross_platform_determinism cannot hold under -ffast-math, which lets the "
+                  "compiler reorder floating-point sums");
+#endif
+#if defined(FLT_EVAL_METHOD)
+    static_assert(FLT_EVAL_METHOD == 0,
+                  "impulse config: cross_platform_determinism needs each operation rounded to its type "
+                  "(FLT_EVAL_METHOD 0: SSE2 on x86, not the x87 unit)");
+#endif
+  }
+  return true;
+}
+
+/// The message of the error a world with cross_platform_determinism gives
+/// when its code was compiled with contraction on.
+inline constexpr const char* contraction_message =
+    "cross_platform_determinism: this program's impulse code fuses multiplies and adds (FMA "
+    "contraction), which rounds differently from a build that does not; compile it with "
+    "-ffp-contract=off, and with g++ -fno-tree-slp-vectorize too (CMake: link impulse::deterministic), "
+    "or define IMPULSE_CROSS_PLATFORM_DETERMINISM before including the single header";
+
+}  // namespace impulse::detail
+// ---- end impulse/core/floating_point.hpp ----
 // ---- begin impulse/particles/plane_collider.hpp ----
 // impulse/particles/plane_collider.hpp — oriented planes that particles bounce off.
 //
@@ -18462,8 +18830,11 @@ template <class T, int W>
   const vec3_batch<T, W> tangential = v - n * vn;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
   const batch<T, W> vn_after = select(touching & (vn < zero), vn * minus_restitution, vn);
-  const batch<T, W> kept = select(touching, batch<T, W>::broadcast(keep), batch<T, W>::broadcast(T(1)));
-  v = tangential * kept + n * vn_after;
+  const vec3_batch<T, W> answered = tangential * keep + n * vn_after;
+  // The lanes not touching keep their v as it was: (v − n·vn) + n·vn is v
+  // only to rounding, and whether a lane took that rounding would depend on
+  // the other lanes of its batch, so on the width (lockstep determinism).
+  v = {select(touching, answered.x, v.x), select(touching, answered.y, v.y), select(touching, answered.z, v.z)};
 }
 
 /// A half-space as the particle kernel uses it, made from a plane_collider
@@ -18512,7 +18883,8 @@ template <class T, int W>
   if (!any_less(s, zero)) return false;  // the common case, tested on the compare's own mask
   const batch_mask<T, W> behind = s < zero;
   const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
-  x = x - n * select(behind, s, zero);
+  const vec3_batch<T, W> projected = x - n * s;
+  x = {select(behind, projected.x, x.x), select(behind, projected.y, x.y), select(behind, projected.z, x.z)};
   plane_response(h.minus_restitution, h.keep, behind, n, v);
   return true;
 }
@@ -18682,6 +19054,10 @@ class particle_system {
   static constexpr int width = particle_width_of<Config>;
   static constexpr bool has_lifetime = particle_lifetime_of<Config>;
   static constexpr bool has_masses = particle_masses_of<Config>;
+  /// Config `cross_platform_determinism` (off by default): the same bits from
+  /// every build (core/floating_point.hpp), forces in their portable form
+  /// (point_forces: never the hardware's 1/√ estimate, which differs by vendor).
+  static constexpr bool cross_platform_determinism = impulse::detail::cross_platform_determinism<Config>();
   /// The most particles a system may be created for: 2^26, about 6.7e7.
   /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
   /// double; springs add 3 to 18 for the stages), allocated and zeroed when
@@ -18701,6 +19077,7 @@ class particle_system {
                 "impulse particle_system: every force must state its effect, validate() and evaluate(x, v, p)");
   static_assert(((Forces<scalar>::effect == force_effect::pairwise ? 1 : 0) + ... + 0) <= 1,
                 "impulse particle_system: at most one pairwise force (springs) in the list");
+  static_assert(impulse::detail::check_determinism_build<Config>());
 
  private:
   using T = scalar;
@@ -18890,21 +19267,27 @@ class particle_system {
     return false;
   }
 
-  /// Adds the I-th force's term to the accelerations or to the forces. The
-  /// terms are summed from the last force to the first, and the first term
-  /// of each kind summed (the last listed) is assigned, so no zero is ever
-  /// added.
+  /// A force's term (evaluate_portable under cross_platform_determinism, where the force has it); add_term adds
+  /// the I-th to the accelerations or forces, from the last force to the first, the first assigned: no zero added.
+  template <class F>
+  [[gnu::always_inline]] static state term_of(const F& f, const state& x, const state& v,
+                                              const particle_lanes<T, width>& p) noexcept {
+    if constexpr (cross_platform_determinism && requires { f.evaluate_portable(x, v, p); })
+      return f.evaluate_portable(x, v, p);
+    return f.evaluate(x, v, p);
+  }
+
   template <std::size_t I>
   [[gnu::always_inline]] static void add_term(const std::tuple<Forces<T>...>& forces, const state& x,
                                               const state& v, const particle_lanes<T, width>& p, state& accel,
                                               state& force) noexcept {
     using F = std::tuple_element_t<I, std::tuple<Forces<T>...>>;
     if constexpr (F::effect == force_effect::acceleration) {
-      const state term = std::get<I>(forces).evaluate(x, v, p);
+      const state term = term_of(std::get<I>(forces), x, v, p);
       if constexpr (any_effect(force_effect::acceleration, I + 1)) accel = accel + term;
       else accel = term;
     } else if constexpr (F::effect == force_effect::force) {
-      const state term = std::get<I>(forces).evaluate(x, v, p);
+      const state term = term_of(std::get<I>(forces), x, v, p);
       if constexpr (any_effect(force_effect::force, I + 1)) force = force + term;
       else force = term;
     }
@@ -19285,6 +19668,9 @@ class particle_system {
   static std::size_t checked_capacity(std::size_t capacity) {
     detail::require(capacity != 0 && capacity <= max_capacity, error_code::invalid_parameter,
                     "particle_system: capacity must be between 1 and max_capacity (2^26)");
+    if constexpr (cross_platform_determinism)
+      detail::require(!impulse::detail::contraction_in_effect(), error_code::invalid_parameter,
+                      impulse::detail::contraction_message);
     return capacity;
   }
   static void check_mass(T mass, std::uint32_t i) {
@@ -19444,6 +19830,15 @@ struct point_forces {
     if constexpr (bits > 0)
       if (root == root_method::estimate || (bits >= 14 && root == root_method::automatic))
         return sum<W, root_method::estimate>(x);
+    return sum<W, root_method::exact>(x);
+  }
+
+  /// The exact form whatever `root` says: the same bits at every width and
+  /// on every machine. A particle system with cross_platform_determinism
+  /// calls this instead of evaluate.
+  template <int W>
+  vec3_batch<T, W> evaluate_portable(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
+                                     const particle_lanes<T, W>&) const noexcept {
     return sum<W, root_method::exact>(x);
   }
 
@@ -20274,7 +20669,9 @@ template <class Config = default_config> class world;
 // function of the state (no clocks, no addresses, containers iterated in
 // id order), so the same state stepped twice gives the same bits.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <exception>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 // ---- begin impulse/world/contact_hooks.hpp ----
 // impulse/world/contact_hooks.hpp — the user's say in the solve: a hook
@@ -20844,7 +21241,9 @@ class scaled_state {
 // timespec_get's calendar time. <chrono> would add 13 500 lines to what
 // every world program parses.
 
+IMPULSE_DETAIL_CONTRACTION_RESTORED
 #include <ctime>
+IMPULSE_DETAIL_CONTRACTION_OFF
 
 namespace impulse::detail {
 
@@ -21953,7 +22352,7 @@ struct contact_update {
     std::vector<contact_record<T>>& old = state.contacts;
     const auto& s = state.settings;
     const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
-                              std::cos(s.contact_reuse_angle / T(2))};
+                              portable_cos(s.contact_reuse_angle / T(2))};
     // With the broad phase's pairs as they were, the records are too (but
     // for pairs waiting for room, and those a joint no longer keeps apart),
     // and only the pairs of bodies that move can change: a sleeping pile
@@ -24010,6 +24409,7 @@ namespace impulse {
 template <class Config>
 class world {
   static_assert(detail::check_world_config<Config>());
+  static_assert(detail::check_determinism_build<Config>());
 
  public:
   using config = Config;
@@ -24031,6 +24431,11 @@ class world {
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
   static constexpr bool ccd = detail::world_ccd<Config>();
+  /// Whether every build of the program steps to the same bits (config
+  /// `cross_platform_determinism`, off by default): the world then refuses
+  /// to be made in a build that fuses multiplies and adds
+  /// (core/floating_point.hpp; docs/world.md, "Lockstep determinism").
+  static constexpr bool cross_platform_determinism = detail::cross_platform_determinism<Config>();
   /// Manifolds one pair can have (one per distinct normal against a mesh).
   static constexpr int max_manifolds = detail::max_manifolds;
   /// The longest step, s: a step is a small piece of motion, and one of a
@@ -24575,6 +24980,9 @@ class world {
 
 template <class Config>
 world<Config>::world(const settings_type& settings) {
+  if constexpr (cross_platform_determinism)
+    if (detail::contraction_in_effect() || detail::quat_product_fused())
+      detail::report_error(error_code::invalid_parameter, detail::contraction_message);
   settings.validate();
   state_.settings = settings;
   state_.set_owner(detail::next_world_owner());
@@ -25353,3 +25761,4 @@ IMPULSE_DECLARE_WORLD(impulse::default_double_config);
 // ---- end impulse/world/world.hpp ----
 // ---- end impulse/world.hpp ----
 // ---- end impulse/impulse.hpp ----
+IMPULSE_DETAIL_CONTRACTION_RESTORED

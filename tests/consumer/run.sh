@@ -27,8 +27,19 @@
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 consumer=$repo/tests/consumer
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+# IMPULSE_CONSUMER_WORK=DIR works in DIR, emptied first, instead of a
+# temporary directory: CI puts it inside the clone, where ccache (named in
+# CMAKE_CXX_COMPILER_LAUNCHER) takes paths relative to the clone and a later
+# run hits the same entries.
+if [ -n "${IMPULSE_CONSUMER_WORK:-}" ]; then
+  work=$IMPULSE_CONSUMER_WORK
+  rm -rf "$work"
+  mkdir -p "$work"
+else
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+fi
+launcher=${CMAKE_CXX_COMPILER_LAUNCHER:-}
 cxx=${CXX:-g++}
 warnings=(-Wall -Wextra -Wpedantic -Werror)
 export CXX=$cxx
@@ -79,6 +90,7 @@ package() {
   test -f "$work/prefix/share/cmake/impulse/impulseConfigVersion.cmake"
   test -f "$work/prefix/share/cmake/impulse/impulseSceneTargets.cmake"
   test -f "$work/prefix/share/pkgconfig/impulse.pc"
+  grep -q "impulse::deterministic" "$work/prefix/share/cmake/impulse/impulseTargets.cmake"
   cmake_consumer "$work/package" -DIMPULSE_CONSUMER_MODE=package -DCMAKE_PREFIX_PATH="$work/prefix"
   grep -qx "impulse_DIR:PATH=$work/prefix/share/cmake/impulse" "$work/package/CMakeCache.txt"
   cmake --build "$work/package" --target consumer
@@ -95,7 +107,7 @@ pkgconfig() {
   export PKG_CONFIG_PATH=$work/prefix/share/pkgconfig
   same_dir "$(pkg-config --variable=includedir impulse)" "$work/prefix/include"
   # shellcheck disable=SC2046  # the flags are words
-  "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/pkgconfig-consumer"
+  $launcher "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/pkgconfig-consumer"
   "$work/pkgconfig-consumer" "$work/pkgconfig.glb"
 }
 
@@ -106,7 +118,7 @@ pkgconfig_relocated() {  # the install copied elsewhere, the original gone
   export PKG_CONFIG_PATH=$work/elsewhere/impulse/share/pkgconfig
   same_dir "$(pkg-config --variable=includedir impulse)" "$work/elsewhere/impulse/include"
   # shellcheck disable=SC2046
-  "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/relocated-consumer"
+  $launcher "$cxx" "${warnings[@]}" $(pkg-config --cflags impulse) "$consumer/main.cpp" -o "$work/relocated-consumer"
   "$work/relocated-consumer" "$work/relocated.glb"
 }
 
@@ -153,7 +165,7 @@ single_io() {  # the three single headers copied out alone; main.cpp includes im
   mkdir -p "$work/single/impulse"
   cp "$repo"/single_include/impulse/impulse.hpp "$repo"/single_include/impulse/impulse_io.hpp \
     "$repo"/single_include/impulse/impulse_scene.hpp "$work/single/impulse/"
-  "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
+  $launcher "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
     "$consumer/main.cpp" -o "$work/single-header-consumer"
   "$work/single-header-consumer" "$work/single.glb"
   # CI opens this recording in the viewer (viewer/test): IMPULSE_CONSUMER_RECORDING names where to keep it.
@@ -164,7 +176,7 @@ single_io() {  # the three single headers copied out alone; main.cpp includes im
 }
 
 single_scene() {
-  "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
+  $launcher "$cxx" -std=c++20 "${warnings[@]}" -DIMPULSE_CONSUMER_SINGLE_HEADER -I "$work/single" \
     "$consumer/scene_main.cpp" -o "$work/single-header-scene-consumer"
   "$work/single-header-scene-consumer"
 }

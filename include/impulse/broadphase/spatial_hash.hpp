@@ -85,6 +85,7 @@
 #include "../core/error.hpp"
 #include "../core/policy.hpp"
 #include "../math/aabb.hpp"
+#include "../math/trigonometry.hpp"
 #include "detail/pair_tracker.hpp"
 #include "proxy.hpp"
 #include "detail/proxy_store.hpp"
@@ -374,7 +375,7 @@ class basic_spatial_hash {
     std::nth_element(sample_.begin(), quartile, sample_.end());
     if (*quartile > 0) return *quartile;
     const double spread = std::min(max_component(bounds.upper - bounds.lower), std::numeric_limits<double>::max());
-    return spread / std::cbrt(double(n));
+    return spread / portable_cbrt(double(n));
   }
 
   void choose_cell_size() {

@@ -104,6 +104,7 @@ template <class C> concept has_shapes = requires { typename C::shapes; };
 template <class C> concept has_sleeping = requires { C::sleeping; };
 template <class C> concept has_ccd = requires { C::ccd; };
 template <class C> concept has_collision = requires { C::collision; };
+template <class C> concept has_cross_platform_determinism = requires { C::cross_platform_determinism; };
 
 template <class T>
 concept constexpr_bool = std::same_as<std::remove_cv_t<T>, bool>;
@@ -123,7 +124,8 @@ concept world_config =
     (!detail::has_shapes<C> || shape_set<typename C::shapes>) &&
     (!detail::has_sleeping<C> || detail::constexpr_bool<decltype(C::sleeping)>) &&
     (!detail::has_ccd<C> || detail::constexpr_bool<decltype(C::ccd)>) &&
-    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>);
+    (!detail::has_collision<C> || detail::constexpr_bool<decltype(C::collision)>) &&
+    (!detail::has_cross_platform_determinism<C> || detail::constexpr_bool<decltype(C::cross_platform_determinism)>);
 
 /// Loud form: use as `static_assert(impulse::check_config<C>());`. Each failed
 /// requirement produces one static_assert message naming the member at fault.
@@ -170,6 +172,10 @@ consteval bool check_config() {
   if constexpr (detail::has_collision<C>) {
     static_assert(detail::constexpr_bool<decltype(C::collision)>,
                   "impulse config: `collision` must be `static constexpr bool`");
+  }
+  if constexpr (detail::has_cross_platform_determinism<C>) {
+    static_assert(detail::constexpr_bool<decltype(C::cross_platform_determinism)>,
+                  "impulse config: `cross_platform_determinism` must be `static constexpr bool`");
   }
   return world_config<C>;
 }

@@ -209,7 +209,7 @@ template <scalar_type T>
 [[nodiscard]] T twist_angle(const quat<T>& qa, const quat<T>& qb, const joint_constraint<T>& j) noexcept {
   quat<T> d = conjugate(qa) * qb * conjugate(j.reference);
   if (d.w < T(0)) d = d * T(-1);
-  return T(2) * std::atan2(dot(d.vector_part(), j.local_axis_a), d.w);
+  return T(2) * portable_atan2(dot(d.vector_part(), j.local_axis_a), d.w);
 }
 
 /// The parts, their masses and the joint's errors, from where the bodies

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "mat3.hpp"
+#include "trigonometry.hpp"
 #include "vec3.hpp"
 
 namespace impulse {
@@ -28,8 +29,8 @@ struct quat {
   /// Rotation by `angle` radians about `axis`. The axis must be unit length.
   static quat from_axis_angle(const vec3<T>& axis, T angle) noexcept {
     IMPULSE_ASSERT(is_normalized(axis));
-    const T s = std::sin(angle * T(0.5));
-    return {axis.x * s, axis.y * s, axis.z * s, std::cos(angle * T(0.5))};
+    const sine_cosine<T> half = portable_sin_cos(angle * T(0.5));
+    return {axis.x * half.sin, axis.y * half.sin, axis.z * half.sin, half.cos};
   }
 
   constexpr vec3<T> vector_part() const noexcept { return {x, y, z}; }
@@ -45,6 +46,31 @@ constexpr quat<T> operator*(const quat<T>& a, const quat<T>& b) noexcept {
           a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
           a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
+
+namespace detail {
+
+/// Whether this build fuses the multiplies and adds of the product above:
+/// GCC 12's SLP vectoriser forms fused multiply-subtract-adds from its
+/// alternating signs even with -ffp-contract=off (core/floating_point.hpp).
+/// The product of two quaternions loaded from volatiles and stored whole
+/// (the stores are what the vectoriser groups), against the same sums with
+/// every term stored to a volatile first, which nothing can fuse.
+[[gnu::noinline]] inline void multiply_into(const quat<float>& a, const quat<float>& b, quat<float>& out) noexcept {
+  out = a * b;
+}
+inline bool quat_product_fused() noexcept {
+  volatile float in[8] = {0.1f, 0.7f, -0.3f, 0.9f, -0.6f, 0.2f, 0.8f, 0.35f};
+  const quat<float> a{in[0], in[1], in[2], in[3]}, b{in[4], in[5], in[6], in[7]};
+  quat<float> product;
+  multiply_into(a, b, product);
+  volatile float t[16] = {a.w * b.x, a.x * b.w, a.y * b.z, a.z * b.y, a.w * b.y, a.x * b.z, a.y * b.w, a.z * b.x,
+                          a.w * b.z, a.x * b.y, a.y * b.x, a.z * b.w, a.w * b.w, a.x * b.x, a.y * b.y, a.z * b.z};
+  const quat<float> rounded{t[0] + t[1] + t[2] - t[3], t[4] - t[5] + t[6] + t[7], t[8] + t[9] - t[10] + t[11],
+                            t[12] - t[13] - t[14] - t[15]};
+  return !(product == rounded);
+}
+
+}  // namespace detail
 
 template <scalar_type T>
 constexpr quat<T> operator*(const quat<T>& q, T s) noexcept {
@@ -164,8 +190,9 @@ quat<T> exp_pure(const vec3<T>& v) noexcept {
     return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, cos_h};
   }
   const T h = std::sqrt(h2);
-  const T sin_h_over_h = std::sin(h) / h;
-  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, std::cos(h)};
+  const sine_cosine<T> turn = portable_sin_cos(h);
+  const T sin_h_over_h = turn.sin / h;
+  return {v.x * sin_h_over_h, v.y * sin_h_over_h, v.z * sin_h_over_h, turn.cos};
 }
 
 /// Orientation after turning at constant world-space angular velocity
@@ -186,7 +213,7 @@ quat<T> integrate(const quat<T>& q, const vec3<T>& omega, T dt) noexcept {
 template <scalar_type T>
 T angle_between(const quat<T>& a, const quat<T>& b) noexcept {
   const quat<T> d = conjugate(a) * b;
-  return T(2) * std::atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
+  return T(2) * portable_atan2(length(d.vector_part()), std::abs(d.w));  // q and -q: same rotation
 }
 
 /// The rotation vector (world axis times angle, radians) of the shortest
@@ -198,7 +225,7 @@ vec3<T> rotation_between(const quat<T>& from, const quat<T>& to) noexcept {
   if (q.w < T(0)) q = q * T(-1);  // the short way round
   const vec3<T> axis = q.vector_part();
   const T sine = length(axis);
-  return sine > T(0) ? axis * (T(2) * std::atan2(sine, q.w) / sine) : vec3<T>{};
+  return sine > T(0) ? axis * (T(2) * portable_atan2(sine, q.w) / sine) : vec3<T>{};
 }
 
 }  // namespace impulse

@@ -46,6 +46,7 @@
 
 #include "../core/aligned_array.hpp"
 #include "../core/detail/assert.hpp"
+#include "../core/floating_point.hpp"
 #include "../core/policy.hpp"
 #include "../core/random.hpp"
 #include "../core/task_system.hpp"
@@ -101,6 +102,10 @@ class particle_system {
   static constexpr int width = particle_width_of<Config>;
   static constexpr bool has_lifetime = particle_lifetime_of<Config>;
   static constexpr bool has_masses = particle_masses_of<Config>;
+  /// Config `cross_platform_determinism` (off by default): the same bits from
+  /// every build (core/floating_point.hpp), forces in their portable form
+  /// (point_forces: never the hardware's 1/√ estimate, which differs by vendor).
+  static constexpr bool cross_platform_determinism = impulse::detail::cross_platform_determinism<Config>();
   /// The most particles a system may be created for: 2^26, about 6.7e7.
   /// Each takes up to 10 columns of scalar (40 bytes with float, 80 with
   /// double; springs add 3 to 18 for the stages), allocated and zeroed when
@@ -120,6 +125,7 @@ class particle_system {
                 "impulse particle_system: every force must state its effect, validate() and evaluate(x, v, p)");
   static_assert(((Forces<scalar>::effect == force_effect::pairwise ? 1 : 0) + ... + 0) <= 1,
                 "impulse particle_system: at most one pairwise force (springs) in the list");
+  static_assert(impulse::detail::check_determinism_build<Config>());
 
  private:
   using T = scalar;
@@ -309,21 +315,27 @@ class particle_system {
     return false;
   }
 
-  /// Adds the I-th force's term to the accelerations or to the forces. The
-  /// terms are summed from the last force to the first, and the first term
-  /// of each kind summed (the last listed) is assigned, so no zero is ever
-  /// added.
+  /// A force's term (evaluate_portable under cross_platform_determinism, where the force has it); add_term adds
+  /// the I-th to the accelerations or forces, from the last force to the first, the first assigned: no zero added.
+  template <class F>
+  [[gnu::always_inline]] static state term_of(const F& f, const state& x, const state& v,
+                                              const particle_lanes<T, width>& p) noexcept {
+    if constexpr (cross_platform_determinism && requires { f.evaluate_portable(x, v, p); })
+      return f.evaluate_portable(x, v, p);
+    return f.evaluate(x, v, p);
+  }
+
   template <std::size_t I>
   [[gnu::always_inline]] static void add_term(const std::tuple<Forces<T>...>& forces, const state& x,
                                               const state& v, const particle_lanes<T, width>& p, state& accel,
                                               state& force) noexcept {
     using F = std::tuple_element_t<I, std::tuple<Forces<T>...>>;
     if constexpr (F::effect == force_effect::acceleration) {
-      const state term = std::get<I>(forces).evaluate(x, v, p);
+      const state term = term_of(std::get<I>(forces), x, v, p);
       if constexpr (any_effect(force_effect::acceleration, I + 1)) accel = accel + term;
       else accel = term;
     } else if constexpr (F::effect == force_effect::force) {
-      const state term = std::get<I>(forces).evaluate(x, v, p);
+      const state term = term_of(std::get<I>(forces), x, v, p);
       if constexpr (any_effect(force_effect::force, I + 1)) force = force + term;
       else force = term;
     }
@@ -704,6 +716,9 @@ class particle_system {
   static std::size_t checked_capacity(std::size_t capacity) {
     detail::require(capacity != 0 && capacity <= max_capacity, error_code::invalid_parameter,
                     "particle_system: capacity must be between 1 and max_capacity (2^26)");
+    if constexpr (cross_platform_determinism)
+      detail::require(!impulse::detail::contraction_in_effect(), error_code::invalid_parameter,
+                      impulse::detail::contraction_message);
     return capacity;
   }
   static void check_mass(T mass, std::uint32_t i) {

@@ -114,8 +114,11 @@ template <class T, int W>
   const vec3_batch<T, W> tangential = v - n * vn;
   const batch<T, W> zero = batch<T, W>::broadcast(T(0));
   const batch<T, W> vn_after = select(touching & (vn < zero), vn * minus_restitution, vn);
-  const batch<T, W> kept = select(touching, batch<T, W>::broadcast(keep), batch<T, W>::broadcast(T(1)));
-  v = tangential * kept + n * vn_after;
+  const vec3_batch<T, W> answered = tangential * keep + n * vn_after;
+  // The lanes not touching keep their v as it was: (v − n·vn) + n·vn is v
+  // only to rounding, and whether a lane took that rounding would depend on
+  // the other lanes of its batch, so on the width (lockstep determinism).
+  v = {select(touching, answered.x, v.x), select(touching, answered.y, v.y), select(touching, answered.z, v.z)};
 }
 
 /// A half-space as the particle kernel uses it, made from a plane_collider
@@ -164,7 +167,8 @@ template <class T, int W>
   if (!any_less(s, zero)) return false;  // the common case, tested on the compare's own mask
   const batch_mask<T, W> behind = s < zero;
   const vec3_batch<T, W> n = vec3_batch<T, W>::broadcast(h.normal);
-  x = x - n * select(behind, s, zero);
+  const vec3_batch<T, W> projected = x - n * s;
+  x = {select(behind, projected.x, x.x), select(behind, projected.y, x.y), select(behind, projected.z, x.z)};
   plane_response(h.minus_restitution, h.keep, behind, n, v);
   return true;
 }

@@ -83,6 +83,15 @@ struct point_forces {
     return sum<W, root_method::exact>(x);
   }
 
+  /// The exact form whatever `root` says: the same bits at every width and
+  /// on every machine. A particle system with cross_platform_determinism
+  /// calls this instead of evaluate.
+  template <int W>
+  vec3_batch<T, W> evaluate_portable(const vec3_batch<T, W>& x, const vec3_batch<T, W>&,
+                                     const particle_lanes<T, W>&) const noexcept {
+    return sum<W, root_method::exact>(x);
+  }
+
   /// r2^(-3/2) for r2 > 0 (positive, finite, normal), by `method` where W
   /// lanes of T have an estimate, exactly otherwise. The estimate y of
   /// 1/√r2 gives e = r2·y² = 1 + δ, and r2^(-3/2) = y³·(1 + δ)^(-3/2) =

@@ -36,6 +36,7 @@
 
 #include "../config.hpp"
 #include "../core/error.hpp"
+#include "../core/floating_point.hpp"
 #include "../core/task_system.hpp"
 #include "../narrowphase/dispatch.hpp"
 #include "../narrowphase/ray_cast.hpp"
@@ -61,6 +62,7 @@ namespace impulse {
 template <class Config>
 class world {
   static_assert(detail::check_world_config<Config>());
+  static_assert(detail::check_determinism_build<Config>());
 
  public:
   using config = Config;
@@ -82,6 +84,11 @@ class world {
   /// Whether fast bodies and bullets are swept (continuous collision); off,
   /// the sweeping code is not compiled.
   static constexpr bool ccd = detail::world_ccd<Config>();
+  /// Whether every build of the program steps to the same bits (config
+  /// `cross_platform_determinism`, off by default): the world then refuses
+  /// to be made in a build that fuses multiplies and adds
+  /// (core/floating_point.hpp; docs/world.md, "Lockstep determinism").
+  static constexpr bool cross_platform_determinism = detail::cross_platform_determinism<Config>();
   /// Manifolds one pair can have (one per distinct normal against a mesh).
   static constexpr int max_manifolds = detail::max_manifolds;
   /// The longest step, s: a step is a small piece of motion, and one of a
@@ -626,6 +633,9 @@ class world {
 
 template <class Config>
 world<Config>::world(const settings_type& settings) {
+  if constexpr (cross_platform_determinism)
+    if (detail::contraction_in_effect() || detail::quat_product_fused())
+      detail::report_error(error_code::invalid_parameter, detail::contraction_message);
   settings.validate();
   state_.settings = settings;
   state_.set_owner(detail::next_world_owner());

@@ -117,7 +117,7 @@ struct contact_update {
     std::vector<contact_record<T>>& old = state.contacts;
     const auto& s = state.settings;
     const reuse_limits limits{s.contact_reuse_distance * s.contact_reuse_distance,
-                              std::cos(s.contact_reuse_angle / T(2))};
+                              portable_cos(s.contact_reuse_angle / T(2))};
     // With the broad phase's pairs as they were, the records are too (but
     // for pairs waiting for room, and those a joint no longer keeps apart),
     // and only the pairs of bodies that move can change: a sleeping pile
