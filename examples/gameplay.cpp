@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
               ghost_in_crate ? "yes" : "no", double(ghost_y));
   const impulse::transform<T> chair_pose = world.shape_pose(seat);
   const T chair_up = impulse::rotate(chair_pose.rotation, vec3<T>{0, 1, 0}).y;
-  std::printf("  the chair stands on its legs, its feet at %.3f m, leaning %.2f degrees\n", double(chair_pose.position.y),
-              double(std::acos(std::min(T(1), chair_up)) * T(180) / T(3.14159265)));
+  std::printf("  the chair stands on its legs, its feet at %.3f m, leaning %.2f degrees\n",
+              double(chair_pose.position.y), double(std::acos(std::min(T(1), chair_up)) * T(180) / T(3.14159265)));
   // A probe dropped from above the platform: where does it land?
   const auto probe = world.shape_cast(impulse::sphere<T>::make(T(0.3)), {{-5, 6, 0}, impulse::quat<T>::identity()},
                                       {0, -10, 0});

@@ -83,6 +83,7 @@ using impulse_spatial_hash = impulse_set<impulse::broadphase::spatial_hash>;
 using impulse_octree = impulse_set<impulse::broadphase::octree>;
 using impulse_brute_force = impulse_set<impulse::broadphase::brute_force>;
 using impulse_soft_step = impulse_set<impulse::broadphase::dynamic_bvh, impulse::solver::soft_step>;
+#if defined(IMPULSE_BENCH_LOCKSTEP)
 /// The default policies with cross_platform_determinism: only in
 /// scenes_lockstep, built with impulse::deterministic's flags (no fused
 /// multiply-adds), where it is the one engine; its cost is read beside
@@ -90,6 +91,7 @@ using impulse_soft_step = impulse_set<impulse::broadphase::dynamic_bvh, impulse:
 struct impulse_lockstep : impulse_dynamic_bvh {
   static constexpr bool cross_platform_determinism = true;
 };
+#endif
 
 std::vector<engine_entry> engines() {
   std::vector<engine_entry> list;

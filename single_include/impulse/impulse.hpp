@@ -15263,6 +15263,37 @@ contact_manifold<T> collide(const convex_hull<T>& a, const transform<T>& pose_a,
 // world copies the compound it is given.
 
 
+// ---- begin impulse/shapes/detail/thinnest_half_extent.hpp ----
+// impulse/shapes/detail/thinnest_half_extent.hpp — how thin a shape is: the
+// distance a body of it may cross in one step before continuous collision
+// sweeps it (world/detail/continuous.hpp), and the scale of a compound's
+// welding of its children's contact points (narrowphase/compound.hpp).
+
+
+
+namespace impulse::detail {
+
+/// A shape's thinnest half-extent, m: a ball's or a capsule's radius, the
+/// smallest half-extent of a box's or a hull's local box, a compound's
+/// thinnest child's; infinite for planes, meshes and heightfields, which
+/// are static or kinematic and never swept.
+template <scalar_type T, class Shape>
+[[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
+  if constexpr (requires { shape.thinnest_half_extent(); }) {
+    return shape.thinnest_half_extent();
+  } else if constexpr (requires { shape.radius; }) {
+    return shape.radius;
+  } else if constexpr (requires { shape.local_aabb(); }) {
+    const aabb<T> box = shape.local_aabb();
+    const vec3<T> half = (box.upper - box.lower) * T(0.5);
+    return std::min({half.x, half.y, half.z});
+  } else {
+    return std::numeric_limits<T>::infinity();
+  }
+}
+
+}  // namespace impulse::detail
+// ---- end impulse/shapes/detail/thinnest_half_extent.hpp ----
 // ---- begin impulse/shapes/detail/triangle_bvh.hpp ----
 // impulse/shapes/detail/triangle_bvh.hpp — a static bounding-volume
 // hierarchy over the triangles of a triangle_mesh.
@@ -15521,7 +15552,8 @@ class compound {
     const std::span<const std::uint32_t> order = tree_.order();
     tree_.for_each_leaf_along(origin, translation, max_fraction, slack,
                               [&](std::uint32_t first, std::uint32_t count, T clip) {
-                                for (std::uint32_t k = first; k < first + count; ++k) clip = f(std::size_t(order[k]), clip);
+                                for (std::uint32_t k = first; k < first + count; ++k)
+                                  clip = f(std::size_t(order[k]), clip);
                                 return clip;
                               });
   }
@@ -15551,17 +15583,11 @@ class compound {
     for (std::size_t i = 0; i < children_.size(); ++i) {
       boxes[i] = children_[i].bounds;
       bounds_ = merge(bounds_, boxes[i]);
-      thinnest_ = std::min(thinnest_, visit(i, [](const auto& s, const transform<T>&) { return thinnest_of(s); }));
+      thinnest_ = std::min(thinnest_, visit(i, [](const auto& s, const transform<T>&) {
+                             return detail::thinnest_half_extent<T>(s);
+                           }));
     }
     tree_.build(boxes);
-  }
-
-  static T thinnest_of(const sphere<T>& s) noexcept { return s.radius; }
-  static T thinnest_of(const capsule<T>& c) noexcept { return c.radius; }
-  static T thinnest_of(const box<T>& b) noexcept { return std::min({b.half_extents.x, b.half_extents.y, b.half_extents.z}); }
-  static T thinnest_of(const convex_hull<T>& h) noexcept {
-    const vec3<T> half = half_extents(h.local_aabb());
-    return std::min({half.x, half.y, half.z});
   }
 
   std::vector<child> children_;
@@ -15582,17 +15608,20 @@ class compound_builder {
   /// Adds `shape` at `pose` in the compound's frame. relative_density
   /// scales the body's material density for this child (a lead keel
   /// under a wooden hull: 11); it must be finite and positive.
-  compound_builder& add(const sphere<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const sphere<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.spheres_, shape, compound_part::sphere, pose, relative_density);
   }
-  compound_builder& add(const box<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const box<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.boxes_, shape, compound_part::box, pose, relative_density);
   }
-  compound_builder& add(const capsule<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const capsule<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.capsules_, shape, compound_part::capsule, pose, relative_density);
   }
   compound_builder& add(const convex_hull<T>& shape, const transform<T>& pose = transform<T>::identity(),
-               T relative_density = T(1)) {
+                        T relative_density = T(1)) {
     return push(result_.hulls_, shape, compound_part::convex_hull, pose, relative_density);
   }
 
@@ -15710,7 +15739,8 @@ class manifold_merger {
   /// first, carried to world space by `to_world` (a point map) and
   /// `rotation` (the working frame's axes in world). Returns how many.
   template <class ToWorld>
-  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world, bool flip) noexcept {
+  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world,
+                    bool flip) noexcept {
     std::array<std::size_t, capacity> order;
     for (std::size_t g = 0; g < count_; ++g) order[g] = g;
     // Insertion sort, deepest first, equals in the order found: at most 16,
@@ -15792,7 +15822,8 @@ class manifold_merger {
     T lo_x = std::numeric_limits<T>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = hi_x;
     for (std::size_t i = 0; i < n; ++i) {
       x[i] = dot(in[i].position, u), y[i] = dot(in[i].position, v);
-      lo_x = std::min(lo_x, x[i]), hi_x = std::max(hi_x, x[i]), lo_y = std::min(lo_y, y[i]), hi_y = std::max(hi_y, y[i]);
+      lo_x = std::min(lo_x, x[i]), hi_x = std::max(hi_x, x[i]);
+      lo_y = std::min(lo_y, y[i]), hi_y = std::max(hi_y, y[i]);
       std::size_t j = i;  // insertion sort by (x, y): at most 16
       for (; j > 0 && (x[order[j - 1]] > x[i] || (x[order[j - 1]] == x[i] && y[order[j - 1]] > y[i])); --j)
         order[j] = order[j - 1];
@@ -15822,7 +15853,10 @@ class manifold_merger {
     --k;  // the chain ends where it began
     bool corner[group_points] = {};
     T corner_depth = -std::numeric_limits<T>::infinity();
-    for (std::size_t i = 0; i < k; ++i) corner[hull[i]] = true, corner_depth = std::max(corner_depth, in[hull[i]].depth);
+    for (std::size_t i = 0; i < k; ++i) {
+      corner[hull[i]] = true;
+      corner_depth = std::max(corner_depth, in[hull[i]].depth);
+    }
     std::size_t m = 0;
     const T weld = std::sqrt(weld_squared_);
     for (std::size_t i = 0; i < n; ++i)
@@ -22669,23 +22703,6 @@ struct contact_update {
 
 namespace impulse::detail {
 
-/// What a body of this shape may cross in a step before it is swept, m:
-/// its thinnest half-extent.
-template <scalar_type T, class Shape>
-[[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
-  if constexpr (requires { shape.thinnest_half_extent(); }) {
-    return shape.thinnest_half_extent();  // a compound's thinnest child
-  } else if constexpr (requires { shape.radius; }) {
-    return shape.radius;  // a ball's, and a capsule's across
-  } else if constexpr (requires { shape.local_aabb(); }) {
-    const aabb<T> box = shape.local_aabb();
-    const vec3<T> half = (box.upper - box.lower) * T(0.5);
-    return std::min({half.x, half.y, half.z});
-  } else {
-    return std::numeric_limits<T>::infinity();  // planes and meshes are static or kinematic: never swept
-  }
-}
-
 template <class Config>
 struct continuous_collision {
   using T = typename Config::scalar;
@@ -25125,8 +25142,8 @@ body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
   if constexpr (requires { shape.validate(); }) shape.validate();
   if constexpr (std::is_same_v<Shape, compound<T>>)
     if (!detail::world_state<Config>::dispatcher::holds_children_of(shape))
-      detail::report_error(error_code::invalid_parameter,
-                           "world::create_body: the compound has a child whose shape is not in the config's shape_list");
+      detail::report_error(error_code::invalid_parameter, "world::create_body: the compound has a child whose shape "
+                                                          "is not in the config's shape_list");
   def.material.validate();
   const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
   const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};

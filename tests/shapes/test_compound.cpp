@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../error_code_of.hpp"
+#include "two_cubes.hpp"
 #include "impulse/core/random.hpp"
 #include "impulse/narrowphase.hpp"
 #include "impulse/shapes.hpp"
@@ -29,12 +30,7 @@ using tf = transform<double>;
 const quat<double> upright = quat<double>::identity();
 
 /// Two unit cubes side by side along x: the 2 × 1 × 1 box centered at 0.
-compound<double> two_cubes() {
-  compound<double>::builder b;
-  b.add(box<double>{{0.5, 0.5, 0.5}}, tf{{-0.5, 0, 0}, upright});
-  b.add(box<double>{{0.5, 0.5, 0.5}}, tf{{0.5, 0, 0}, upright});
-  return b.build();
-}
+compound<double> two_cubes() { return test::two_cubes<double>(); }
 
 /// Mass properties are sums of values near 1: relative rounding.
 constexpr double mass_tolerance = 1e-12;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../error_code_of.hpp"
+#include "../shapes/two_cubes.hpp"
 #include "impulse/world.hpp"
 #include "scenes.hpp"
 
@@ -28,12 +29,7 @@ using tf = transform<float>;
 const quat<float> upright = quat<float>::identity();
 
 /// Two unit cubes side by side along x.
-compound<float> two_cubes() {
-  compound<float>::builder b;
-  b.add(box<float>{{0.5f, 0.5f, 0.5f}}, tf{{-0.5f, 0, 0}, upright});
-  b.add(box<float>{{0.5f, 0.5f, 0.5f}}, tf{{0.5f, 0, 0}, upright});
-  return b.build();
-}
+compound<float> two_cubes() { return test::two_cubes<float>(); }
 
 /// The hull around them: the 2 × 1 × 1 box's corners.
 convex_hull<float> hull_of_two_cubes() {

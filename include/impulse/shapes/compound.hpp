@@ -39,6 +39,7 @@
 #include "box.hpp"
 #include "capsule.hpp"
 #include "convex_hull.hpp"
+#include "detail/thinnest_half_extent.hpp"
 #include "detail/triangle_bvh.hpp"
 #include "mass_properties.hpp"
 #include "sphere.hpp"
@@ -122,7 +123,8 @@ class compound {
     const std::span<const std::uint32_t> order = tree_.order();
     tree_.for_each_leaf_along(origin, translation, max_fraction, slack,
                               [&](std::uint32_t first, std::uint32_t count, T clip) {
-                                for (std::uint32_t k = first; k < first + count; ++k) clip = f(std::size_t(order[k]), clip);
+                                for (std::uint32_t k = first; k < first + count; ++k)
+                                  clip = f(std::size_t(order[k]), clip);
                                 return clip;
                               });
   }
@@ -152,17 +154,11 @@ class compound {
     for (std::size_t i = 0; i < children_.size(); ++i) {
       boxes[i] = children_[i].bounds;
       bounds_ = merge(bounds_, boxes[i]);
-      thinnest_ = std::min(thinnest_, visit(i, [](const auto& s, const transform<T>&) { return thinnest_of(s); }));
+      thinnest_ = std::min(thinnest_, visit(i, [](const auto& s, const transform<T>&) {
+                             return detail::thinnest_half_extent<T>(s);
+                           }));
     }
     tree_.build(boxes);
-  }
-
-  static T thinnest_of(const sphere<T>& s) noexcept { return s.radius; }
-  static T thinnest_of(const capsule<T>& c) noexcept { return c.radius; }
-  static T thinnest_of(const box<T>& b) noexcept { return std::min({b.half_extents.x, b.half_extents.y, b.half_extents.z}); }
-  static T thinnest_of(const convex_hull<T>& h) noexcept {
-    const vec3<T> half = half_extents(h.local_aabb());
-    return std::min({half.x, half.y, half.z});
   }
 
   std::vector<child> children_;
@@ -183,17 +179,20 @@ class compound_builder {
   /// Adds `shape` at `pose` in the compound's frame. relative_density
   /// scales the body's material density for this child (a lead keel
   /// under a wooden hull: 11); it must be finite and positive.
-  compound_builder& add(const sphere<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const sphere<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.spheres_, shape, compound_part::sphere, pose, relative_density);
   }
-  compound_builder& add(const box<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const box<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.boxes_, shape, compound_part::box, pose, relative_density);
   }
-  compound_builder& add(const capsule<T>& shape, const transform<T>& pose = transform<T>::identity(), T relative_density = T(1)) {
+  compound_builder& add(const capsule<T>& shape, const transform<T>& pose = transform<T>::identity(),
+                        T relative_density = T(1)) {
     return push(result_.capsules_, shape, compound_part::capsule, pose, relative_density);
   }
   compound_builder& add(const convex_hull<T>& shape, const transform<T>& pose = transform<T>::identity(),
-               T relative_density = T(1)) {
+                        T relative_density = T(1)) {
     return push(result_.hulls_, shape, compound_part::convex_hull, pose, relative_density);
   }
 

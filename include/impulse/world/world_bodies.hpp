@@ -23,8 +23,8 @@ body_id world<Config>::create_body(const body_def<T>& def, const Shape& shape) {
   if constexpr (requires { shape.validate(); }) shape.validate();
   if constexpr (std::is_same_v<Shape, compound<T>>)
     if (!detail::world_state<Config>::dispatcher::holds_children_of(shape))
-      detail::report_error(error_code::invalid_parameter,
-                           "world::create_body: the compound has a child whose shape is not in the config's shape_list");
+      detail::report_error(error_code::invalid_parameter, "world::create_body: the compound has a child whose shape "
+                                                          "is not in the config's shape_list");
   def.material.validate();
   const rigid_body<T> body = detail::make_body(def, shape);  // checks the pose, the mass and the type
   const vec3<T> center = def.type == body_type::dynamic ? detail::center_of_mass(def, shape) : vec3<T>{};

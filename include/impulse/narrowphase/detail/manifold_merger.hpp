@@ -67,7 +67,8 @@ class manifold_merger {
   /// first, carried to world space by `to_world` (a point map) and
   /// `rotation` (the working frame's axes in world). Returns how many.
   template <class ToWorld>
-  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world, bool flip) noexcept {
+  std::size_t write(std::span<contact_manifold<T>> out, const quat<T>& rotation, ToWorld&& to_world,
+                    bool flip) noexcept {
     std::array<std::size_t, capacity> order;
     for (std::size_t g = 0; g < count_; ++g) order[g] = g;
     // Insertion sort, deepest first, equals in the order found: at most 16,
@@ -149,7 +150,8 @@ class manifold_merger {
     T lo_x = std::numeric_limits<T>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = hi_x;
     for (std::size_t i = 0; i < n; ++i) {
       x[i] = dot(in[i].position, u), y[i] = dot(in[i].position, v);
-      lo_x = std::min(lo_x, x[i]), hi_x = std::max(hi_x, x[i]), lo_y = std::min(lo_y, y[i]), hi_y = std::max(hi_y, y[i]);
+      lo_x = std::min(lo_x, x[i]), hi_x = std::max(hi_x, x[i]);
+      lo_y = std::min(lo_y, y[i]), hi_y = std::max(hi_y, y[i]);
       std::size_t j = i;  // insertion sort by (x, y): at most 16
       for (; j > 0 && (x[order[j - 1]] > x[i] || (x[order[j - 1]] == x[i] && y[order[j - 1]] > y[i])); --j)
         order[j] = order[j - 1];
@@ -179,7 +181,10 @@ class manifold_merger {
     --k;  // the chain ends where it began
     bool corner[group_points] = {};
     T corner_depth = -std::numeric_limits<T>::infinity();
-    for (std::size_t i = 0; i < k; ++i) corner[hull[i]] = true, corner_depth = std::max(corner_depth, in[hull[i]].depth);
+    for (std::size_t i = 0; i < k; ++i) {
+      corner[hull[i]] = true;
+      corner_depth = std::max(corner_depth, in[hull[i]].depth);
+    }
     std::size_t m = 0;
     const T weld = std::sqrt(weld_squared_);
     for (std::size_t i = 0; i < n; ++i)

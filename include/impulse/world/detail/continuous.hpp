@@ -20,26 +20,10 @@
 #include "../../narrowphase/ray_cast.hpp"
 #include "../../narrowphase/time_of_impact.hpp"
 #include "../../shapes/compound.hpp"
+#include "../../shapes/detail/thinnest_half_extent.hpp"
 #include "world_state.hpp"
 
 namespace impulse::detail {
-
-/// What a body of this shape may cross in a step before it is swept, m:
-/// its thinnest half-extent.
-template <scalar_type T, class Shape>
-[[nodiscard]] T thinnest_half_extent(const Shape& shape) noexcept {
-  if constexpr (requires { shape.thinnest_half_extent(); }) {
-    return shape.thinnest_half_extent();  // a compound's thinnest child
-  } else if constexpr (requires { shape.radius; }) {
-    return shape.radius;  // a ball's, and a capsule's across
-  } else if constexpr (requires { shape.local_aabb(); }) {
-    const aabb<T> box = shape.local_aabb();
-    const vec3<T> half = (box.upper - box.lower) * T(0.5);
-    return std::min({half.x, half.y, half.z});
-  } else {
-    return std::numeric_limits<T>::infinity();  // planes and meshes are static or kinematic: never swept
-  }
-}
 
 template <class Config>
 struct continuous_collision {
