@@ -64,7 +64,13 @@ else
       echo "lockstep: g++-no-avx512 skipped: this machine has no AVX-512"
       continue
     fi
-    [[ "$except" == *" $b "* ]] || builds+=("$b")
+    [[ "$except" == *" $b "* ]] && continue
+    compiler=${command[$b]%% *}
+    if ! command -v "$compiler" >/dev/null; then
+      echo "lockstep: $b skipped: no $compiler here"
+      continue
+    fi
+    builds+=("$b")
   done
 fi
 
